@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# The second command of the README (and CI's): installs what is missing, builds in Release with
+# warnings as errors and runs every test with ctest; then builds the same tests with
+# AddressSanitizer + UndefinedBehaviorSanitizer and runs them again.
+#   --no-sanitizers   skip the sanitizer pass (quicker local runs)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+sanitizers=1
+for arg in "$@"; do
+  case "$arg" in
+    --no-sanitizers) sanitizers=0 ;;
+    *) echo "usage: scripts/test.sh [--no-sanitizers]" >&2; exit 2 ;;
+  esac
+done
+
+jobs=$(nproc)
+bash scripts/install-deps.sh
+
+# llvmpipe's results depend on these (shared/DESIGN.md section 7): pin them for every test run.
+export LP_NUM_THREADS=${LP_NUM_THREADS:-2}
+export EGL_PLATFORM=surfaceless
+
+run_suite() {  # build folder, extra cmake arguments...
+  local folder=$1
+  shift
+  echo "== configure and build $folder"
+  cmake -S . -B "$folder" -G Ninja -DCMAKE_BUILD_TYPE=Release -DVT_WARNINGS_AS_ERRORS=ON \
+    -DVT_BUILD_BENCHMARKS=ON "$@"
+  cmake --build "$folder" --parallel "$jobs"
+  echo "== test $folder"
+  ctest --test-dir "$folder" --output-on-failure --parallel "$jobs" --timeout 600
+}
+
+run_suite build
+if ((sanitizers)); then
+  # Leak checking stays on for our code; Mesa's and LLVM's one-time allocations are suppressed.
+  # The slow unwinder lets LeakSanitizer name the driver library of an allocation even after Mesa
+  # has unloaded it, so the suppressions can match.
+  export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:fast_unwind_on_malloc=0
+  export LSAN_OPTIONS=suppressions=$PWD/.ci/lsan.supp:print_suppressions=0
+  export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+  run_suite build-sanitize -DVT_SANITIZE=ON -DVT_BUILD_BENCHMARKS=OFF
+fi

@@ -1,0 +1,13 @@
+#pragma once
+// The subcommands of `vt`, one file each. Each adds itself to the application; its callback runs
+// the command and throws InputError for bad input, which main() prints as one line.
+
+#include <CLI/CLI.hpp>
+
+namespace vt {
+
+void addInfoCommand(CLI::App& app);
+void addDemoCommand(CLI::App& app);
+void addExportLevelCommand(CLI::App& app);
+
+}  // namespace vt

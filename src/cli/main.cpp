@@ -1,0 +1,56 @@
+// vt: the command line of the virtual-texturing tool chain.
+//
+// Exit codes: 0 success, 1 bad input or a failed operation (one line on stderr naming the file and
+// the problem), 2 bad arguments (the error and the command's usage line on stderr).
+
+#include <iostream>
+
+#include "cli/commands.h"
+#include "common/error.h"
+
+#ifndef VT_VERSION
+#error "VT_VERSION must be defined by the build"
+#endif
+
+namespace {
+
+// The usage line of the innermost subcommand that was reached before the error.
+std::string usageLine(const CLI::App& app) {
+  const CLI::App* command = &app;
+  std::string name = "vt";
+  while (!command->get_subcommands().empty()) {
+    command = command->get_subcommands().front();
+    name += " " + command->get_name();
+  }
+  return CLI::Formatter().make_usage(command, name);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app(
+      "vt: virtual texturing after A. Neu, \"Virtual Texturing\" (RWTH Aachen, 2010): "
+      "build virtual-texture files and inspect them.",
+      "vt");
+  app.set_version_flag("--version",
+                       std::string("vt " VT_VERSION " (virtual-texture file format 1)"));
+  app.require_subcommand(1);
+  vt::addInfoCommand(app);
+  vt::addDemoCommand(app);
+  vt::addExportLevelCommand(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    std::cerr << "vt: " << e.what() << '\n' << usageLine(app);
+    return 2;
+  } catch (const vt::InputError& e) {
+    std::cerr << "vt: " << e.what() << '\n';
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "vt: error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,140 @@
+#include "common/posix_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <string>
+#include <utility>
+
+#include "common/error.h"
+
+namespace vt {
+namespace {
+
+[[noreturn]] void throwSystemError(const std::filesystem::path& path, const std::string& what) {
+  throw InputError(path, what + ": " + std::strerror(errno));
+}
+
+}  // namespace
+
+PosixFile PosixFile::openForReading(const std::filesystem::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throwSystemError(path, "cannot open");
+  PosixFile file(fd, path);
+  struct stat info {};
+  if (::fstat(fd, &info) != 0) throwSystemError(path, "cannot stat");
+  if (!S_ISREG(info.st_mode)) throw InputError(path, "not a regular file");
+  return file;
+}
+
+PosixFile::PosixFile(PosixFile&& other) noexcept
+    : fd_(std::exchange(other.fd_, -1)), path_(std::move(other.path_)) {}
+
+PosixFile& PosixFile::operator=(PosixFile&& other) noexcept {
+  if (this != &other) {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = std::exchange(other.fd_, -1);
+    path_ = std::move(other.path_);
+  }
+  return *this;
+}
+
+PosixFile::~PosixFile() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+uint64_t PosixFile::size() const {
+  struct stat info {};
+  if (::fstat(fd_, &info) != 0) throwSystemError(path_, "cannot stat");
+  return static_cast<uint64_t>(info.st_size);
+}
+
+void PosixFile::readExact(uint64_t offset, std::span<std::byte> bytes) const {
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n =
+        ::pread(fd_, bytes.data() + done, bytes.size() - done, static_cast<off_t>(offset + done));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throwSystemError(path_, "read failed at byte " + std::to_string(offset + done));
+    if (n == 0)
+      throw InputError(path_, "unexpected end of file at byte " + std::to_string(offset + done));
+    done += static_cast<size_t>(n);
+  }
+}
+
+void PosixFile::writeAll(uint64_t offset, std::span<const std::byte> bytes) const {
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n =
+        ::pwrite(fd_, bytes.data() + done, bytes.size() - done, static_cast<off_t>(offset + done));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throwSystemError(path_, "write failed at byte " + std::to_string(offset + done));
+    done += static_cast<size_t>(n);
+  }
+}
+
+void PosixFile::resize(uint64_t bytes) const {
+  if (::ftruncate(fd_, static_cast<off_t>(bytes)) != 0)
+    throwSystemError(path_, "cannot resize to " + std::to_string(bytes) + " bytes");
+}
+
+void PosixFile::sync() const {
+  if (::fsync(fd_) != 0) throwSystemError(path_, "fsync failed");
+}
+
+namespace {
+
+// Creates "<dir>/.<name>.tmp-XXXXXX<ext>" next to `destination`, so that the rename stays within
+// one file system and tools that choose a format by extension see the destination's. Returns the
+// descriptor and fills `name`.
+int createTemporaryNextTo(const std::filesystem::path& destination, std::string& name) {
+  const std::filesystem::path directory =
+      destination.has_parent_path() ? destination.parent_path() : std::filesystem::path(".");
+  const std::string extension = destination.extension().string();
+  std::string file = ".";  // built by appends: GCC 12 warns falsely on "." + std::string
+  file.append(destination.filename().string()).append(".tmp-XXXXXX").append(extension);
+  name = (directory / file).string();
+  const int fd = ::mkostemps(name.data(), static_cast<int>(extension.size()), O_CLOEXEC);
+  if (fd < 0)
+    throwSystemError(destination, "cannot create a temporary file in " + directory.string());
+  // mkostemp creates the file 0600; give it the permissions an ordinary new file would get.
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  ::fchmod(fd, 0666 & ~mask);
+  return fd;
+}
+
+void syncDirectory(const std::filesystem::path& destination) {
+  const std::filesystem::path directory =
+      destination.has_parent_path() ? destination.parent_path() : std::filesystem::path(".");
+  const int fd = ::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;  // the rename is done; a directory we cannot open cannot be synced
+  ::fsync(fd);
+  ::close(fd);
+}
+
+}  // namespace
+
+TemporaryFile::TemporaryFile(const std::filesystem::path& destination)
+    : destination_(destination), file_(-1, {}) {
+  std::string name;
+  const int fd = createTemporaryNextTo(destination, name);
+  file_ = PosixFile(fd, name);
+}
+
+TemporaryFile::~TemporaryFile() {
+  if (!committed_ && file_.fd_ >= 0) ::unlink(file_.path().c_str());
+}
+
+void TemporaryFile::commit() {
+  file_.sync();
+  if (::rename(file_.path().c_str(), destination_.c_str()) != 0)
+    throwSystemError(destination_, "cannot rename " + file_.path().string() + " to it");
+  committed_ = true;
+  syncDirectory(destination_);
+}
+
+}  // namespace vt

@@ -1,0 +1,61 @@
+#pragma once
+// A file descriptor owned by value (RAII) with whole-buffer positional reads and writes.
+// Positional I/O (pread/pwrite) keeps no file offset, so one open file serves many threads.
+// Every failure throws InputError naming the file and the system's reason.
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <span>
+
+namespace vt {
+
+class PosixFile {
+ public:
+  static PosixFile openForReading(const std::filesystem::path& path);
+
+  PosixFile(PosixFile&& other) noexcept;
+  PosixFile& operator=(PosixFile&& other) noexcept;
+  PosixFile(const PosixFile&) = delete;
+  PosixFile& operator=(const PosixFile&) = delete;
+  ~PosixFile();
+
+  uint64_t size() const;
+  // Reads exactly bytes.size() bytes at `offset`; a short file is an error.
+  void readExact(uint64_t offset, std::span<std::byte> bytes) const;
+  void writeAll(uint64_t offset, std::span<const std::byte> bytes) const;
+  void resize(uint64_t bytes) const;
+  void sync() const;
+
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  friend class TemporaryFile;
+  PosixFile(int fd, std::filesystem::path path) : fd_(fd), path_(std::move(path)) {}
+
+  int fd_ = -1;
+  std::filesystem::path path_;
+};
+
+// A new file next to `destination` that becomes `destination` on commit(), atomically (rename),
+// and is removed if destroyed before: readers of `destination` see the old file or the complete
+// new one, never a partial file.
+class TemporaryFile {
+ public:
+  explicit TemporaryFile(const std::filesystem::path& destination);
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+  ~TemporaryFile();
+
+  const PosixFile& file() const { return file_; }
+  const std::filesystem::path& destination() const { return destination_; }
+  // Flushes the data to disk, renames the file to its destination and flushes the directory.
+  void commit();
+
+ private:
+  std::filesystem::path destination_;
+  PosixFile file_;
+  bool committed_ = false;
+};
+
+}  // namespace vt

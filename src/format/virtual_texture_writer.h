@@ -1,0 +1,56 @@
+#pragma once
+// Writes a virtual-texture file (file_header.h) into a temporary file next to the destination and
+// renames it on commit(), so the destination holds either its previous content or a complete,
+// valid file. The set of stored pages is fixed up front, so every page has a fixed place: pages
+// may be written in any order, from any number of threads, and the bytes of the file do not
+// depend on that order.
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <mutex>
+#include <span>
+#include <vector>
+
+#include "common/posix_file.h"
+#include "format/file_header.h"
+
+namespace vt {
+
+class VirtualTextureWriter {
+ public:
+  // A dense texture: every page of every level is stored.
+  VirtualTextureWriter(const std::filesystem::path& destination,
+                       const TextureDescription& description);
+  // A sparse texture storing only `storedPages` (absolute indices, rising, holding the root and
+  // the parent of every page they hold).
+  VirtualTextureWriter(const std::filesystem::path& destination,
+                       const TextureDescription& description, std::vector<uint64_t> storedPages);
+
+  const TextureDescription& description() const { return header_.description; }
+  const std::filesystem::path& destination() const { return output_.destination(); }
+
+  // Stores one page: (P + 2B)^2 texels, rows of increasing t, and its NoiseValue (>= 0). Each
+  // stored page is written exactly once. Thread-safe.
+  void writePage(PageId page, std::span<const std::byte> texels, float noiseValue);
+
+  // Writes the tables and the header, flushes, and renames the file to its destination. Throws if
+  // a page was never written; the destination is then untouched.
+  void commit();
+
+ private:
+  VirtualTextureWriter(const std::filesystem::path& destination,
+                       const TextureDescription& description, std::vector<uint64_t> storedPages,
+                       bool sparse);
+  uint64_t slotOf(PageId page) const;
+
+  TemporaryFile output_;
+  FileHeader header_;
+  std::vector<uint64_t> index_;
+  std::mutex mutex_;  // guards the tables below
+  std::vector<float> noiseValues_;
+  std::vector<uint64_t> pageChecksums_;
+  std::vector<uint8_t> written_;
+};
+
+}  // namespace vt

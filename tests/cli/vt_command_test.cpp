@@ -1,0 +1,138 @@
+// The `vt` executable as a user meets it: reports, exit codes and one-line errors.
+
+#include <OpenImageIO/imageio.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "build/synthetic_texture.h"
+#include "cli/run_command.h"
+#include "format/level_image.h"
+#include "test_support.h"
+
+namespace vt {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::MatchesRegex;
+
+class VtCommand : public ::testing::Test {
+ protected:
+  test::CommandResult vt(const std::vector<std::string>& args) {
+    return test::runCommand(VT_EXECUTABLE, args, dir_.path());
+  }
+  std::string sparseTexture() {
+    const auto path = dir_ / "sparse.vt";
+    writeSyntheticTexture(path,
+                          {{.pageSize = 16, .border = 2, .levelCount = 4, .channels = 4}, 0.2});
+    return path.string();
+  }
+  test::ScratchDirectory dir_;
+};
+
+TEST_F(VtCommand, InfoPrintsLevelsAndPageCounts) {
+  const auto result = vt({"info", sparseTexture()});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("virtual texture v1, 4 x unorm8, sRGB, sparse"));
+  EXPECT_THAT(result.out, HasSubstr("128 x 128 texels, levels 0..3 (0 coarsest)"));
+  EXPECT_THAT(result.out, HasSubstr("25 of 85 pages"));
+  EXPECT_THAT(result.out, HasSubstr("    0            16            1            1\n"
+                                    "    1            32            4            4\n"
+                                    "    2            64           16            4\n"
+                                    "    3           128           64           16\n"));
+  EXPECT_TRUE(result.err.empty());
+}
+
+TEST_F(VtCommand, InfoJsonHoldsTheSameFacts) {
+  const auto result = vt({"info", "--json", "--verify", sparseTexture()});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const auto report = nlohmann::json::parse(result.out);
+  EXPECT_EQ(report["page_size"], 16);
+  EXPECT_EQ(report["border"], 2);
+  EXPECT_EQ(report["levels"], 4);
+  EXPECT_EQ(report["stored_pages"], 25);
+  EXPECT_EQ(report["total_pages"], 85);
+  EXPECT_EQ(report["verified_pages"], 25);
+  EXPECT_EQ(report["per_level"][3]["stored_pages"], 16);
+  EXPECT_THAT(report["identity"].get<std::string>(), MatchesRegex("xxh3:[0-9a-f]{16}"));
+}
+
+TEST_F(VtCommand, MalformedFileGivesOneLineAndExitCodeOne) {
+  const auto path = sparseTexture();
+  auto bytes = test::readBytes(path);
+  bytes[16] = std::byte{3};  // page_size 3 (the header checksum is checked after the fields)
+  test::writeBytes(dir_ / "bad.vt", bytes);
+  const auto result = vt({"info", (dir_ / "bad.vt").string()});
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_EQ(result.err, "vt: " + (dir_ / "bad.vt").string() +
+                            ": header field page_size: 3 is not a power of two in [1, 4096]\n");
+  EXPECT_TRUE(result.out.empty());
+}
+
+TEST_F(VtCommand, VerifyFindsACorruptedPage) {
+  const auto path = sparseTexture();
+  auto bytes = test::readBytes(path);
+  bytes[bytes.size() - 100] ^= std::byte{1};  // in the last stored page
+  test::writeBytes(dir_ / "corrupt.vt", bytes);
+  EXPECT_EQ(vt({"info", (dir_ / "corrupt.vt").string()}).exitCode, 0);  // tables are intact
+  const auto result = vt({"info", "--verify", (dir_ / "corrupt.vt").string()});
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.err, MatchesRegex("vt: .*corrupt.vt: page [0-9]+ \\(level 3, x [0-9]+, y "
+                                       "[0-9]+\\): checksum mismatch .*\n"));
+}
+
+TEST_F(VtCommand, BadArgumentsPrintTheUsageAndExitTwo) {
+  for (const std::vector<std::string>& args : {std::vector<std::string>{},
+                                               {"info"},
+                                               {"info", "a.vt", "--frobnicate"},
+                                               {"nonsense"},
+                                               {"demo", "--levels", "99"}}) {
+    const auto result = vt(args);
+    EXPECT_EQ(result.exitCode, 2) << result.err;
+    EXPECT_THAT(result.err, HasSubstr("Usage: vt"));
+  }
+  EXPECT_THAT(vt({"info"}).err, HasSubstr("Usage: vt info [OPTIONS] FILE"));
+}
+
+TEST_F(VtCommand, HelpAndVersion) {
+  const auto version = vt({"--version"});
+  EXPECT_EQ(version.exitCode, 0);
+  EXPECT_THAT(version.out,
+              MatchesRegex("vt [0-9]+\\.[0-9]+\\.[0-9]+ \\(virtual-texture file format 1\\)\n"));
+  for (const char* command : {"info", "demo", "export-level"}) {
+    const auto help = vt({command, "--help"});
+    EXPECT_EQ(help.exitCode, 0) << command;
+    EXPECT_THAT(help.out, HasSubstr("Usage:")) << command;
+  }
+}
+
+TEST_F(VtCommand, ExportLevelWritesTheAssembledLevel) {
+  const auto path = sparseTexture();
+  const auto png = (dir_ / "level3.png").string();
+  const auto result = vt({"export-level", path, "--level", "3", "-o", png});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  auto input = OIIO::ImageInput::open(png);
+  ASSERT_TRUE(input);
+  const auto& spec = input->spec();
+  ASSERT_EQ(spec.width, 128);
+  ASSERT_EQ(spec.nchannels, 4);
+  std::vector<std::byte> pixels(128 * 128 * 4);
+  ASSERT_TRUE(input->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, pixels.data()));
+  EXPECT_EQ(pixels, assembleLevel(VirtualTextureReader(path), 3).texels);
+
+  const auto missing = vt({"export-level", path, "--level", "4", "-o", png});
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_THAT(missing.err, HasSubstr("level 4 does not exist (levels 0..3)"));
+}
+
+TEST_F(VtCommand, DemoBuildsAndVerifiesTheDefaultTexture) {
+  const auto result = vt({"demo", "--output", (dir_ / "demo").string(), "--levels", "3"});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("every checksum matches"));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "demo" / "synthetic.vt"));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "demo" / "level2.png"));
+}
+
+}  // namespace
+}  // namespace vt
