@@ -12,6 +12,10 @@ packages=(
   libegl-dev libegl1-mesa-dev libgl1-mesa-dri libopengl-dev libgl-dev libepoxy-dev
   # tests, benchmarks, command line, JSON, checksums
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libxxhash-dev
+  # parallel loops
+  libtbb-dev
+  # peers and measurement for the benchmarks: maketx comes with openimageio-tools; GNU time
+  time
 )
 
 missing=()

@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version",
                        std::string("vt " VT_VERSION " (virtual-texture file format 1)"));
   app.require_subcommand(1);
+  vt::addBuildCommand(app);
   vt::addInfoCommand(app);
   vt::addDemoCommand(app);
   vt::addExportLevelCommand(app);

@@ -1,0 +1,225 @@
+#include "build/texture_builder.h"
+
+#include <sys/statvfs.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <thread>
+
+#include "build/image_rows.h"
+#include "build/mip_kernel.h"
+#include "build/noise_value.h"
+#include "build/page_set.h"
+#include "build/row_ring.h"
+#include "common/error.h"
+#include "common/progress_bar.h"
+#include "format/virtual_texture_writer.h"
+
+namespace vt {
+namespace {
+
+// Rows a page row needs beyond its own on each side: its border, and the level m rows that make
+// the parent texels around its quarter, which its NoiseValue reads (two rows, plus the reach).
+uint32_t rowMargin(const TextureDescription& d, const MipKernel& kernel) {
+  return std::max(d.border, 2 + kernel.reach());
+}
+
+uint32_t ringCapacity(const TextureDescription& d, const MipKernel& kernel) {
+  return d.pageSize + 2 * rowMargin(d, kernel) + 2 + 2 * kernel.reach();
+}
+
+int64_t clampIndex(int64_t i, uint64_t side) {
+  return std::clamp<int64_t>(i, 0, static_cast<int64_t>(side) - 1);
+}
+
+void requireFreeSpace(const std::filesystem::path& output, uint64_t bytes) {
+  const std::filesystem::path folder =
+      output.has_parent_path() ? output.parent_path() : std::filesystem::path(".");
+  struct statvfs info {};
+  if (::statvfs(folder.c_str(), &info) != 0)
+    throw InputError(output, "cannot query the free space of " + folder.string());
+  const uint64_t available = uint64_t{info.f_bavail} * info.f_frsize;
+  if (available < bytes)
+    throw InputError(output, "not enough free disk space: the texture needs " +
+                                 std::to_string(bytes) + " bytes, " + folder.string() + " has " +
+                                 std::to_string(available));
+}
+
+class Builder {
+ public:
+  Builder(const Layout& layout, std::vector<uint64_t> stored, VirtualTextureWriter& writer)
+      : d_(layout.description),
+        kernel_(layout.filter, d_.colorSpace, d_.channels),
+        margin_(rowMargin(d_, kernel_)),
+        stored_(std::move(stored)),
+        writer_(writer) {
+    for (uint32_t m = 0; m < d_.levelCount; ++m)
+      levels_.push_back({levelSide(d_.pageSize, m),
+                         RowRing(levelSide(d_.pageSize, m), d_.channels, ringCapacity(d_, kernel_))});
+  }
+
+  uint64_t ringBytes() const {
+    uint64_t bytes = 0;
+    for (const Level& level : levels_) bytes += level.rows.bytes();
+    return bytes;
+  }
+
+  uint8_t* appendFinestRow(uint64_t y) { return levels_.back().rows.append(y); }
+
+  // Called after a row was appended to level m: makes what that row completes.
+  void rowAdded(uint32_t m) {
+    Level& level = levels_[m];
+    const uint64_t q = level.rows.rowsReceived() - 1;
+    while (level.nextPageRow * d_.pageSize < level.side) {
+      const uint64_t lastNeeded =
+          std::min((level.nextPageRow + 1) * d_.pageSize + margin_ - 1, level.side - 1);
+      if (q < lastNeeded) break;
+      cutPageRow(m, level.nextPageRow++);
+    }
+    if (m == 0) return;
+    Level& coarser = levels_[m - 1];
+    const uint32_t reach = kernel_.reach();
+    while (coarser.rows.rowsReceived() < coarser.side) {
+      const uint64_t r = coarser.rows.rowsReceived();
+      if (q < std::min(2 * r + 1 + reach, level.side - 1)) break;
+      std::array<const uint8_t*, 4> rows{};
+      for (uint32_t k = 0; k < 2 + 2 * reach; ++k)
+        rows[k] = level.rows.row(static_cast<uint64_t>(
+            clampIndex(static_cast<int64_t>(2 * r + k) - reach, level.side)));
+      uint8_t* out = coarser.rows.append(r);
+      // Split the row into chunks for the threads; each texel is computed alone, so the result
+      // does not depend on the split.
+      const uint64_t half = level.side / 2, chunk = 1024;
+      tbb::parallel_for(uint64_t{0}, (half + chunk - 1) / chunk, [&](uint64_t c) {
+        const uint64_t begin = c * chunk;
+        downsampleChunk(rows, level.side, begin, std::min(chunk, half - begin), out);
+      });
+      rowAdded(m - 1);
+    }
+  }
+
+ private:
+  struct Level {
+    uint64_t side;
+    RowRing rows;
+    uint64_t nextPageRow = 0;
+  };
+
+  void downsampleChunk(const std::array<const uint8_t*, 4>& rows, uint64_t side, uint64_t begin,
+                       uint64_t count, uint8_t* out) const {
+    const uint32_t taps = 2 + 2 * kernel_.reach();
+    for (uint64_t x = begin; x < begin + count; ++x)
+      kernel_.texel([&](uint32_t k) { return k < taps ? rows[k] : nullptr; }, x, side,
+                    out + x * d_.channels);
+  }
+
+  void cutPageRow(uint32_t m, uint64_t py) {
+    const auto first = std::lower_bound(stored_.begin(), stored_.end(),
+                                        absoluteIndex(PageId{0, static_cast<uint32_t>(py), m}));
+    const auto last = std::upper_bound(
+        first, stored_.end(),
+        absoluteIndex(PageId{static_cast<uint32_t>(pagesPerSide(m) - 1), static_cast<uint32_t>(py), m}));
+    const size_t begin = static_cast<size_t>(first - stored_.begin());
+    const size_t end = static_cast<size_t>(last - stored_.begin());
+    tbb::parallel_for(begin, end, [&](size_t k) { cutPage(fromAbsoluteIndex(stored_[k])); });
+  }
+
+  // The stored page: level texel (px P - B + i, py P - B + j), clamped to the level.
+  void cutPage(PageId page) const {
+    const Level& level = levels_[page.level];
+    const uint32_t side = d_.storedPageSide();
+    const uint32_t c = d_.channels;
+    std::vector<std::byte> texels(d_.pageBytes());
+    const int64_t x0 = int64_t{page.x} * d_.pageSize - d_.border;
+    const int64_t y0 = int64_t{page.y} * d_.pageSize - d_.border;
+    for (uint32_t j = 0; j < side; ++j) {
+      const uint8_t* row = level.rows.row(static_cast<uint64_t>(clampIndex(y0 + j, level.side)));
+      std::byte* out = texels.data() + size_t{j} * side * c;
+      for (uint32_t i = 0; i < side; ++i) {
+        const uint64_t x = static_cast<uint64_t>(clampIndex(x0 + i, level.side));
+        for (uint32_t k = 0; k < c; ++k) out[size_t{i} * c + k] = std::byte(row[x * c + k]);
+      }
+    }
+    const float noise = page.level == 0 ? 0.0f : noiseValue(d_, page, texels, parentTexels(page));
+    writer_.writePage(page, texels, noise);
+  }
+
+  // The texels of the parent's stored page that noiseValue reads for `page` (its quarter and one
+  // texel around it, clamped to the stored page), computed from this level's rows with the mip
+  // kernel, so they equal the parent page's own texels. The rest of the page stays zero.
+  std::vector<std::byte> parentTexels(PageId page) const {
+    const Level& level = levels_[page.level];
+    const uint64_t parentSide = level.side / 2;
+    const PageId up = parent(page);
+    const int64_t side = d_.storedPageSide(), half = d_.pageSize / 2, B = d_.border;
+    const int64_t qx = (page.x & 1) * half, qy = (page.y & 1) * half;
+    const int64_t parentX0 = int64_t{up.x} * d_.pageSize - B;
+    const int64_t parentY0 = int64_t{up.y} * d_.pageSize - B;
+    std::vector<std::byte> texels(d_.pageBytes());
+    const uint32_t reach = kernel_.reach();
+    for (int64_t sy = std::max<int64_t>(B + qy - 1, 0); sy <= std::min(B + qy + half, side - 1); ++sy) {
+      const int64_t Y = clampIndex(parentY0 + sy, parentSide);
+      const auto row = [&](uint32_t k) {
+        return level.rows.row(static_cast<uint64_t>(clampIndex(2 * Y + k - reach, level.side)));
+      };
+      for (int64_t sx = std::max<int64_t>(B + qx - 1, 0); sx <= std::min(B + qx + half, side - 1); ++sx) {
+        const int64_t X = clampIndex(parentX0 + sx, parentSide);
+        kernel_.texel(row, static_cast<uint64_t>(X), level.side,
+                      reinterpret_cast<uint8_t*>(texels.data()) + (sy * side + sx) * d_.channels);
+      }
+    }
+    return texels;
+  }
+
+  const TextureDescription& d_;
+  MipKernel kernel_;
+  uint32_t margin_;
+  std::vector<uint64_t> stored_;
+  VirtualTextureWriter& writer_;
+  std::vector<Level> levels_;
+};
+
+}  // namespace
+
+uint64_t ringBytesBound(const TextureDescription& d, MipFilter filter) {
+  const MipKernel kernel(filter, d.colorSpace, d.channels);
+  return 2 * uint64_t{ringCapacity(d, kernel)} * d.sideTexels() * d.channels;
+}
+
+BuildReport buildVirtualTexture(const Layout& layout, const std::filesystem::path& output,
+                                const BuildOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const TextureDescription& d = layout.description;
+  std::vector<uint64_t> stored = storedPages(layout);
+  const bool sparse = stored.size() < d.totalPages();
+  BuildReport report;
+  report.storedPages = stored.size();
+  report.totalPages = d.totalPages();
+  report.fileBytes = layoutFor(d, sparse, stored.size()).fileBytes;
+  requireFreeSpace(output, report.fileBytes);
+
+  const unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
+  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
+                                        std::max(1u, threads));
+  VirtualTextureWriter writer = sparse ? VirtualTextureWriter(output, d, stored)
+                                       : VirtualTextureWriter(output, d);
+  Builder builder(layout, std::move(stored), writer);
+  ImageRows images(layout);
+  report.ringBytes = builder.ringBytes();
+  {
+    ProgressBar progress("vt build", d.sideTexels(), options.progress);
+    for (uint64_t y = 0; y < d.sideTexels(); ++y) {
+      images.row(y, builder.appendFinestRow(y));
+      report.scanlineBytes = std::max(report.scanlineBytes, images.bufferBytes());
+      builder.rowAdded(d.finestLevel());
+      progress.update(y + 1);
+    }
+  }
+  writer.commit();
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace vt

@@ -1,0 +1,44 @@
+#pragma once
+// `vt build` (thesis 3.3.1, "vtmtc"): compiles a layout into a virtual-texture file, out of core.
+//
+// The finest level is produced one texel row at a time from the images (image_rows.h); every
+// level keeps only a ring of its most recent rows (row_ring.h); each pair of rows of level m
+// (more for wider filters) makes the next row of level m - 1 at once (mip_kernel.h), and as soon
+// as a level holds all rows of a page row and its borders, those pages are cut, their NoiseValues
+// computed, and written at their place in the file, in parallel. No level is ever whole in memory.
+//
+// Memory bound: sum over levels of (P + 2 B' + 2 + 2 r) rows of side_m * c bytes, where
+// B' = max(B, 2 + r) and r is the filter's reach (0 box, 1 tent): below
+// 2 (P + 2 B' + 2 + 2 r) * side_L * c bytes, plus one page per thread and one scanline per open
+// image. For 16384^2 RGB texels, P = 128, B = 4, box: under 14 MB.
+
+#include <cstdint>
+#include <filesystem>
+
+#include "build/layout.h"
+
+namespace vt {
+
+struct BuildOptions {
+  unsigned threads = 0;  // 0: every core
+  bool progress = true;  // a progress bar, when stderr is a terminal
+};
+
+struct BuildReport {
+  uint64_t storedPages = 0;
+  uint64_t totalPages = 0;
+  uint64_t fileBytes = 0;
+  uint64_t ringBytes = 0;        // rows held by all levels, the bulk of the builder's memory
+  uint64_t scanlineBytes = 0;    // most scanline bytes held at once
+  double seconds = 0.0;
+};
+
+// The bound of the documented formula above for the rings, in bytes.
+uint64_t ringBytesBound(const TextureDescription& description, MipFilter filter);
+
+// Builds `output` from a validated layout. Checks free disk space first; writes a temporary file
+// renamed at the end. The bytes written do not depend on the thread count.
+BuildReport buildVirtualTexture(const Layout& layout, const std::filesystem::path& output,
+                                const BuildOptions& options = {});
+
+}  // namespace vt

@@ -1,0 +1,57 @@
+// vt build INPUT -o OUTPUT: compile a layout (.json) or one image into a virtual-texture file.
+
+#include <iostream>
+#include <memory>
+
+#include "build/texture_builder.h"
+#include "cli/commands.h"
+
+namespace vt {
+
+void addBuildCommand(CLI::App& app) {
+  struct Options {
+    std::string input, output;
+    std::optional<uint32_t> pageSize, border, channels;
+    std::optional<uint64_t> side;
+    std::string colorSpace, filter;
+    unsigned threads = 0;
+    bool quiet = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* command = app.add_subcommand(
+      "build", "Compile a layout of images (.json) or one image into a virtual-texture file");
+  command->add_option("INPUT", options->input, "Layout file (.json) or an image")->required();
+  command->add_option("-o,--output", options->output, "Virtual-texture file to write")->required();
+  command->add_option("--page-size", options->pageSize, "Page size P, a power of two (128)");
+  command->add_option("--border", options->border, "Border B in texels, B < P (4)");
+  command->add_option("--side", options->side,
+                      "Finest level side, P * 2^L (the smallest that holds the images)");
+  command->add_option("--channels", options->channels, "Channels 1..4 (the images' most)");
+  command->add_option("--color-space", options->colorSpace,
+                      "srgb: filter colour in linear light (default); linear: as stored")
+      ->check(CLI::IsMember({"srgb", "linear"}));
+  command->add_option("--filter", options->filter, "Mip filter: box (default) or tent")
+      ->check(CLI::IsMember({"box", "tent"}));
+  command->add_option("--threads", options->threads, "Worker threads (0: every core)");
+  command->add_flag("-q,--quiet", options->quiet, "No progress bar");
+  command->callback([options] {
+    LayoutOverrides overrides{options->pageSize, options->border, options->channels,
+                              options->side, std::nullopt, std::nullopt};
+    if (!options->colorSpace.empty()) overrides.colorSpace = parseColorSpace(options->colorSpace);
+    if (!options->filter.empty()) overrides.filter = parseMipFilter(options->filter);
+    const std::filesystem::path input = options->input;
+    const Layout layout = input.extension() == ".json" ? readLayout(input, overrides)
+                                                       : singleImageLayout(input, overrides);
+    const BuildReport report =
+        buildVirtualTexture(layout, options->output, {options->threads, !options->quiet});
+    const TextureDescription& d = layout.description;
+    std::cout << "built " << options->output << ": " << d.sideTexels() << " x " << d.sideTexels()
+              << " texels, levels 0.." << d.finestLevel() << ", " << report.storedPages << " of "
+              << report.totalPages << " pages stored, " << report.fileBytes << " bytes, "
+              << layout.images.size() << " images, filter " << toString(layout.filter) << ", "
+              << toString(d.colorSpace) << ", in " << report.seconds << " s (row rings "
+              << report.ringBytes << " bytes)\n";
+  });
+}
+
+}  // namespace vt
