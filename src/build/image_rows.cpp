@@ -7,6 +7,13 @@
 namespace vt {
 namespace {
 
+// Texels as the file stores them: no premultiplication by alpha on reading.
+const OIIO::ImageSpec kKeepAlphaAsStored = [] {
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  return config;
+}();
+
 // Converts one texel of `from` channels to `to` channels (see image_rows.h).
 void convertTexel(const uint8_t* in, uint32_t from, uint8_t* out, uint32_t to) {
   const bool inColor = from >= 3;
@@ -17,9 +24,10 @@ void convertTexel(const uint8_t* in, uint32_t from, uint8_t* out, uint32_t to) {
     if (to == 4) out[3] = alpha;
   } else {
     // Rec. 709 luminance in integer arithmetic (weights sum to 65536), rounded.
-    out[0] = inColor ? static_cast<uint8_t>((13933u * in[0] + 46871u * in[1] + 4732u * in[2] +
-                                             32768u) >> 16)
-                     : in[0];
+    out[0] =
+        inColor
+            ? static_cast<uint8_t>((13933u * in[0] + 46871u * in[1] + 4732u * in[2] + 32768u) >> 16)
+            : in[0];
     if (to == 2) out[1] = alpha;
   }
 }
@@ -45,7 +53,7 @@ void ImageRows::row(uint64_t y, uint8_t* out) {
   while (nextToOpen_ < byTop_.size() && byTop_[nextToOpen_]->y <= y) {
     const Placement* placement = byTop_[nextToOpen_++];
     if (placement->y + placement->height <= y) continue;
-    auto input = OIIO::ImageInput::open(placement->file.string());
+    auto input = OIIO::ImageInput::open(placement->file.string(), &kKeepAlphaAsStored);
     if (!input) throw InputError(placement->file, "cannot read image: " + OIIO::geterror());
     open_.push_back({placement, std::move(input),
                      std::vector<uint8_t>(uint64_t{placement->width} * placement->channels)});
@@ -56,8 +64,8 @@ void ImageRows::row(uint64_t y, uint8_t* out) {
     const int line = static_cast<int>(y - p.y);
     if (!image.input->read_scanlines(0, 0, line, line + 1, 0, 0, static_cast<int>(p.channels),
                                      OIIO::TypeDesc::UINT8, image.scanline.data()))
-      throw InputError(p.file, "cannot read scanline " + std::to_string(line) + ": " +
-                                   image.input->geterror());
+      throw InputError(
+          p.file, "cannot read scanline " + std::to_string(line) + ": " + image.input->geterror());
     uint8_t* to = out + p.x * channels;
     if (p.channels == channels) {
       std::copy(image.scanline.begin(), image.scanline.end(), to);

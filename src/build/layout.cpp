@@ -21,8 +21,8 @@ void probeImage(Placement& placement, const std::string& namedBy) {
     throw InputError(placement.file, "image not found (named by " + namedBy + ")");
   auto input = OIIO::ImageInput::open(placement.file.string());
   if (!input)
-    throw InputError(placement.file, "cannot read image (named by " + namedBy +
-                                         "): " + OIIO::geterror());
+    throw InputError(placement.file,
+                     "cannot read image (named by " + namedBy + "): " + OIIO::geterror());
   const OIIO::ImageSpec& spec = input->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     throw InputError(placement.file, "image has no texels");
@@ -35,16 +35,16 @@ uint64_t unsignedField(const json& object, const char* key, const std::filesyste
                        const std::string& where) {
   const json& value = object.at(key);
   if (!value.is_number_unsigned())
-    throw InputError(file, where + "field " + key + ": " + value.dump() +
-                               " is not a non-negative integer");
+    throw InputError(
+        file, where + "field " + key + ": " + value.dump() + " is not a non-negative integer");
   return value.get<uint64_t>();
 }
 
 uint32_t smallField(const json& object, const char* key, const std::filesystem::path& file) {
   const uint64_t value = unsignedField(object, key, file, "");
   if (value > 0xffffffffu)
-    throw InputError(file, std::string("field ") + key + ": " + std::to_string(value) +
-                               " is too large");
+    throw InputError(file,
+                     std::string("field ") + key + ": " + std::to_string(value) + " is too large");
   return static_cast<uint32_t>(value);
 }
 
@@ -53,10 +53,13 @@ void finish(Layout& layout, std::optional<uint64_t> side, std::optional<uint32_t
   TextureDescription& d = layout.description;
   const std::filesystem::path& file = layout.source;
   if (layout.images.empty()) throw InputError(file, "the layout places no images");
-  d.channels = channels.value_or(0);
-  if (!channels)
+  if (channels) {
+    d.channels = *channels;
+  } else {
+    d.channels = 0;
     for (const Placement& image : layout.images) d.channels = std::max(d.channels, image.channels);
-  d.channels = std::min(d.channels, kMaxChannels);
+    d.channels = std::min(d.channels, kMaxChannels);
+  }
   d.levelCount = 1;  // checked with the other fields below, before the side is derived
   if (const auto problem = findProblem(d))
     throw InputError(file, "field " + problem->field + ": " + problem->problem);
@@ -85,9 +88,8 @@ void finish(Layout& layout, std::optional<uint64_t> side, std::optional<uint32_t
       throw InputError(file, "image " + image.file.string() + " (" + std::to_string(image.width) +
                                  " x " + std::to_string(image.height) + " at " +
                                  std::to_string(image.x) + ", " + std::to_string(image.y) +
-                                 ") reaches outside the texture of " +
-                                 std::to_string(textureSide) + " x " +
-                                 std::to_string(textureSide) + " texels");
+                                 ") reaches outside the texture of " + std::to_string(textureSide) +
+                                 " x " + std::to_string(textureSide) + " texels");
 
   // Overlaps: sweep the images in order of x; only those starting before one ends can overlap it.
   std::vector<size_t> order(layout.images.size());
@@ -100,8 +102,8 @@ void finish(Layout& layout, std::optional<uint64_t> side, std::optional<uint32_t
       const Placement& b = layout.images[order[j]];
       if (b.x >= a.x + a.width) break;
       if (b.y < a.y + a.height && a.y < b.y + b.height)
-        throw InputError(file, "images " + a.file.string() + " and " + b.file.string() +
-                                   " overlap");
+        throw InputError(file,
+                         "images " + a.file.string() + " and " + b.file.string() + " overlap");
     }
   }
 }
@@ -123,14 +125,14 @@ Layout readLayout(const std::filesystem::path& file, const LayoutOverrides& over
   layout.source = file;
   TextureDescription& d = layout.description;
   try {
-    d.pageSize = overrides.pageSize.value_or(root.contains("page_size")
-                                                 ? smallField(root, "page_size", file)
-                                                 : 128);
+    d.pageSize = overrides.pageSize.value_or(
+        root.contains("page_size") ? smallField(root, "page_size", file) : 128);
     d.border =
         overrides.border.value_or(root.contains("border") ? smallField(root, "border", file) : 4);
     d.colorSpace = overrides.colorSpace.value_or(
         parseColorSpace(root.value("color_space", std::string("srgb"))));
-    layout.filter = overrides.filter.value_or(parseMipFilter(root.value("filter", std::string("box"))));
+    layout.filter =
+        overrides.filter.value_or(parseMipFilter(root.value("filter", std::string("box"))));
     if (root.contains("background")) {
       const json& background = root["background"];
       if (!background.is_array() || background.size() != 4)

@@ -20,6 +20,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,7 +37,7 @@ enum class MipFilter {
 
 struct Placement {
   std::filesystem::path file;
-  uint64_t x = 0, y = 0;          // texel position of the image's top-left texel, finest level
+  uint64_t x = 0, y = 0;           // texel position of the image's top-left texel, finest level
   uint32_t width = 0, height = 0;  // from the image file
   uint32_t channels = 0;           // from the image file
 };
@@ -51,10 +52,12 @@ struct Layout {
 
 // Options of `vt build` that override the layout file's values or apply to a single image.
 struct LayoutOverrides {
-  std::optional<uint32_t> pageSize, border, channels;
-  std::optional<uint64_t> side;
-  std::optional<ColorSpace> colorSpace;
-  std::optional<MipFilter> filter;
+  std::optional<uint32_t> pageSize = std::nullopt;
+  std::optional<uint32_t> border = std::nullopt;
+  std::optional<uint32_t> channels = std::nullopt;
+  std::optional<uint64_t> side = std::nullopt;
+  std::optional<ColorSpace> colorSpace = std::nullopt;
+  std::optional<MipFilter> filter = std::nullopt;
 };
 
 // Reads and validates a layout file: every image is opened (header only) for its size and

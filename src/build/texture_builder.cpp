@@ -34,17 +34,19 @@ int64_t clampIndex(int64_t i, uint64_t side) {
   return std::clamp<int64_t>(i, 0, static_cast<int64_t>(side) - 1);
 }
 
-void requireFreeSpace(const std::filesystem::path& output, uint64_t bytes) {
+void requireFreeSpace(const std::filesystem::path& output, uint64_t bytes, uint64_t keepFree) {
   const std::filesystem::path folder =
       output.has_parent_path() ? output.parent_path() : std::filesystem::path(".");
   struct statvfs info {};
   if (::statvfs(folder.c_str(), &info) != 0)
     throw InputError(output, "cannot query the free space of " + folder.string());
   const uint64_t available = uint64_t{info.f_bavail} * info.f_frsize;
-  if (available < bytes)
-    throw InputError(output, "not enough free disk space: the texture needs " +
-                                 std::to_string(bytes) + " bytes, " + folder.string() + " has " +
-                                 std::to_string(available));
+  if (available < bytes || available - bytes < keepFree)
+    throw InputError(output,
+                     "not enough free disk space: the texture needs " + std::to_string(bytes) +
+                         " bytes" +
+                         (keepFree ? " and " + std::to_string(keepFree) + " must stay free" : "") +
+                         ", " + folder.string() + " has " + std::to_string(available));
 }
 
 class Builder {
@@ -56,8 +58,8 @@ class Builder {
         stored_(std::move(stored)),
         writer_(writer) {
     for (uint32_t m = 0; m < d_.levelCount; ++m)
-      levels_.push_back({levelSide(d_.pageSize, m),
-                         RowRing(levelSide(d_.pageSize, m), d_.channels, ringCapacity(d_, kernel_))});
+      levels_.push_back({levelSide(d_.pageSize, m), RowRing(levelSide(d_.pageSize, m), d_.channels,
+                                                            ringCapacity(d_, kernel_))});
   }
 
   uint64_t ringBytes() const {
@@ -86,8 +88,8 @@ class Builder {
       if (q < std::min(2 * r + 1 + reach, level.side - 1)) break;
       std::array<const uint8_t*, 4> rows{};
       for (uint32_t k = 0; k < 2 + 2 * reach; ++k)
-        rows[k] = level.rows.row(static_cast<uint64_t>(
-            clampIndex(static_cast<int64_t>(2 * r + k) - reach, level.side)));
+        rows[k] = level.rows.row(
+            static_cast<uint64_t>(clampIndex(static_cast<int64_t>(2 * r + k) - reach, level.side)));
       uint8_t* out = coarser.rows.append(r);
       // Split the row into chunks for the threads; each texel is computed alone, so the result
       // does not depend on the split.
@@ -118,9 +120,10 @@ class Builder {
   void cutPageRow(uint32_t m, uint64_t py) {
     const auto first = std::lower_bound(stored_.begin(), stored_.end(),
                                         absoluteIndex(PageId{0, static_cast<uint32_t>(py), m}));
-    const auto last = std::upper_bound(
-        first, stored_.end(),
-        absoluteIndex(PageId{static_cast<uint32_t>(pagesPerSide(m) - 1), static_cast<uint32_t>(py), m}));
+    const auto last =
+        std::upper_bound(first, stored_.end(),
+                         absoluteIndex(PageId{static_cast<uint32_t>(pagesPerSide(m) - 1),
+                                              static_cast<uint32_t>(py), m}));
     const size_t begin = static_cast<size_t>(first - stored_.begin());
     const size_t end = static_cast<size_t>(last - stored_.begin());
     tbb::parallel_for(begin, end, [&](size_t k) { cutPage(fromAbsoluteIndex(stored_[k])); });
@@ -159,12 +162,14 @@ class Builder {
     const int64_t parentY0 = int64_t{up.y} * d_.pageSize - B;
     std::vector<std::byte> texels(d_.pageBytes());
     const uint32_t reach = kernel_.reach();
-    for (int64_t sy = std::max<int64_t>(B + qy - 1, 0); sy <= std::min(B + qy + half, side - 1); ++sy) {
+    for (int64_t sy = std::max<int64_t>(B + qy - 1, 0); sy <= std::min(B + qy + half, side - 1);
+         ++sy) {
       const int64_t Y = clampIndex(parentY0 + sy, parentSide);
       const auto row = [&](uint32_t k) {
         return level.rows.row(static_cast<uint64_t>(clampIndex(2 * Y + k - reach, level.side)));
       };
-      for (int64_t sx = std::max<int64_t>(B + qx - 1, 0); sx <= std::min(B + qx + half, side - 1); ++sx) {
+      for (int64_t sx = std::max<int64_t>(B + qx - 1, 0); sx <= std::min(B + qx + half, side - 1);
+           ++sx) {
         const int64_t X = clampIndex(parentX0 + sx, parentSide);
         kernel_.texel(row, static_cast<uint64_t>(X), level.side,
                       reinterpret_cast<uint8_t*>(texels.data()) + (sy * side + sx) * d_.channels);
@@ -198,13 +203,13 @@ BuildReport buildVirtualTexture(const Layout& layout, const std::filesystem::pat
   report.storedPages = stored.size();
   report.totalPages = d.totalPages();
   report.fileBytes = layoutFor(d, sparse, stored.size()).fileBytes;
-  requireFreeSpace(output, report.fileBytes);
+  requireFreeSpace(output, report.fileBytes, options.keepFreeBytes);
 
   const unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
   const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
                                         std::max(1u, threads));
-  VirtualTextureWriter writer = sparse ? VirtualTextureWriter(output, d, stored)
-                                       : VirtualTextureWriter(output, d);
+  VirtualTextureWriter writer =
+      sparse ? VirtualTextureWriter(output, d, stored) : VirtualTextureWriter(output, d);
   Builder builder(layout, std::move(stored), writer);
   ImageRows images(layout);
   report.ringBytes = builder.ringBytes();

@@ -20,16 +20,17 @@
 namespace vt {
 
 struct BuildOptions {
-  unsigned threads = 0;  // 0: every core
-  bool progress = true;  // a progress bar, when stderr is a terminal
+  unsigned threads = 0;        // 0: every core
+  bool progress = true;        // a progress bar, when stderr is a terminal
+  uint64_t keepFreeBytes = 0;  // disk space that must stay free after the build
 };
 
 struct BuildReport {
   uint64_t storedPages = 0;
   uint64_t totalPages = 0;
   uint64_t fileBytes = 0;
-  uint64_t ringBytes = 0;        // rows held by all levels, the bulk of the builder's memory
-  uint64_t scanlineBytes = 0;    // most scanline bytes held at once
+  uint64_t ringBytes = 0;      // rows held by all levels, the bulk of the builder's memory
+  uint64_t scanlineBytes = 0;  // most scanline bytes held at once
   double seconds = 0.0;
 };
 

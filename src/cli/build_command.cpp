@@ -15,6 +15,7 @@ void addBuildCommand(CLI::App& app) {
     std::optional<uint64_t> side;
     std::string colorSpace, filter;
     unsigned threads = 0;
+    uint64_t keepFree = 0;
     bool quiet = false;
   };
   auto options = std::make_shared<Options>();
@@ -27,23 +28,26 @@ void addBuildCommand(CLI::App& app) {
   command->add_option("--side", options->side,
                       "Finest level side, P * 2^L (the smallest that holds the images)");
   command->add_option("--channels", options->channels, "Channels 1..4 (the images' most)");
-  command->add_option("--color-space", options->colorSpace,
-                      "srgb: filter colour in linear light (default); linear: as stored")
+  command
+      ->add_option("--color-space", options->colorSpace,
+                   "srgb: filter colour in linear light (default); linear: as stored")
       ->check(CLI::IsMember({"srgb", "linear"}));
   command->add_option("--filter", options->filter, "Mip filter: box (default) or tent")
       ->check(CLI::IsMember({"box", "tent"}));
   command->add_option("--threads", options->threads, "Worker threads (0: every core)");
+  command->add_option("--keep-free", options->keepFree,
+                      "Bytes of disk that must stay free after the build (0)");
   command->add_flag("-q,--quiet", options->quiet, "No progress bar");
   command->callback([options] {
     LayoutOverrides overrides{options->pageSize, options->border, options->channels,
-                              options->side, std::nullopt, std::nullopt};
+                              options->side,     std::nullopt,    std::nullopt};
     if (!options->colorSpace.empty()) overrides.colorSpace = parseColorSpace(options->colorSpace);
     if (!options->filter.empty()) overrides.filter = parseMipFilter(options->filter);
     const std::filesystem::path input = options->input;
     const Layout layout = input.extension() == ".json" ? readLayout(input, overrides)
                                                        : singleImageLayout(input, overrides);
-    const BuildReport report =
-        buildVirtualTexture(layout, options->output, {options->threads, !options->quiet});
+    const BuildReport report = buildVirtualTexture(
+        layout, options->output, {options->threads, !options->quiet, options->keepFree});
     const TextureDescription& d = layout.description;
     std::cout << "built " << options->output << ": " << d.sideTexels() << " x " << d.sideTexels()
               << " texels, levels 0.." << d.finestLevel() << ", " << report.storedPages << " of "

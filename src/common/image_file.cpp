@@ -21,8 +21,10 @@ void writeImage8(const std::filesystem::path& path, uint32_t width, uint32_t hei
   auto writer = OIIO::ImageOutput::create(staging);
   if (!writer)
     throw InputError(path, "no image writer for the extension '" + path.extension().string() + "'");
-  const OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height),
-                             static_cast<int>(channels), OIIO::TypeDesc::UINT8);
+  OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height),
+                       static_cast<int>(channels), OIIO::TypeDesc::UINT8);
+  // The texels are stored as given: alpha is not taken as premultiplied.
+  spec.attribute("oiio:UnassociatedAlpha", 1);
   const bool ok = writer->open(staging, spec) &&
                   writer->write_image(OIIO::TypeDesc::UINT8, texels.data()) && writer->close();
   if (!ok) throw InputError(path, "cannot write image: " + writer->geterror());
