@@ -14,7 +14,6 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 
 #include "build/layout.h"
 
@@ -27,24 +26,26 @@ class MipKernel {
   // Level m rows on each side of 2Y that the filter reads: 0 for box, 1 for tent.
   uint32_t reach() const { return filter_ == MipFilter::kTent ? 1 : 0; }
 
-  // One texel of level m - 1 at column X; `row(k)` gives the level m row 2Y - reach + k (already
-  // clamped to the level), k in [0, 2 + 2 reach); `side` is the level m side.
-  void texel(const std::function<const uint8_t*(uint32_t)>& row, uint64_t x, uint64_t side,
-             uint8_t* out) const;
-
-  // A whole row of level m - 1 (side / 2 texels) from the same rows.
-  void downsampleRow(const std::array<const uint8_t*, 4>& rows, uint64_t side, uint8_t* out) const;
+  // Texels [begin, begin + count) of a row Y of level m - 1, written to out[begin * channels...].
+  // rows[k] is the level m row 2Y - reach + k, already clamped to the level, k in
+  // [0, 2 + 2 reach); `side` is the level m side.
+  using Rows = std::array<const uint8_t*, 4>;
+  void downsample(const Rows& rows, uint64_t side, uint64_t begin, uint64_t count,
+                  uint8_t* out) const;
+  // The single texel X of that row, written to out[0 .. channels).
+  void texel(const Rows& rows, uint64_t x, uint64_t side, uint8_t* out) const;
 
  private:
   template <int Taps>
-  void filterTexel(const std::array<const uint8_t*, 4>& rows, uint64_t x, uint64_t side,
-                   uint8_t* out) const;
+  void filterTexel(const Rows& rows, uint64_t x, uint64_t side, uint8_t* out) const;
+  uint8_t encode(float linear) const;
 
   MipFilter filter_;
   uint32_t channels_;
-  uint32_t colorChannels_;  // channels filtered in linear light (0 for linear textures)
-  std::array<float, 256> decode_{};           // sRGB code -> linear
+  uint32_t colorChannels_;           // channels filtered in linear light (0 for linear textures)
+  std::array<float, 256> decode_{};  // sRGB code -> linear
   std::array<float, 255> encodeThreshold_{};  // linear value where code k turns into k + 1
+  std::array<uint8_t, 4097> encodeStart_{};   // codes whose threshold is <= i / 4096
 };
 
 }  // namespace vt

@@ -96,7 +96,7 @@ class Builder {
       const uint64_t half = level.side / 2, chunk = 1024;
       tbb::parallel_for(uint64_t{0}, (half + chunk - 1) / chunk, [&](uint64_t c) {
         const uint64_t begin = c * chunk;
-        downsampleChunk(rows, level.side, begin, std::min(chunk, half - begin), out);
+        kernel_.downsample(rows, level.side, begin, std::min(chunk, half - begin), out);
       });
       rowAdded(m - 1);
     }
@@ -108,14 +108,6 @@ class Builder {
     RowRing rows;
     uint64_t nextPageRow = 0;
   };
-
-  void downsampleChunk(const std::array<const uint8_t*, 4>& rows, uint64_t side, uint64_t begin,
-                       uint64_t count, uint8_t* out) const {
-    const uint32_t taps = 2 + 2 * kernel_.reach();
-    for (uint64_t x = begin; x < begin + count; ++x)
-      kernel_.texel([&](uint32_t k) { return k < taps ? rows[k] : nullptr; }, x, side,
-                    out + x * d_.channels);
-  }
 
   void cutPageRow(uint32_t m, uint64_t py) {
     const auto first = std::lower_bound(stored_.begin(), stored_.end(),
@@ -165,13 +157,13 @@ class Builder {
     for (int64_t sy = std::max<int64_t>(B + qy - 1, 0); sy <= std::min(B + qy + half, side - 1);
          ++sy) {
       const int64_t Y = clampIndex(parentY0 + sy, parentSide);
-      const auto row = [&](uint32_t k) {
-        return level.rows.row(static_cast<uint64_t>(clampIndex(2 * Y + k - reach, level.side)));
-      };
+      MipKernel::Rows rows{};
+      for (uint32_t k = 0; k < 2 + 2 * reach; ++k)
+        rows[k] = level.rows.row(static_cast<uint64_t>(clampIndex(2 * Y + k - reach, level.side)));
       for (int64_t sx = std::max<int64_t>(B + qx - 1, 0); sx <= std::min(B + qx + half, side - 1);
            ++sx) {
         const int64_t X = clampIndex(parentX0 + sx, parentSide);
-        kernel_.texel(row, static_cast<uint64_t>(X), level.side,
+        kernel_.texel(rows, static_cast<uint64_t>(X), level.side,
                       reinterpret_cast<uint8_t*>(texels.data()) + (sy * side + sx) * d_.channels);
       }
     }

@@ -15,7 +15,9 @@ std::vector<uint8_t> filter(MipFilter f, ColorSpace space, uint32_t channels,
   const MipKernel kernel(f, space, channels);
   std::vector<uint8_t> out(channels);
   const uint32_t first = f == MipFilter::kBox ? 1 : 0;
-  kernel.texel([&](uint32_t k) { return rows4[first + k].data(); }, 1, 4, out.data());
+  MipKernel::Rows rows{};
+  for (uint32_t k = 0; k < 2 + 2 * kernel.reach(); ++k) rows[k] = rows4[first + k].data();
+  kernel.texel(rows, 1, 4, out.data());
   return out;
 }
 

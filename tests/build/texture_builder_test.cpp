@@ -51,16 +51,16 @@ std::vector<Level> naiveChain(const Layout& layout,
     Level& level = chain[m];
     level.side = above.side / 2;
     level.texels.resize(level.side * level.side * c);
-    for (uint64_t Y = 0; Y < level.side; ++Y)
+    for (uint64_t Y = 0; Y < level.side; ++Y) {
+      MipKernel::Rows rows{};
+      for (uint32_t k = 0; k < 2 + 2 * kernel.reach(); ++k) {
+        const int64_t row = std::clamp<int64_t>(static_cast<int64_t>(2 * Y + k) - kernel.reach(), 0,
+                                                static_cast<int64_t>(above.side) - 1);
+        rows[k] = above.texels.data() + static_cast<uint64_t>(row) * above.side * c;
+      }
       for (uint64_t X = 0; X < level.side; ++X)
-        kernel.texel(
-            [&](uint32_t k) {
-              const int64_t row =
-                  std::clamp<int64_t>(static_cast<int64_t>(2 * Y + k) - kernel.reach(), 0,
-                                      static_cast<int64_t>(above.side) - 1);
-              return above.texels.data() + static_cast<uint64_t>(row) * above.side * c;
-            },
-            X, above.side, level.texels.data() + (Y * level.side + X) * c);
+        kernel.texel(rows, X, above.side, level.texels.data() + (Y * level.side + X) * c);
+    }
   }
   return chain;
 }
