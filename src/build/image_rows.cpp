@@ -40,11 +40,9 @@ ImageRows::ImageRows(const Layout& layout) : layout_(layout) {
                    [](const Placement* a, const Placement* b) { return a->y < b->y; });
 }
 
-void ImageRows::row(uint64_t y, uint8_t* out) {
-  const TextureDescription& d = layout_.description;
-  const uint32_t channels = d.channels;
-  for (uint64_t x = 0; x < d.sideTexels(); ++x)
-    for (uint32_t c = 0; c < channels; ++c) out[x * channels + c] = layout_.background[c];
+void ImageRows::row(uint64_t y, RowRing& rows) {
+  const uint32_t channels = layout_.description.channels;
+  uint8_t* out = rows.append(y);
 
   // Close images that ended above this row, open those that start on it.
   std::erase_if(open_, [y](const OpenImage& image) {
@@ -67,6 +65,7 @@ void ImageRows::row(uint64_t y, uint8_t* out) {
       throw InputError(
           p.file, "cannot read scanline " + std::to_string(line) + ": " + image.input->geterror());
     uint8_t* to = out + p.x * channels;
+    rows.wrote({p.x, p.x + p.width});
     if (p.channels == channels) {
       std::copy(image.scanline.begin(), image.scanline.end(), to);
       continue;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "build/layout.h"
+#include "build/row_ring.h"
 
 namespace vt {
 
@@ -22,8 +23,9 @@ class ImageRows {
  public:
   explicit ImageRows(const Layout& layout);
 
-  // Fills finest row y (side * channels bytes); rows must be asked for in increasing order.
-  void row(uint64_t y, uint8_t* out);
+  // Appends finest row y to `rows` (rows in increasing order): the images' texels on it, the
+  // background elsewhere.
+  void row(uint64_t y, RowRing& rows);
 
   // Scanline buffers held now (for the memory bound).
   uint64_t bufferBytes() const;

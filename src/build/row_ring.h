@@ -1,7 +1,12 @@
 #pragma once
 // The last `capacity` texel rows of one level, in a ring: the only part of a level the builder
 // ever holds. Row q lives in slot q mod capacity until row q + capacity replaces it.
+//
+// Texels no image influences hold the background. The ring starts filled with it and remembers
+// which columns each slot's row wrote, so a new row only restores those: work follows the images,
+// not the texture's width, and a sparse texture of 65536^2 texels costs what its images cost.
 
+#include <array>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -9,24 +14,24 @@
 
 namespace vt {
 
+struct ColumnSpan {
+  uint64_t begin = 0, end = 0;  // texel columns [begin, end)
+};
+
 class RowRing {
  public:
-  RowRing(uint64_t side, uint32_t channels, uint32_t capacity)
-      : rowBytes_(side * channels), capacity_(capacity), texels_(rowBytes_ * capacity) {}
+  RowRing(uint64_t side, uint32_t channels, uint32_t capacity,
+          const std::array<uint8_t, 4>& background);
 
-  // The slot for row q, which becomes the newest row.
-  uint8_t* append(uint64_t q) {
-    if (q != rows_) throw std::logic_error("RowRing: rows must arrive in order");
-    ++rows_;
-    return slot(q);
-  }
+  // Starts row q (rows arrive in order): restores the background where the slot's previous row
+  // wrote, and returns the slot. Columns the caller then writes must be declared with wrote().
+  uint8_t* append(uint64_t q);
+  void wrote(ColumnSpan span);
 
   // Row q, which must still be held.
   const uint8_t* row(uint64_t q) const {
     if (q >= rows_ || q + capacity_ < rows_)
-      throw std::logic_error("RowRing: row " + std::to_string(q) + " is not held (rows " +
-                             std::to_string(rows_ > capacity_ ? rows_ - capacity_ : 0) + ".." +
-                             std::to_string(rows_) + ")");
+      throw std::logic_error("RowRing: row " + std::to_string(q) + " is not held");
     return texels_.data() + (q % capacity_) * rowBytes_;
   }
 
@@ -34,11 +39,12 @@ class RowRing {
   uint64_t bytes() const { return texels_.size(); }
 
  private:
-  uint8_t* slot(uint64_t q) { return texels_.data() + (q % capacity_) * rowBytes_; }
-
+  uint32_t channels_;
   uint64_t rowBytes_;
   uint64_t capacity_;
+  std::array<uint8_t, 4> background_;
   std::vector<uint8_t> texels_;
+  std::vector<std::vector<ColumnSpan>> written_;  // per slot
   uint64_t rows_ = 0;
 };
 

@@ -58,8 +58,26 @@ class Builder {
         stored_(std::move(stored)),
         writer_(writer) {
     for (uint32_t m = 0; m < d_.levelCount; ++m)
-      levels_.push_back({levelSide(d_.pageSize, m), RowRing(levelSide(d_.pageSize, m), d_.channels,
-                                                            ringCapacity(d_, kernel_))});
+      levels_.push_back({levelSide(d_.pageSize, m),
+                         RowRing(levelSide(d_.pageSize, m), d_.channels, ringCapacity(d_, kernel_),
+                                 layout.background),
+                         {}});
+    // Footprints: the texels of each level that some image influences. Level m - 1 texel X reads
+    // level m columns 2X - r .. 2X + 1 + r, so [a, b) on level m influences
+    // X in [ceil((a - 1 - r) / 2), floor((b - 1 + r) / 2)] on level m - 1. Outside them every
+    // level holds the background: the filters keep a constant constant.
+    const int64_t r = kernel_.reach();
+    for (const Placement& image : layout.images)
+      levels_.back().footprints.push_back(
+          {static_cast<int64_t>(image.x), static_cast<int64_t>(image.x + image.width),
+           static_cast<int64_t>(image.y), static_cast<int64_t>(image.y + image.height)});
+    for (uint32_t m = d_.finestLevel(); m > 0; --m) {
+      const int64_t coarserSide = static_cast<int64_t>(levels_[m - 1].side);
+      const auto lower = [&](int64_t a) { return std::max<int64_t>(0, (a - r) / 2); };
+      const auto upper = [&](int64_t b) { return std::min(coarserSide, (b + r + 1) / 2); };
+      for (const Footprint& f : levels_[m].footprints)
+        levels_[m - 1].footprints.push_back({lower(f.x0), upper(f.x1), lower(f.y0), upper(f.y1)});
+    }
   }
 
   uint64_t ringBytes() const {
@@ -68,7 +86,7 @@ class Builder {
     return bytes;
   }
 
-  uint8_t* appendFinestRow(uint64_t y) { return levels_.back().rows.append(y); }
+  RowRing& finestRows() { return levels_.back().rows; }
 
   // Called after a row was appended to level m: makes what that row completes.
   void rowAdded(uint32_t m) {
@@ -91,23 +109,50 @@ class Builder {
         rows[k] = level.rows.row(
             static_cast<uint64_t>(clampIndex(static_cast<int64_t>(2 * r + k) - reach, level.side)));
       uint8_t* out = coarser.rows.append(r);
-      // Split the row into chunks for the threads; each texel is computed alone, so the result
-      // does not depend on the split.
-      const uint64_t half = level.side / 2, chunk = 1024;
-      tbb::parallel_for(uint64_t{0}, (half + chunk - 1) / chunk, [&](uint64_t c) {
-        const uint64_t begin = c * chunk;
-        kernel_.downsample(rows, level.side, begin, std::min(chunk, half - begin), out);
-      });
+      // Only texels some image influences are computed; the rest is background. Spans are cut
+      // into chunks for the threads; each texel is computed alone, so the result does not depend
+      // on the split.
+      constexpr uint64_t kChunk = 1024;
+      for (const ColumnSpan& span : spansOf(coarser, r)) {
+        coarser.rows.wrote(span);
+        const uint64_t count = span.end - span.begin;
+        tbb::parallel_for(uint64_t{0}, (count + kChunk - 1) / kChunk, [&](uint64_t c) {
+          const uint64_t begin = span.begin + c * kChunk;
+          kernel_.downsample(rows, level.side, begin, std::min(kChunk, span.end - begin), out);
+        });
+      }
       rowAdded(m - 1);
     }
   }
 
  private:
+  struct Footprint {
+    int64_t x0, x1, y0, y1;  // half-open texel rectangle
+  };
   struct Level {
     uint64_t side;
     RowRing rows;
+    std::vector<Footprint> footprints;
     uint64_t nextPageRow = 0;
   };
+
+  // Column spans of row y of a level that footprints cover, merged, in increasing order.
+  static std::vector<ColumnSpan> spansOf(const Level& level, uint64_t y) {
+    std::vector<ColumnSpan> spans;
+    for (const Footprint& f : level.footprints)
+      if (static_cast<int64_t>(y) >= f.y0 && static_cast<int64_t>(y) < f.y1)
+        spans.push_back({static_cast<uint64_t>(f.x0), static_cast<uint64_t>(f.x1)});
+    std::sort(spans.begin(), spans.end(),
+              [](const ColumnSpan& a, const ColumnSpan& b) { return a.begin < b.begin; });
+    std::vector<ColumnSpan> merged;
+    for (const ColumnSpan& span : spans) {
+      if (!merged.empty() && span.begin <= merged.back().end)
+        merged.back().end = std::max(merged.back().end, span.end);
+      else
+        merged.push_back(span);
+    }
+    return merged;
+  }
 
   void cutPageRow(uint32_t m, uint64_t py) {
     const auto first = std::lower_bound(stored_.begin(), stored_.end(),
@@ -208,7 +253,7 @@ BuildReport buildVirtualTexture(const Layout& layout, const std::filesystem::pat
   {
     ProgressBar progress("vt build", d.sideTexels(), options.progress);
     for (uint64_t y = 0; y < d.sideTexels(); ++y) {
-      images.row(y, builder.appendFinestRow(y));
+      images.row(y, builder.finestRows());
       report.scanlineBytes = std::max(report.scanlineBytes, images.bufferBytes());
       builder.rowAdded(d.finestLevel());
       progress.update(y + 1);

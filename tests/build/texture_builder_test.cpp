@@ -177,6 +177,19 @@ TEST_F(TextureBuilder, SparseLayoutStoresOnlyTouchedPages) {
   EXPECT_THROW(reader.readPage(PageId{5, 5, 4}), InputError);
 }
 
+TEST_F(TextureBuilder, SparseTentSkipsOnlyBackgroundTexels) {
+  // The builder computes only texels some image influences (footprints widened by the tent's
+  // reach on every level); the naive chain computes them all. Images at the texture's edges and
+  // odd positions test the widening and the clamping.
+  const auto layout = writeLayout({{"page_size", 8},
+                                   {"border", 2},
+                                   {"side", 256},
+                                   {"filter", "tent"},
+                                   {"background", {200, 30, 60, 128}}},
+                                  {{0, 0, 5, 3}, {97, 131, 11, 7}, {251, 250, 5, 6}}, 4);
+  expectMatchesNaive(layout, 2);
+}
+
 TEST_F(TextureBuilder, OutputBytesDoNotDependOnThreads) {
   const auto layout = writeLayout({{"page_size", 16}, {"border", 4}}, {{0, 0, 100, 128}}, 3);
   const Layout parsed = readLayout(layout);

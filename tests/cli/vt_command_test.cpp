@@ -4,10 +4,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "build/synthetic_texture.h"
 #include "cli/run_command.h"
+#include "common/image_file.h"
 #include "format/level_image.h"
 #include "test_support.h"
 
@@ -100,7 +102,7 @@ TEST_F(VtCommand, HelpAndVersion) {
   EXPECT_EQ(version.exitCode, 0);
   EXPECT_THAT(version.out,
               MatchesRegex("vt [0-9]+\\.[0-9]+\\.[0-9]+ \\(virtual-texture file format 1\\)\n"));
-  for (const char* command : {"info", "demo", "export-level"}) {
+  for (const char* command : {"build", "info", "demo", "export-level"}) {
     const auto help = vt({command, "--help"});
     EXPECT_EQ(help.exitCode, 0) << command;
     EXPECT_THAT(help.out, HasSubstr("Usage:")) << command;
@@ -124,6 +126,40 @@ TEST_F(VtCommand, ExportLevelWritesTheAssembledLevel) {
   const auto missing = vt({"export-level", path, "--level", "4", "-o", png});
   EXPECT_EQ(missing.exitCode, 1);
   EXPECT_THAT(missing.err, HasSubstr("level 4 does not exist (levels 0..3)"));
+}
+
+TEST_F(VtCommand, BuildCompilesALayoutThatInfoAccepts) {
+  const std::vector<std::byte> texels(30 * 20 * 3, std::byte{77});
+  writeImage8(dir_ / "wall.png", 30, 20, 3, texels);
+  std::ofstream(dir_ / "layout.json")
+      << R"({"page_size": 16, "border": 2, "images": [{"file": "wall.png", "x": 40, "y": 3}]})";
+  const auto output = (dir_ / "out.vt").string();
+  const auto result =
+      vt({"build", (dir_ / "layout.json").string(), "-o", output, "--threads", "2"});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("built " + output + ": 128 x 128 texels, levels 0..3"));
+  EXPECT_TRUE(result.err.empty()) << "no progress bar when stderr is not a terminal";
+  const auto info = vt({"info", "--verify", output});
+  EXPECT_EQ(info.exitCode, 0) << info.err;
+  EXPECT_THAT(info.out, HasSubstr("3 x unorm8, sRGB, sparse"));
+
+  // One image on the command line.
+  EXPECT_EQ(vt({"build", (dir_ / "wall.png").string(), "-o", output, "--page-size", "8"}).exitCode,
+            0);
+  EXPECT_EQ(VirtualTextureReader(output).description().sideTexels(), 32u);
+}
+
+TEST_F(VtCommand, BuildErrorsNameTheFile) {
+  std::ofstream(dir_ / "layout.json") << R"({"images": [{"file": "gone.png", "x": 0, "y": 0}]})";
+  const auto output = (dir_ / "out.vt").string();
+  const auto missing = vt({"build", (dir_ / "layout.json").string(), "-o", output});
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_THAT(missing.err, MatchesRegex("vt: .*gone.png: image not found \\(named by .*layout.json "
+                                        "images\\[0\\]\\)\n"));
+  EXPECT_FALSE(std::filesystem::exists(output));
+  const auto badFilter = vt({"build", "x.png", "-o", output, "--filter", "lanczos"});
+  EXPECT_EQ(badFilter.exitCode, 2);
+  EXPECT_THAT(badFilter.err, HasSubstr("Usage: vt build"));
 }
 
 TEST_F(VtCommand, DemoBuildsAndVerifiesTheDefaultTexture) {
