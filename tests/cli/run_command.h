@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -20,6 +21,7 @@ struct CommandResult {
   int exitCode = -1;
   std::string out;
   std::string err;
+  long maxRssKb = 0;  // peak resident set of the process, from wait4
 };
 
 inline std::string slurp(const std::filesystem::path& path) {
@@ -47,7 +49,9 @@ inline CommandResult runCommand(const std::string& program, const std::vector<st
   CommandResult result;
   if (posix_spawn(&pid, program.c_str(), &actions, nullptr, pointers.data(), environ) == 0) {
     int status = 0;
-    waitpid(pid, &status, 0);
+    struct rusage usage {};
+    wait4(pid, &status, 0, &usage);
+    result.maxRssKb = usage.ru_maxrss;
     result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   }
   posix_spawn_file_actions_destroy(&actions);

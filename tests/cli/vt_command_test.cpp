@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "build/synthetic_texture.h"
+#include "build/texture_builder.h"
 #include "cli/run_command.h"
 #include "common/image_file.h"
 #include "format/level_image.h"
@@ -147,6 +148,29 @@ TEST_F(VtCommand, BuildCompilesALayoutThatInfoAccepts) {
   EXPECT_EQ(vt({"build", (dir_ / "wall.png").string(), "-o", output, "--page-size", "8"}).exitCode,
             0);
   EXPECT_EQ(VirtualTextureReader(output).description().sideTexels(), 32u);
+}
+
+TEST_F(VtCommand, BuildPeakMemoryStaysFarBelowTheFinestLevel) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer's shadow memory and quarantine make RSS meaningless";
+#endif
+  // A 16384^2 RGBA texture: its finest level alone is 1 GiB. The process may use what `vt`
+  // itself needs (its libraries, measured with --version) plus the documented ring bound plus
+  // 32 MiB for pages in flight and the image's scanline.
+  const std::vector<std::byte> texels(300 * 200 * 4, std::byte{9});
+  writeImage8(dir_ / "tile.png", 300, 200, 4, texels);
+  std::ofstream(dir_ / "layout.json") << R"({"side": 16384, "channels": 4,
+      "images": [{"file": "tile.png", "x": 5000, "y": 7000}]})";
+  const auto build =
+      vt({"build", (dir_ / "layout.json").string(), "-o", (dir_ / "big.vt").string()});
+  ASSERT_EQ(build.exitCode, 0) << build.err;
+  const long baselineKb = vt({"--version"}).maxRssKb;
+  const Layout layout = readLayout(dir_ / "layout.json");
+  const long boundKb =
+      static_cast<long>(ringBytesBound(layout.description, layout.filter) / 1024) + 32 * 1024;
+  EXPECT_LT(build.maxRssKb - baselineKb, boundKb)
+      << "build " << build.maxRssKb << " KB, vt --version " << baselineKb << " KB";
+  EXPECT_LT(boundKb, 1024 * 1024 / 16);
 }
 
 TEST_F(VtCommand, BuildErrorsNameTheFile) {
