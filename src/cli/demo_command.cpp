@@ -1,13 +1,14 @@
-// vt demo [--output DIR]: the project's main job on its bundled default scene. Today: build a
-// generated sparse virtual texture, read it back, verify every page, print its summary and write
-// one level as an image.
+// vt demo [--output DIR]: the project's main job on its bundled default scene. Today: generate the
+// default scene's material images and layout, build its virtual texture with `vt build`'s
+// builder, read it back, verify every page, print its summary and write one level as an image.
 
 #include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 
-#include "build/synthetic_texture.h"
+#include "build/demo_scene.h"
+#include "build/texture_builder.h"
 #include "cli/commands.h"
 #include "cli/texture_report.h"
 #include "common/image_file.h"
@@ -25,27 +26,22 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 void addDemoCommand(CLI::App& app) {
   struct Options {
     std::string output = "out/demo";
-    uint32_t levels = 5;
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand(
       "demo", "Build the default scene's virtual texture, verify it and summarise it");
   command->add_option("-o,--output", options->output, "Output folder")->capture_default_str();
-  command->add_option("--levels", options->levels, "Levels of the generated texture")
-      ->check(CLI::Range(1u, 8u))
-      ->capture_default_str();
   command->callback([options] {
     const std::filesystem::path folder = options->output;
-    std::filesystem::create_directories(folder);
-    const std::filesystem::path file = folder / "synthetic.vt";
-
-    SyntheticTexture texture;
-    texture.description = {
-        .pageSize = 128, .border = 4, .levelCount = options->levels, .channels = 4};
-    texture.discRadius = 0.45;
     auto start = std::chrono::steady_clock::now();
-    writeSyntheticTexture(file, texture);
-    std::cout << "built " << file.string() << " in " << secondsSince(start) << " s\n";
+    const std::filesystem::path layoutFile = writeDemoScene(folder / "scene");
+    std::cout << "wrote the default scene " << layoutFile.string() << " in " << secondsSince(start)
+              << " s\n";
+
+    const Layout layout = readLayout(layoutFile);
+    const std::filesystem::path file = folder / "scene.vt";
+    const BuildReport build = buildVirtualTexture(layout, file);
+    std::cout << "built " << file.string() << " in " << build.seconds << " s\n";
 
     start = std::chrono::steady_clock::now();
     const VirtualTextureReader reader(file);
@@ -54,7 +50,7 @@ void addDemoCommand(CLI::App& app) {
     std::cout << "read and verified in " << secondsSince(start) << " s\n\n"
               << formatTextureReport(report) << '\n';
 
-    const uint32_t level = std::min(options->levels - 1, 3u);
+    const uint32_t level = reader.description().finestLevel() - 1;
     const std::filesystem::path image = folder / ("level" + std::to_string(level) + ".png");
     const LevelImage pixels = assembleLevel(reader, level);
     writeImage8(image, pixels.side, pixels.side, pixels.channels, pixels.texels);

@@ -90,7 +90,7 @@ TEST_F(VtCommand, BadArgumentsPrintTheUsageAndExitTwo) {
                                                {"info"},
                                                {"info", "a.vt", "--frobnicate"},
                                                {"nonsense"},
-                                               {"demo", "--levels", "99"}}) {
+                                               {"demo", "--frobnicate"}}) {
     const auto result = vt(args);
     EXPECT_EQ(result.exitCode, 2) << result.err;
     EXPECT_THAT(result.err, HasSubstr("Usage: vt"));
@@ -187,11 +187,16 @@ TEST_F(VtCommand, BuildErrorsNameTheFile) {
 }
 
 TEST_F(VtCommand, DemoBuildsAndVerifiesTheDefaultTexture) {
-  const auto result = vt({"demo", "--output", (dir_ / "demo").string(), "--levels", "3"});
+  const auto result = vt({"demo", "--output", (dir_ / "demo").string()});
   ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("4096 x 4096 texels, levels 0..5"));
   EXPECT_THAT(result.out, HasSubstr("every checksum matches"));
-  EXPECT_TRUE(std::filesystem::exists(dir_ / "demo" / "synthetic.vt"));
-  EXPECT_TRUE(std::filesystem::exists(dir_ / "demo" / "level2.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "demo" / "scene" / "layout.json"));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "demo" / "level4.png"));
+  // The default scene is generated the same way every time.
+  const auto first = test::readBytes(dir_ / "demo" / "scene.vt");
+  ASSERT_EQ(vt({"demo", "--output", (dir_ / "again").string()}).exitCode, 0);
+  EXPECT_EQ(test::readBytes(dir_ / "again" / "scene.vt"), first);
 }
 
 }  // namespace
