@@ -1,0 +1,47 @@
+#include "gl/virtual_texture_program.h"
+
+#include "shader/virtual_texture_source.h"
+
+namespace vt {
+
+std::string virtualTextureVertexSource() {
+  // Clip-space positions come from the CPU, computed once for both renderers (DESIGN section 3).
+  return R"(#version 450 core
+layout(location = 0) in vec4 aClipPosition;
+layout(location = 1) in vec2 aUV;
+out vec2 vUV;
+void main() {
+  vUV = aUV;
+  gl_Position = aClipPosition;
+}
+)";
+}
+
+std::string virtualTextureFragmentSource() {
+  const std::string backend = R"(#version 450 core
+uniform usampler2D uIndirection;
+uniform sampler2D uCache;
+uniform int uFinestLevel;
+uvec4 vtFetchIndirection(ivec2 page, int level) {
+  return texelFetch(uIndirection, page, uFinestLevel - level);
+}
+vec4 vtFetchCacheTexel(ivec2 texel) { return texelFetch(uCache, texel, 0); }
+vec4 vtSampleCacheLinear(vec2 texel) {
+  return textureLod(uCache, texel / vec2(textureSize(uCache, 0)), 0.0);
+}
+)";
+  const std::string main = R"(
+in vec2 vUV;
+uniform VtParameters uVt;
+layout(location = 0) out vec4 outColor;
+layout(location = 1) out uvec4 outNeed;
+void main() {
+  VtFragment f = vtShadeFragment(vUV, dFdxFine(vUV), dFdyFine(vUV), uVt);
+  outColor = f.color;
+  outNeed = f.need;
+}
+)";
+  return backend + kVirtualTextureShaderSource + main;
+}
+
+}  // namespace vt

@@ -1,0 +1,49 @@
+#pragma once
+// The shared shader logic (virtual_texture.glsl) compiled as C++: GLSL's types and built-ins are
+// GLM's, `precise` is empty (the build never contracts or reassociates floating point:
+// -ffp-contract=off, no -ffast-math), and the functions become members of ShaderLogic<Backend>,
+// whose Backend supplies the texture fetches and the target's log2 (a precision profile).
+//
+// Backend must provide, callable on a non-const object:
+//   uvec4 vtFetchIndirection(ivec2 page, int level);
+//   vec4  vtFetchCacheTexel(ivec2 texel);
+//   vec4  vtSampleCacheLinear(vec2 texel);
+//   float log2(float x);
+
+#include <cstdint>
+#include <glm/glm.hpp>
+
+namespace vt::shader {
+
+using glm::ivec2;
+using glm::ivec3;
+using glm::ivec4;
+using glm::uvec2;
+using glm::uvec4;
+using glm::vec2;
+using glm::vec3;
+using glm::vec4;
+using uint = uint32_t;
+using glm::ceil;
+using glm::floor;
+using glm::sqrt;
+
+#define precise
+#include "shader/virtual_texture_types.glsl"
+#undef precise
+
+template <class Backend>
+class ShaderLogic : public Backend {
+ public:
+  using Backend::Backend;
+  using Backend::log2;
+  using Backend::vtFetchCacheTexel;
+  using Backend::vtFetchIndirection;
+  using Backend::vtSampleCacheLinear;
+
+#define precise
+#include "shader/virtual_texture.glsl"
+#undef precise
+};
+
+}  // namespace vt::shader

@@ -1,0 +1,142 @@
+// The per-fragment logic of virtual texturing (thesis 3.2.3 and appendix B, DESIGN section 3),
+// written once in the common subset of GLSL 4.50 and C++20 with GLM. The GL renderer compiles it
+// in its fragment shader; the CPU oracle includes it verbatim inside a class (shader/shader_cpp.h).
+//
+// The backend around it provides:
+//   uvec4 vtFetchIndirection(ivec2 page, int level)  entry (fx, fy, i, 0) of page (px, py, m):
+//                                                     its frame, or its best resident ancestor's,
+//                                                     and that page's level i <= m
+//   vec4  vtFetchCacheTexel(ivec2 texel)             one cache texel (texelFetch)
+//   vec4  vtSampleCacheLinear(vec2 texel)            the sampler's bilinear filter at a texel
+//                                                     position (GL_LINEAR, centres at +0.5)
+//   float log2(float)                                 the target's log2 (a precision profile)
+//
+// Decisions this file fixes for both backends:
+//   - lod = L - clamp(log2(e_max * P * 2^L), 0, L), larger is finer (appendix B). NaN gives the
+//     coarsest level 0, a zero derivative (log2 = -Inf) the finest level L.
+//   - The needbuffer requests ceil(lod): the finer of the two levels trilinear filtering blends.
+//     Trilinear blends floor(lod) and floor(lod) + 1 (at most L) by lod - floor(lod); bilinear
+//     samples the requested level.
+//   - (s, t) outside [0, 1] is clamped (the texture does not wrap) and NaN becomes 0, so every
+//     page index lies inside its level; s = 1.0 belongs to the last page, at its right edge.
+//   - Every expression that must not be reassociated or fused is `precise`; clamps are written
+//     as comparisons so that NaN has one defined result.
+//
+// Rules for editing, so that both compilers agree: no `in`/`out` parameters (return structs), no
+// swizzles beyond .x .y .z .w, no arithmetic with floating literals (C++ would compute in double;
+// comparisons and selections with them are fine), no mix/clamp/min/max on values that may be NaN.
+
+// x clamped to [0, hi], NaN to 0.
+float vtClampOrZero(float x, float hi) {
+  precise float below = (x <= hi) ? x : hi;
+  return (x >= 0.0) ? below : 0.0;
+}
+
+// Heckbert's edge-compression LOD (appendix B): e_max = sqrt(max(|dUV/dx|^2, |dUV/dy|^2)),
+// d = log2(e_max * P * 2^L) clamped to [0, L], lod = L - d.
+float vtLevelOfDetail(vec2 dUVdx, vec2 dUVdy, VtParameters p) {
+  precise float ex = dUVdx.x * dUVdx.x + dUVdx.y * dUVdx.y;
+  precise float ey = dUVdy.x * dUVdy.x + dUVdy.y * dUVdy.y;
+  // max(ex, ey), but NaN when either is NaN (both comparisons fail, and ex + ey is NaN).
+  precise float larger = (ex >= ey) ? ex : ((ey >= ex) ? ey : ex + ey);
+  precise float eMax = sqrt(larger);
+  precise float finestSide = float(p.pageSize) * float(1 << p.finestLevel);
+  precise float d = log2(eMax * finestSide);
+  float L = float(p.finestLevel);
+  // NaN (from NaN derivatives) compares false both times and ends at L: the coarsest level.
+  precise float upper = (d <= L) ? d : L;
+  precise float clamped = (upper >= 0.0) ? upper : 0.0;
+  return L - clamped;
+}
+
+// The level the needbuffer requests: ceil(lod), in [0, L].
+int vtNeededLevel(float lod) { return int(ceil(lod)); }
+
+// Page (px, py) of level m under (s, t) in [0, 1]: floor(s * 2^m) (thesis 3.2.3.1), clamped so
+// that s = 1.0 falls in the last page.
+ivec2 vtPageAt(vec2 uv, int level) {
+  float last = float((1 << level) - 1);
+  precise vec2 scaled = uv * float(1 << level);
+  return ivec2(int(vtClampOrZero(floor(scaled.x), last)), int(vtClampOrZero(floor(scaled.y), last)));
+}
+
+// 32-bit needbuffer (thesis 3.2.3.2): r = px, g = py, b = m, a = 1 (a = 0: no geometry).
+uvec4 vtEncodeNeed32(ivec2 page, int level) {
+  return uvec4(uint(page.x), uint(page.y), uint(level), 1u);
+}
+
+// 8-bit needbuffer (thesis 3.2.3.2): r = px mod 256, g = py mod 256, b = m,
+// a = px / 256 + (py / 256) * 16, for up to 4096 pages per side. b = 255 marks no geometry.
+uvec4 vtEncodeNeed8(ivec2 page, int level) {
+  return uvec4(uint(page.x & 255), uint(page.y & 255), uint(level),
+               uint((page.x >> 8) + (page.y >> 8) * 16));
+}
+
+// Where (s, t) lies in the cache, in texels, for the page of level m that the indirection entry
+// serves (thesis 3.2.3.3): the frame's origin, the border, and the internal offset
+// s * 2^i - px_i (fract(s * 2^i) except at s = 1.0, where it is 1) scaled by P.
+vec2 vtCacheTexel(vec2 uv, ivec2 page, int level, uvec4 entry, VtParameters p) {
+  int i = int(entry.z);
+  ivec2 resident = ivec2(page.x >> (level - i), page.y >> (level - i));
+  precise vec2 scaled = uv * float(1 << i);
+  precise vec2 inside = scaled - vec2(resident);
+  int stored = p.pageSize + 2 * p.border;
+  precise vec2 origin = vec2(ivec2(int(entry.x) * stored + p.border, int(entry.y) * stored + p.border));
+  precise vec2 texel = origin + inside * float(p.pageSize);
+  return texel;
+}
+
+// Bilinear filtering from four texel fetches, in float (the exact mode): texel centres at +0.5.
+vec4 vtBilinearExact(vec2 texel) {
+  precise vec2 t = texel - vec2(0.5, 0.5);
+  vec2 base = floor(t);
+  precise vec2 f = t - base;
+  ivec2 i0 = ivec2(base);
+  vec4 c00 = vtFetchCacheTexel(i0);
+  vec4 c10 = vtFetchCacheTexel(i0 + ivec2(1, 0));
+  vec4 c01 = vtFetchCacheTexel(i0 + ivec2(0, 1));
+  vec4 c11 = vtFetchCacheTexel(i0 + ivec2(1, 1));
+  precise vec4 row0 = c00 + (c10 - c00) * f.x;
+  precise vec4 row1 = c01 + (c11 - c01) * f.x;
+  precise vec4 color = row0 + (row1 - row0) * f.y;
+  return color;
+}
+
+// The filtered colour of level m at (s, t), from the page or the resident ancestor the
+// indirection table names, and that page's level.
+VtSample vtSampleLevel(vec2 uv, int level, VtParameters p) {
+  ivec2 page = vtPageAt(uv, level);
+  uvec4 entry = vtFetchIndirection(page, level);
+  vec2 texel = vtCacheTexel(uv, page, level, entry, p);
+  VtSample result;
+  result.color = (p.exactFilter != 0) ? vtBilinearExact(texel) : vtSampleCacheLinear(texel);
+  result.residentLevel = int(entry.z);
+  return result;
+}
+
+// Everything the unified shader computes for one fragment (thesis 3.2.3): the LOD from the
+// derivatives, the needed page, and the colour from the available set.
+VtFragment vtShadeFragment(vec2 uvIn, vec2 dUVdx, vec2 dUVdy, VtParameters p) {
+  VtFragment result;
+  vec2 uv = vec2(vtClampOrZero(uvIn.x, 1.0), vtClampOrZero(uvIn.y, 1.0));
+  result.lod = vtLevelOfDetail(dUVdx, dUVdy, p);
+  result.neededLevel = vtNeededLevel(result.lod);
+  ivec2 page = vtPageAt(uv, result.neededLevel);
+  result.need = (p.need8 != 0) ? vtEncodeNeed8(page, result.neededLevel)
+                               : vtEncodeNeed32(page, result.neededLevel);
+  if (p.trilinear != 0) {
+    int coarse = int(floor(result.lod));
+    int fine = (coarse < p.finestLevel) ? coarse + 1 : coarse;
+    precise float weight = result.lod - float(coarse);
+    VtSample c0 = vtSampleLevel(uv, coarse, p);
+    VtSample c1 = vtSampleLevel(uv, fine, p);
+    precise vec4 color = c0.color + (c1.color - c0.color) * weight;
+    result.color = color;
+    result.residentLevel = c1.residentLevel;
+  } else {
+    VtSample only = vtSampleLevel(uv, result.neededLevel, p);
+    result.color = only.color;
+    result.residentLevel = only.residentLevel;
+  }
+  return result;
+}

@@ -1,0 +1,29 @@
+// Types of the virtual-texture shader logic (DESIGN section 3), in the common subset of GLSL 4.50
+// and C++20 with GLM: this file is compiled by the GL driver and, verbatim, by the C++ compiler
+// (shader/shader_cpp.h includes it at namespace scope).
+
+// What the fragment logic knows of the texture and the page cache (uniforms in GL).
+struct VtParameters {
+  int pageSize;     // P, texels per page side
+  int border;       // B, texels of border around every stored page (>= 1)
+  int finestLevel;  // L: levels 0 (coarsest, one page) .. L (finest)
+  int trilinear;    // 1: blend two levels by the fractional lod; 0: bilinear at the needed level
+  int exactFilter;  // 1: bilinear from four texel fetches in float; 0: the sampler's GL_LINEAR
+  int need8;        // 1: 8-bit needbuffer encoding (thesis 3.2.3.2); 0: 32-bit
+  vec2 cacheSize;   // the page cache texture, in texels
+};
+
+// The result for one fragment.
+struct VtFragment {
+  vec4 color;         // filtered texel colour in [0, 1]
+  uvec4 need;         // needbuffer value of the needed page
+  float lod;          // fractional level, 0 coarsest .. L finest
+  int neededLevel;    // the level the needbuffer requests
+  int residentLevel;  // the level actually sampled for the needed level (itself or an ancestor)
+};
+
+// One level's filtered colour and the level of the page it came from.
+struct VtSample {
+  vec4 color;
+  int residentLevel;
+};
