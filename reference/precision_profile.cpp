@@ -1,0 +1,88 @@
+#include "reference/precision_profile.h"
+
+#include <xmmintrin.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+
+namespace vt::reference {
+
+PrecisionProfile parsePrecisionProfile(const std::string& name) {
+  if (name == "exact") return PrecisionProfile::kExact;
+  if (name == "llvmpipe") return PrecisionProfile::kLlvmpipe;
+  if (name == "nvidia") return PrecisionProfile::kNvidia;
+  throw std::invalid_argument("precision profile '" + name +
+                              "' is not one of exact, llvmpipe, nvidia");
+}
+
+std::string toString(PrecisionProfile profile) {
+  switch (profile) {
+    case PrecisionProfile::kExact:
+      return "exact";
+    case PrecisionProfile::kLlvmpipe:
+      return "llvmpipe";
+    case PrecisionProfile::kNvidia:
+      return "nvidia";
+  }
+  return "unknown";
+}
+
+bool usesFusedPlanes(PrecisionProfile profile) { return profile == PrecisionProfile::kLlvmpipe; }
+bool flushesDenormals(PrecisionProfile profile) { return profile == PrecisionProfile::kLlvmpipe; }
+
+float llvmpipeLog2(float x) {
+  // Rule 8: e = exponent - 127, m = mantissa in [1, 2), y = (m - 1) / (m + 1), z = y * y,
+  // P = fma(fma(z*z, c3, c1), z, fma(z*z, fma(z*z, c4, c2), c0)), result fma(y, P, e).
+  if (std::isnan(x) || x < 0.0f) return std::bit_cast<float>(0x7fc00000u);
+  if (x == std::numeric_limits<float>::infinity()) return x;
+  const uint32_t bits = std::bit_cast<uint32_t>(x);
+  if ((bits & 0x7f800000u) == 0) return -std::numeric_limits<float>::infinity();  // 0, denormals
+  const float e = static_cast<float>(static_cast<int>(bits >> 23) - 127);
+  const float m = std::bit_cast<float>((bits & 0x007fffffu) | 0x3f800000u);
+  const float y = (m - 1.0f) / (m + 1.0f);
+  const float z = y * y;
+  const float z2 = z * z;
+  constexpr float c0 = 2.88539009343309178325f, c1 = 0.961791550404184197881f,
+                  c2 = 0.577440339438736392009f, c3 = 0.403343858251329912514f,
+                  c4 = 0.406718052498846252698f;
+  const float p = std::fma(std::fma(z2, c3, c1), z, std::fma(z2, std::fma(z2, c4, c2), c0));
+  return std::fma(y, p, e);
+}
+
+float llvmpipeExp2(float x) {
+  // Rule 8: clamp to [-126.99999, 128], ip = floor(x), f = x - ip, a degree-5 polynomial in f by
+  // the same even/odd fma scheme, times 2^ip built from bits.
+  if (std::isnan(x)) return x;
+  const float clamped = std::fmin(std::fmax(x, -126.99999f), 128.0f);
+  const float ip = std::floor(clamped);
+  const float f = clamped - ip;
+  constexpr float c0 = 1.0f, c1 = 0.693153073200168932794f, c2 = 0.240153617044375388211f,
+                  c3 = 0.0558263180532956664775f, c4 = 0.00898934009049466391101f,
+                  c5 = 0.00187757667519147912699f;
+  const float f2 = f * f;
+  const float even = std::fma(std::fma(f2, c4, c2), f2, c0);
+  const float odd = std::fma(std::fma(f2, c5, c3), f2, c1);
+  const float poly = std::fma(odd, f, even);
+  const int exponent = static_cast<int>(ip);
+  if (exponent >= 128) return std::numeric_limits<float>::infinity();
+  return poly * std::bit_cast<float>(static_cast<uint32_t>(exponent + 127) << 23);
+}
+
+float profileLog2(PrecisionProfile profile, float x) {
+  return profile == PrecisionProfile::kLlvmpipe ? llvmpipeLog2(x) : std::log2(x);
+}
+
+DenormalMode::DenormalMode(PrecisionProfile profile) : saved_(_mm_getcsr()) {
+  constexpr unsigned kFlushToZero = 0x8000, kDenormalsAreZero = 0x0040;
+  if (flushesDenormals(profile))
+    _mm_setcsr(saved_ | kFlushToZero | kDenormalsAreZero);
+  else
+    _mm_setcsr(saved_ & ~(kFlushToZero | kDenormalsAreZero));
+}
+
+DenormalMode::~DenormalMode() { _mm_setcsr(saved_); }
+
+}  // namespace vt::reference

@@ -1,0 +1,48 @@
+#pragma once
+// Precision profiles: what one GL implementation computes, so that the oracle matches it bit for
+// bit or states a bound. Every assumption of the oracle about arithmetic lives here.
+//
+//   exact     IEEE float in the order the source states it, no fused multiply-add, denormals
+//             kept, log2 from the C library (glibc's log2f).
+//   llvmpipe  Mesa 22.3 llvmpipe on x86-64 with FMA, as measured (DESIGN section 7): plane
+//             evaluation fma(dqdy, y, fma(dqdx, x, q0)), window z with fma, log2 and exp2 as
+//             llvmpipe's polynomials, denormals flushed to zero in fragment arithmetic. Pin
+//             GALLIUM_OVERRIDE_CPU_CAPS to match a CPU without FMA (then use `exact` planes).
+//   nvidia    NVIDIA hardware: the `exact` arithmetic, compared with bounds: 8 fractional bits of
+//             bilinear weight, log2 within 2^-22 absolute; pixels whose result could change
+//             within these bounds are flagged as ambiguous.
+
+#include <string>
+
+namespace vt::reference {
+
+enum class PrecisionProfile { kExact, kLlvmpipe, kNvidia };
+
+PrecisionProfile parsePrecisionProfile(const std::string& name);  // throws std::invalid_argument
+std::string toString(PrecisionProfile profile);
+
+// Whether the profile evaluates planes and window z with fused multiply-adds.
+bool usesFusedPlanes(PrecisionProfile profile);
+// Whether fragment arithmetic flushes denormals to zero (DAZ and FTZ).
+bool flushesDenormals(PrecisionProfile profile);
+
+// llvmpipe's log2 and exp2 (DESIGN section 7, rule 8), bit for bit.
+float llvmpipeLog2(float x);
+float llvmpipeExp2(float x);
+
+// The profile's log2.
+float profileLog2(PrecisionProfile profile, float x);
+
+// Sets the calling thread's denormal flushing to what `profile` does; restores on destruction.
+class DenormalMode {
+ public:
+  explicit DenormalMode(PrecisionProfile profile);
+  ~DenormalMode();
+  DenormalMode(const DenormalMode&) = delete;
+  DenormalMode& operator=(const DenormalMode&) = delete;
+
+ private:
+  unsigned saved_;
+};
+
+}  // namespace vt::reference

@@ -1,0 +1,196 @@
+#include "reference/renderer.h"
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+#include "shader/shader_cpp.h"
+
+namespace vt::reference {
+namespace {
+
+using shader::ivec2;
+using shader::uvec4;
+using shader::vec2;
+using shader::vec4;
+
+// The shader's view of a ResidentTexture: the indirection names the page (or its stored
+// ancestor) in frame (0, 0) of a cache of one frame and remembers it; texel fetches read that
+// page. The shader fetches texels only of the page it just looked up.
+class ResidentBackend {
+ public:
+  ResidentBackend(const ResidentTexture* texture, PrecisionProfile profile)
+      : texture_(texture), profile_(profile) {}
+
+  float log2(float x) { return profileLog2(profile_, x); }
+
+  uvec4 vtFetchIndirection(ivec2 page, int level) {
+    current_ =
+        texture_->residentPage(PageId{static_cast<uint32_t>(page.x), static_cast<uint32_t>(page.y),
+                                      static_cast<uint32_t>(level)});
+    texels_ = &texture_->texels(current_);
+    return uvec4(0u, 0u, current_.level, 0u);
+  }
+
+  vec4 vtFetchCacheTexel(ivec2 texel) {
+    const TextureDescription& d = texture_->description();
+    const int side = static_cast<int>(d.storedPageSide());
+    const int x = std::clamp(texel.x, 0, side - 1), y = std::clamp(texel.y, 0, side - 1);
+    const std::byte* t = texels_->data() + (static_cast<size_t>(y) * side + x) * d.channels;
+    vec4 color(0.0f, 0.0f, 0.0f, 1.0f);
+    // Missing channels read as GL does: gray is (g, 0, 0, 1) for one channel; we spread gray to
+    // RGB so that one-channel textures show as gray.
+    for (uint32_t c = 0; c < d.channels; ++c)
+      color[static_cast<int>(c)] = std::to_integer<int>(t[c]) / 255.0f;
+    if (d.channels == 1) color = vec4(color.x, color.x, color.x, 1.0f);
+    if (d.channels == 2) color = vec4(color.x, color.x, color.x, color.y);
+    return color;
+  }
+
+  // GL_LINEAR over the one-frame cache in float (texel centres at +0.5, clamp to edge).
+  vec4 vtSampleCacheLinear(vec2 texel) {
+    const float x = texel.x - 0.5f, y = texel.y - 0.5f;
+    const float fx = std::floor(x), fy = std::floor(y);
+    const ivec2 i0(static_cast<int>(fx), static_cast<int>(fy));
+    const float wx = x - fx, wy = y - fy;
+    const vec4 c00 = vtFetchCacheTexel(i0), c10 = vtFetchCacheTexel(i0 + ivec2(1, 0));
+    const vec4 c01 = vtFetchCacheTexel(i0 + ivec2(0, 1)), c11 = vtFetchCacheTexel(i0 + ivec2(1, 1));
+    const vec4 row0 = c00 + (c10 - c00) * wx, row1 = c01 + (c11 - c01) * wx;
+    return row0 + (row1 - row0) * wy;
+  }
+
+ private:
+  const ResidentTexture* texture_;
+  PrecisionProfile profile_;
+  PageId current_{};
+  const std::vector<std::byte>* texels_ = nullptr;
+};
+
+using OracleShader = shader::ShaderLogic<ResidentBackend>;
+
+// Rule 6: a plane at integer pixel coordinates.
+float evaluate(const Plane& plane, int px, int py, bool fused) {
+  const float x = static_cast<float>(px), y = static_cast<float>(py);
+  return fused ? std::fma(plane.dady, y, std::fma(plane.dadx, x, plane.a0))
+               : plane.dady * y + (plane.dadx * x + plane.a0);
+}
+
+struct Attributes {
+  vec2 uv;
+  float w;
+};
+
+Attributes attributesAt(const SetupTriangle& t, int px, int py, bool fused) {
+  const float q = evaluate(t.oneOverW, px, py, fused);
+  const float recip = 1.0f / q;
+  return {vec2(evaluate(t.s, px, py, fused) * recip, evaluate(t.t, px, py, fused) * recip), recip};
+}
+
+uint8_t toUnorm8(float c) {
+  // Clamp, then round to nearest even, as the framebuffer conversion does. NaN becomes 0.
+  const float clamped = c >= 0.0f ? (c <= 1.0f ? c : 1.0f) : 0.0f;
+  return static_cast<uint8_t>(std::nearbyint(clamped * 255.0f));
+}
+
+bool nearInteger(float x) {
+  const float nearest = std::nearbyint(x);
+  return std::fabs(x - nearest) <=
+         4.0f * std::nextafter(std::fabs(x), INFINITY) - 4.0f * std::fabs(x);
+}
+
+}  // namespace
+
+glm::uvec4 needClearValue(bool need8) { return need8 ? glm::uvec4(0, 0, 255, 0) : glm::uvec4(0); }
+
+Frame renderFrame(const ClipSpaceMesh& mesh, const ResidentTexture& texture,
+                  const RenderSettings& settings) {
+  const Viewport viewport = settings.viewport;
+  const bool fused = usesFusedPlanes(settings.profile);
+  const std::vector<SetupTriangle> triangles = setupTriangles(mesh, viewport, fused);
+  const Visibility visibility(triangles, viewport, settings.depthFormat, fused);
+
+  const TextureDescription& d = texture.description();
+  shader::VtParameters parameters{};
+  parameters.pageSize = static_cast<int>(d.pageSize);
+  parameters.border = static_cast<int>(d.border);
+  parameters.finestLevel = static_cast<int>(d.finestLevel());
+  parameters.trilinear = settings.trilinear ? 1 : 0;
+  parameters.exactFilter = settings.exactFilter ? 1 : 0;
+  parameters.need8 = settings.need8 ? 1 : 0;
+  parameters.cacheSize = vec2(static_cast<float>(d.storedPageSide()));
+
+  Frame frame;
+  frame.viewport = viewport;
+  const size_t pixels = static_cast<size_t>(viewport.width) * static_cast<size_t>(viewport.height);
+  frame.color.assign(pixels * 4, 0);
+  frame.need.assign(pixels, needClearValue(settings.need8));
+  frame.depth.assign(pixels, 1.0f);
+  frame.ambiguity.assign(pixels, 0);
+  frame.triangle.assign(pixels, -1);
+  frame.uv.assign(pixels, vec2(0.0f));
+  frame.derivatives.assign(pixels, vec4(0.0f));
+  frame.lod.assign(pixels, 0.0f);
+  frame.residentLevel.assign(pixels, -1);
+
+  const unsigned threads =
+      settings.threads ? settings.threads : std::thread::hardware_concurrency();
+  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
+                                        std::max(1u, threads));
+  constexpr int kTile = 16;
+  const int tilesX = (viewport.width + kTile - 1) / kTile,
+            tilesY = (viewport.height + kTile - 1) / kTile;
+  tbb::parallel_for(0, tilesX * tilesY, [&](int tile) {
+    const DenormalMode denormals(settings.profile);
+    OracleShader shader(&texture, settings.profile);
+    const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
+    for (int py = y0; py < std::min(y0 + kTile, viewport.height); ++py) {
+      for (int px = x0; px < std::min(x0 + kTile, viewport.width); ++px) {
+        const size_t index =
+            static_cast<size_t>(py) * static_cast<size_t>(viewport.width) + static_cast<size_t>(px);
+        const PixelHit hit = visibility.at(px, py);
+        if (hit.triangle < 0) continue;
+        const SetupTriangle& t = triangles[static_cast<size_t>(hit.triangle)];
+        // The pixel's 2x2 quad: its row pair and column pair (helper pixels included).
+        const int qx = px & ~1, qy = py & ~1;
+        const Attributes here = attributesAt(t, px, py, fused);
+        const Attributes left = attributesAt(t, qx, py, fused),
+                         right = attributesAt(t, qx + 1, py, fused);
+        const Attributes below = attributesAt(t, px, qy, fused),
+                         above = attributesAt(t, px, qy + 1, fused);
+        const vec2 dUVdx = right.uv - left.uv, dUVdy = above.uv - below.uv;
+        const shader::VtFragment f = shader.vtShadeFragment(here.uv, dUVdx, dUVdy, parameters);
+
+        for (int c = 0; c < 4; ++c)
+          frame.color[index * 4 + static_cast<size_t>(c)] = toUnorm8(f.color[c]);
+        frame.need[index] = f.need;
+        frame.depth[index] = hit.depth;
+        frame.triangle[index] = static_cast<int32_t>(t.primitive);
+        frame.uv[index] = here.uv;
+        frame.derivatives[index] = vec4(dUVdx.x, dUVdx.y, dUVdy.x, dUVdy.y);
+        frame.lod[index] = f.lod;
+        frame.residentLevel[index] = static_cast<int8_t>(f.residentLevel);
+
+        if (settings.profile == PrecisionProfile::kLlvmpipe) continue;  // exact: nothing to flag
+        uint8_t reasons = 0;
+        for (const Edge& e : t.edges) {
+          const double length =
+              std::sqrt(static_cast<double>(e.a) * e.a + static_cast<double>(e.b) * e.b);
+          if (std::fabs(static_cast<double>(e.at(px, py))) <= length) reasons |= kNearEdge;
+        }
+        const float scale = static_cast<float>(1 << f.neededLevel);
+        if (nearInteger(here.uv.x * scale) || nearInteger(here.uv.y * scale))
+          reasons |= kPageBoundary;
+        if (std::fabs(f.lod - std::nearbyint(f.lod)) <= 1.0f / 4096.0f) reasons |= kLevelBoundary;
+        for (const Attributes& a : {here, left, right, below, above})
+          if (!(std::fabs(a.w) >= 1e-6f)) reasons |= kNearZeroW;
+        frame.ambiguity[index] = reasons;
+      }
+    }
+  });
+  return frame;
+}
+
+}  // namespace vt::reference

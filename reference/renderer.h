@@ -1,0 +1,38 @@
+#pragma once
+// The CPU oracle: renders a clip-space mesh with a virtual texture exactly as the GL renderer's
+// shader does (DESIGN section 3), multithreaded over tiles, with the same bytes for any thread
+// count.
+//
+// Per pixel: Embree and the GL rules find the shown triangle (visibility.h); its planes are
+// evaluated at the four pixels of the pixel's 2x2 quad, helper pixels included (they need not be
+// covered), as llvmpipe evaluates them (rule 6): q = fma(dqdy, y, fma(dqdx, x, q0)) and
+// attribute = q_a * (1 / q_w). dFdxFine is the right pixel minus the left one in the pixel's quad
+// row, dFdyFine the upper minus the lower in its quad column (window y up). The shared shader
+// logic (src/shader/virtual_texture.glsl) then computes the LOD, the needbuffer and the colour.
+
+#include <glm/glm.hpp>
+
+#include "reference/frame.h"
+#include "reference/precision_profile.h"
+#include "reference/texture_source.h"
+#include "reference/visibility.h"
+
+namespace vt::reference {
+
+struct RenderSettings {
+  Viewport viewport{640, 360};
+  PrecisionProfile profile = PrecisionProfile::kExact;
+  DepthFormat depthFormat = DepthFormat::kDepth32F;
+  bool trilinear = true;
+  bool exactFilter = true;  // texel fetches and float filtering; false: the sampler's GL_LINEAR
+  bool need8 = false;       // 8-bit needbuffer (textures up to 4096 pages per side)
+  unsigned threads = 0;     // 0: every core
+};
+
+// The needbuffer value of a pixel without geometry.
+glm::uvec4 needClearValue(bool need8);
+
+Frame renderFrame(const ClipSpaceMesh& mesh, const ResidentTexture& texture,
+                  const RenderSettings& settings);
+
+}  // namespace vt::reference

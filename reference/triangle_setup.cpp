@@ -1,0 +1,209 @@
+#include "reference/triangle_setup.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vt::reference {
+namespace {
+
+// A clip-space vertex with its perspective attributes, as the clipper carries it.
+struct ClipPoint {
+  glm::vec4 position;
+  glm::vec2 uv;
+};
+
+// Frustum planes in outcode bit order (rule 5): x > w, x + w < 0, y > w, y + w < 0, z + w < 0,
+// z > w are outside. Distances are dot products with these, inside when >= 0.
+constexpr std::array<glm::vec4, 6> kPlanes = {
+    {{-1, 0, 0, 1}, {1, 0, 0, 1}, {0, -1, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {0, 0, -1, 1}}};
+
+unsigned outcode(const glm::vec4& p) {
+  return (p.x > p.w ? 1u : 0u) | (p.x + p.w < 0 ? 2u : 0u) | (p.y > p.w ? 4u : 0u) |
+         (p.y + p.w < 0 ? 8u : 0u) | (p.z + p.w < 0 ? 16u : 0u) | (p.z > p.w ? 32u : 0u);
+}
+
+// Float dot product summed left to right, never fused.
+float distance(const glm::vec4& p, const glm::vec4& plane) {
+  float sum = p.x * plane.x;
+  sum = sum + p.y * plane.y;
+  sum = sum + p.z * plane.z;
+  sum = sum + p.w * plane.w;
+  return sum;
+}
+
+// The point where the edge from `a` to `b` crosses the plane, interpolated from whichever
+// endpoint is nearer the plane (t <= 1/2), in plain float: near + t * (far - near).
+ClipPoint intersect(const ClipPoint& a, float da, const ClipPoint& b, float db) {
+  const bool aNearer = std::fabs(da) <= std::fabs(db);
+  const ClipPoint& near = aNearer ? a : b;
+  const ClipPoint& far = aNearer ? b : a;
+  const float dNear = aNearer ? da : db, dFar = aNearer ? db : da;
+  const float t = dNear / (dNear - dFar);
+  ClipPoint result;
+  for (int k = 0; k < 4; ++k)
+    result.position[k] = near.position[k] + t * (far.position[k] - near.position[k]);
+  for (int k = 0; k < 2; ++k) result.uv[k] = near.uv[k] + t * (far.uv[k] - near.uv[k]);
+  return result;
+}
+
+// Sutherland-Hodgman against the planes set in `mask`, in bit order. Returns false when a
+// distance is not finite (the triangle is dropped).
+bool clipPolygon(std::vector<ClipPoint>& polygon, unsigned mask) {
+  std::vector<ClipPoint> output;
+  for (unsigned plane = 0; plane < 6 && polygon.size() >= 3; ++plane) {
+    if (!(mask & (1u << plane))) continue;
+    output.clear();
+    ClipPoint previous = polygon.front();
+    float dPrevious = distance(previous.position, kPlanes[plane]);
+    if (!std::isfinite(dPrevious)) return false;
+    for (size_t i = 1; i <= polygon.size(); ++i) {
+      const ClipPoint& current = polygon[i % polygon.size()];
+      const float d = distance(current.position, kPlanes[plane]);
+      if (!std::isfinite(d)) return false;
+      if (dPrevious >= 0.0f) output.push_back(previous);
+      // Different signs as Mesa's clipper tests them: a zero next to a non-zero counts.
+      if (d * dPrevious <= 0.0f && d - dPrevious != 0.0f)
+        output.push_back(intersect(previous, dPrevious, current, d));
+      previous = current;
+      dPrevious = d;
+    }
+    polygon.swap(output);
+  }
+  return polygon.size() >= 3;
+}
+
+struct WindowVertex {
+  float x, y, z, oow;  // window coordinates and 1/w
+  int64_t xf, yf;      // snapped: round-half-even((X - 0.5) * 256)
+  glm::vec2 uv;
+  glm::vec3 clipXYW;
+};
+
+WindowVertex toWindow(const ClipPoint& p, Viewport viewport, bool fused) {
+  WindowVertex v;
+  v.oow = 1.0f / p.position.w;
+  const float halfWidth = static_cast<float>(viewport.width) * 0.5f;
+  const float halfHeight = static_cast<float>(viewport.height) * 0.5f;
+  v.x = (p.position.x * v.oow) * halfWidth + halfWidth;
+  v.y = (p.position.y * v.oow) * halfHeight + halfHeight;
+  const float zNdc = p.position.z * v.oow;
+  v.z = fused ? std::fma(zNdc, 0.5f, 0.5f) : zNdc * 0.5f + 0.5f;
+  v.xf = static_cast<int64_t>(std::nearbyint((v.x - 0.5f) * 256.0f));
+  v.yf = static_cast<int64_t>(std::nearbyint((v.y - 0.5f) * 256.0f));
+  v.uv = p.uv;
+  v.clipXYW = {p.position.x, p.position.y, p.position.w};
+  return v;
+}
+
+// Rule 3: the plane through a0, a1, a2 at the three vertices, in plain float.
+Plane planeOf(float a0, float a1, float a2, float dx01, float dy01, float dx20, float dy20,
+              float x0c, float y0c) {
+  Plane plane;
+  const float da01 = a0 - a1, da20 = a2 - a0;
+  plane.dadx = da01 * dy20 - da20 * dy01;
+  plane.dady = da20 * dx01 - da01 * dx20;
+  plane.a0 = a0 - (plane.dadx * x0c + plane.dady * y0c);
+  return plane;
+}
+
+// Rule 4: the edge from i to j with the tie rule.
+Edge edgeOf(const WindowVertex& i, const WindowVertex& j) {
+  Edge edge;
+  edge.a = i.yf - j.yf;
+  edge.b = i.xf - j.xf;
+  edge.c = edge.a * i.xf - edge.b * i.yf;
+  if (edge.a < 0 || (edge.a == 0 && edge.b >= 0)) edge.c += 1;
+  return edge;
+}
+
+// Sets up one (fan) triangle; returns false when its snapped area is zero.
+bool setupOne(WindowVertex v0, WindowVertex v1, WindowVertex v2, Viewport viewport,
+              SetupTriangle& out) {
+  int64_t area = (v0.xf - v1.xf) * (v2.yf - v0.yf) - (v2.xf - v0.xf) * (v0.yf - v1.yf);
+  if (area == 0) return false;
+  if (area < 0) std::swap(v0, v1);
+
+  const float dx01 = v0.x - v1.x, dy01 = v0.y - v1.y;
+  const float dx20 = v2.x - v0.x, dy20 = v2.y - v0.y;
+  const float ooa = 1.0f / (dx01 * dy20 - dy01 * dx20);
+  const float x0c = v0.x - 0.5f, y0c = v0.y - 0.5f;
+  const float sdx01 = dx01 * ooa, sdy01 = dy01 * ooa, sdx20 = dx20 * ooa, sdy20 = dy20 * ooa;
+  const auto plane = [&](float a0, float a1, float a2) {
+    return planeOf(a0, a1, a2, sdx01, sdy01, sdx20, sdy20, x0c, y0c);
+  };
+  out.oneOverW = plane(v0.oow, v1.oow, v2.oow);
+  out.s = plane(v0.uv.x * v0.oow, v1.uv.x * v1.oow, v2.uv.x * v2.oow);
+  out.t = plane(v0.uv.y * v0.oow, v1.uv.y * v1.oow, v2.uv.y * v2.oow);
+  out.z = plane(v0.z, v1.z, v2.z);
+  out.edges = {edgeOf(v0, v1), edgeOf(v1, v2), edgeOf(v2, v0)};
+
+  // Pixels whose centres (multiples of 256 in snapped units) lie within the snapped bounds.
+  const auto ceilDiv = [](int64_t a) { return a >= 0 ? (a + 255) / 256 : -((-a) / 256); };
+  const auto floorDiv = [](int64_t a) { return a >= 0 ? a / 256 : -((-a + 255) / 256); };
+  const int64_t minXf = std::min({v0.xf, v1.xf, v2.xf}), maxXf = std::max({v0.xf, v1.xf, v2.xf});
+  const int64_t minYf = std::min({v0.yf, v1.yf, v2.yf}), maxYf = std::max({v0.yf, v1.yf, v2.yf});
+  out.minX = static_cast<int>(std::max<int64_t>(ceilDiv(minXf), 0));
+  out.maxX = static_cast<int>(std::min<int64_t>(floorDiv(maxXf), viewport.width - 1));
+  out.minY = static_cast<int>(std::max<int64_t>(ceilDiv(minYf), 0));
+  out.maxY = static_cast<int>(std::min<int64_t>(floorDiv(maxYf), viewport.height - 1));
+  out.clipXYW = {v0.clipXYW, v1.clipXYW, v2.clipXYW};
+  return out.minX <= out.maxX && out.minY <= out.maxY;
+}
+
+}  // namespace
+
+std::vector<SetupTriangle> setupTriangles(const ClipSpaceMesh& mesh, Viewport viewport, bool fused,
+                                          SetupStatistics* statistics) {
+  SetupStatistics stats;
+  std::vector<SetupTriangle> result;
+  std::vector<ClipPoint> polygon;
+  const size_t triangles = mesh.indices.size() / 3;
+  for (size_t k = 0; k < triangles; ++k) {
+    ++stats.triangles;
+    polygon.clear();
+    unsigned any = 0, all = 63;
+    bool finite = true;
+    for (int corner = 0; corner < 3; ++corner) {
+      const ClipVertex& v = mesh.vertices.at(mesh.indices[3 * k + static_cast<size_t>(corner)]);
+      for (int c = 0; c < 4; ++c) finite = finite && std::isfinite(v.position[c]);
+      const unsigned code = outcode(v.position);
+      any |= code;
+      all &= code;
+      polygon.push_back({v.position, v.uv});
+    }
+    if (!finite) {
+      ++stats.nonFinite;
+      continue;
+    }
+    if (all != 0) {
+      ++stats.culled;
+      continue;
+    }
+    if (any != 0) {
+      ++stats.clipped;
+      if (!clipPolygon(polygon, any)) {
+        if (polygon.size() >= 3) ++stats.nonFinite;
+        continue;
+      }
+    }
+    // A clipped polygon becomes the fan (p[i-1], p[i], p[0]) of rule 5; an unclipped triangle
+    // keeps its vertex order (v0, v1, v2).
+    for (size_t i = 2; i < polygon.size(); ++i) {
+      SetupTriangle triangle;
+      triangle.primitive = static_cast<uint32_t>(k);
+      triangle.fanIndex = static_cast<uint32_t>(i - 2);
+      const bool fan = any != 0;
+      const WindowVertex a = toWindow(polygon[fan ? i - 1 : 0], viewport, fused);
+      const WindowVertex b = toWindow(polygon[fan ? i : 1], viewport, fused);
+      const WindowVertex c = toWindow(polygon[fan ? 0 : 2], viewport, fused);
+      if (setupOne(a, b, c, viewport, triangle))
+        result.push_back(triangle);
+      else
+        ++stats.empty;
+    }
+  }
+  if (statistics) *statistics = stats;
+  return result;
+}
+
+}  // namespace vt::reference
