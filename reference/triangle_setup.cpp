@@ -6,10 +6,12 @@
 namespace vt::reference {
 namespace {
 
-// A clip-space vertex with its perspective attributes, as the clipper carries it.
+// A clip-space vertex with its perspective attributes, as the clipper carries it. Vertices the
+// clipper makes get their window coordinates from llvmpipe's C clipper, without fma.
 struct ClipPoint {
   glm::vec4 position;
   glm::vec2 uv;
+  bool generated = false;
 };
 
 // Frustum planes in outcode bit order (rule 5): x > w, x + w < 0, y > w, y + w < 0, z + w < 0,
@@ -31,18 +33,20 @@ float distance(const glm::vec4& p, const glm::vec4& plane) {
   return sum;
 }
 
-// The point where the edge from `a` to `b` crosses the plane, interpolated from whichever
-// endpoint is nearer the plane (t <= 1/2), in plain float: near + t * (far - near).
-ClipPoint intersect(const ClipPoint& a, float da, const ClipPoint& b, float db) {
-  const bool aNearer = std::fabs(da) <= std::fabs(db);
-  const ClipPoint& near = aNearer ? a : b;
-  const ClipPoint& far = aNearer ? b : a;
-  const float dNear = aNearer ? da : db, dFar = aNearer ? db : da;
-  const float t = dNear / (dNear - dFar);
+// The point where the edge between an inside vertex (distance >= 0) and an outside one crosses
+// the plane, interpolated from the endpoint nearer the plane (the inside one on a tie), in plain
+// float: base + t * (other - base) with t = d_base / (d_base - d_other) <= 1/2.
+ClipPoint intersect(const ClipPoint& inside, float dIn, const ClipPoint& outside, float dOut) {
+  const bool fromOutside = -dOut < dIn;
+  const ClipPoint& base = fromOutside ? outside : inside;
+  const ClipPoint& other = fromOutside ? inside : outside;
+  const float dBase = fromOutside ? dOut : dIn, dOther = fromOutside ? dIn : dOut;
+  const float t = dBase / (dBase - dOther);
   ClipPoint result;
   for (int k = 0; k < 4; ++k)
-    result.position[k] = near.position[k] + t * (far.position[k] - near.position[k]);
-  for (int k = 0; k < 2; ++k) result.uv[k] = near.uv[k] + t * (far.uv[k] - near.uv[k]);
+    result.position[k] = base.position[k] + t * (other.position[k] - base.position[k]);
+  for (int k = 0; k < 2; ++k) result.uv[k] = base.uv[k] + t * (other.uv[k] - base.uv[k]);
+  result.generated = true;
   return result;
 }
 
@@ -60,10 +64,12 @@ bool clipPolygon(std::vector<ClipPoint>& polygon, unsigned mask) {
       const ClipPoint& current = polygon[i % polygon.size()];
       const float d = distance(current.position, kPlanes[plane]);
       if (!std::isfinite(d)) return false;
-      if (dPrevious >= 0.0f) output.push_back(previous);
-      // Different signs as Mesa's clipper tests them: a zero next to a non-zero counts.
-      if (d * dPrevious <= 0.0f && d - dPrevious != 0.0f)
-        output.push_back(intersect(previous, dPrevious, current, d));
+      // Inside is a distance >= 0; a new vertex where the edge changes sides.
+      const bool previousInside = dPrevious >= 0.0f, currentInside = d >= 0.0f;
+      if (previousInside) output.push_back(previous);
+      if (previousInside != currentInside)
+        output.push_back(previousInside ? intersect(previous, dPrevious, current, d)
+                                        : intersect(current, d, previous, dPrevious));
       previous = current;
       dPrevious = d;
     }
@@ -84,10 +90,14 @@ WindowVertex toWindow(const ClipPoint& p, Viewport viewport, bool fused) {
   v.oow = 1.0f / p.position.w;
   const float halfWidth = static_cast<float>(viewport.width) * 0.5f;
   const float halfHeight = static_cast<float>(viewport.height) * 0.5f;
-  v.x = (p.position.x * v.oow) * halfWidth + halfWidth;
-  v.y = (p.position.y * v.oow) * halfHeight + halfHeight;
+  // llvmpipe's vertex pipeline applies the viewport with fused multiply-adds on an FMA CPU (the
+  // measured rule 1 with rule 10); vertices its C clipper makes use a multiply and an add.
+  const bool fma = fused && !p.generated;
+  const float xNdc = p.position.x * v.oow, yNdc = p.position.y * v.oow;
+  v.x = fma ? std::fma(xNdc, halfWidth, halfWidth) : xNdc * halfWidth + halfWidth;
+  v.y = fma ? std::fma(yNdc, halfHeight, halfHeight) : yNdc * halfHeight + halfHeight;
   const float zNdc = p.position.z * v.oow;
-  v.z = fused ? std::fma(zNdc, 0.5f, 0.5f) : zNdc * 0.5f + 0.5f;
+  v.z = fma ? std::fma(zNdc, 0.5f, 0.5f) : zNdc * 0.5f + 0.5f;
   v.xf = static_cast<int64_t>(std::nearbyint((v.x - 0.5f) * 256.0f));
   v.yf = static_cast<int64_t>(std::nearbyint((v.y - 0.5f) * 256.0f));
   v.uv = p.uv;

@@ -64,7 +64,8 @@ struct SetupStatistics {
 };
 
 // Sets up every triangle of `mesh` for `viewport`. `fused` selects fma (llvmpipe on an FMA CPU)
-// or separate multiply and add for window z; the plane setup itself never fuses (rule 3).
+// or separate multiply and add for the viewport transform of the mesh's vertices (x, y and z);
+// vertices made by clipping, and the plane setup itself (rule 3), never fuse.
 std::vector<SetupTriangle> setupTriangles(const ClipSpaceMesh& mesh, Viewport viewport, bool fused,
                                           SetupStatistics* statistics = nullptr);
 
