@@ -7,6 +7,7 @@
 #include <cmath>
 #include <thread>
 
+#include "reference/cache_state.h"
 #include "shader/shader_cpp.h"
 
 namespace vt::reference {
@@ -16,6 +17,52 @@ using shader::ivec2;
 using shader::uvec4;
 using shader::vec2;
 using shader::vec4;
+
+// An RGBA8 texel as texelFetch returns it: llvmpipe multiplies by 1/255 (a float constant) rather
+// than dividing by 255.
+vec4 unorm8ToFloat(glm::u8vec4 t) { return vec4(t) * (1.0f / 255.0f); }
+
+// GL_LINEAR at a texel position (centres at +0.5), clamp to edge, over a texture of `size`
+// texels, given as the shader hands it: divided by the size into [0, 1] first.
+//   llvmpipe (rule 9): s = round-half-even(u * (size * 256)) - 128, texel s >> 8, weight s & 255,
+//     each lerp a + ((f * (b - a) + 128) >> 8) on 8-bit values, in x on both rows, then in y.
+//   exact, nvidia: the same positions in float, lerps in float.
+template <class Fetch8>
+vec4 sampleLinear(const Fetch8& fetch8, vec2 texel, ivec2 size, PrecisionProfile profile) {
+  const vec2 u = texel / vec2(size);
+  if (profile == PrecisionProfile::kLlvmpipe) {
+    int position[2], weight[2];
+    for (int k = 0; k < 2; ++k) {
+      const int s =
+          static_cast<int>(std::nearbyint(u[k] * (static_cast<float>(size[k]) * 256.0f))) - 128;
+      position[k] = s >> 8;
+      weight[k] = s & 255;
+    }
+    const auto at = [&](int dx, int dy) {
+      return fetch8(ivec2(std::clamp(position[0] + dx, 0, size.x - 1),
+                          std::clamp(position[1] + dy, 0, size.y - 1)));
+    };
+    const auto lerp = [](int a, int b, int f) { return a + ((f * (b - a) + 128) >> 8); };
+    const glm::u8vec4 c00 = at(0, 0), c10 = at(1, 0), c01 = at(0, 1), c11 = at(1, 1);
+    vec4 result;
+    for (int c = 0; c < 4; ++c) {
+      const int row0 = lerp(c00[c], c10[c], weight[0]), row1 = lerp(c01[c], c11[c], weight[0]);
+      result[c] = static_cast<float>(lerp(row0, row1, weight[1])) / 255.0f;
+    }
+    return result;
+  }
+  const vec2 x = u * vec2(size) - vec2(0.5f);
+  const vec2 base = glm::floor(x);
+  const vec2 f = x - base;
+  const ivec2 i0(base);
+  const auto at = [&](int dx, int dy) {
+    return unorm8ToFloat(
+        fetch8(ivec2(std::clamp(i0.x + dx, 0, size.x - 1), std::clamp(i0.y + dy, 0, size.y - 1))));
+  };
+  const vec4 row0 = at(0, 0) + (at(1, 0) - at(0, 0)) * f.x;
+  const vec4 row1 = at(0, 1) + (at(1, 1) - at(0, 1)) * f.x;
+  return row0 + (row1 - row0) * f.y;
+}
 
 // The shader's view of a ResidentTexture: the indirection names the page (or its stored
 // ancestor) in frame (0, 0) of a cache of one frame and remembers it; texel fetches read that
@@ -35,31 +82,19 @@ class ResidentBackend {
     return uvec4(0u, 0u, current_.level, 0u);
   }
 
-  vec4 vtFetchCacheTexel(ivec2 texel) {
+  glm::u8vec4 fetch8(ivec2 texel) const {
     const TextureDescription& d = texture_->description();
     const int side = static_cast<int>(d.storedPageSide());
     const int x = std::clamp(texel.x, 0, side - 1), y = std::clamp(texel.y, 0, side - 1);
-    const std::byte* t = texels_->data() + (static_cast<size_t>(y) * side + x) * d.channels;
-    vec4 color(0.0f, 0.0f, 0.0f, 1.0f);
-    // Missing channels read as GL does: gray is (g, 0, 0, 1) for one channel; we spread gray to
-    // RGB so that one-channel textures show as gray.
-    for (uint32_t c = 0; c < d.channels; ++c)
-      color[static_cast<int>(c)] = std::to_integer<int>(t[c]) / 255.0f;
-    if (d.channels == 1) color = vec4(color.x, color.x, color.x, 1.0f);
-    if (d.channels == 2) color = vec4(color.x, color.x, color.x, color.y);
-    return color;
+    return expandToRgba(texels_->data() + (static_cast<size_t>(y) * side + x) * d.channels,
+                        d.channels);
   }
 
-  // GL_LINEAR over the one-frame cache in float (texel centres at +0.5, clamp to edge).
+  vec4 vtFetchCacheTexel(ivec2 texel) { return unorm8ToFloat(fetch8(texel)); }
+
   vec4 vtSampleCacheLinear(vec2 texel) {
-    const float x = texel.x - 0.5f, y = texel.y - 0.5f;
-    const float fx = std::floor(x), fy = std::floor(y);
-    const ivec2 i0(static_cast<int>(fx), static_cast<int>(fy));
-    const float wx = x - fx, wy = y - fy;
-    const vec4 c00 = vtFetchCacheTexel(i0), c10 = vtFetchCacheTexel(i0 + ivec2(1, 0));
-    const vec4 c01 = vtFetchCacheTexel(i0 + ivec2(0, 1)), c11 = vtFetchCacheTexel(i0 + ivec2(1, 1));
-    const vec4 row0 = c00 + (c10 - c00) * wx, row1 = c01 + (c11 - c01) * wx;
-    return row0 + (row1 - row0) * wy;
+    const int side = static_cast<int>(texture_->description().storedPageSide());
+    return sampleLinear([this](ivec2 t) { return fetch8(t); }, texel, ivec2(side), profile_);
   }
 
  private:
@@ -69,7 +104,42 @@ class ResidentBackend {
   const std::vector<std::byte>* texels_ = nullptr;
 };
 
-using OracleShader = shader::ShaderLogic<ResidentBackend>;
+// The shader's view of a CacheState: the indirection table and the cache texture as uploaded.
+class CacheBackend {
+ public:
+  CacheBackend(const CacheState* state, PrecisionProfile profile)
+      : state_(state), profile_(profile) {}
+
+  float log2(float x) { return profileLog2(profile_, x); }
+
+  uvec4 vtFetchIndirection(ivec2 page, int level) {
+    const glm::u16vec4 e =
+        state_->entry(PageId{static_cast<uint32_t>(page.x), static_cast<uint32_t>(page.y),
+                             static_cast<uint32_t>(level)});
+    return uvec4(e.x, e.y, e.z, e.w);
+  }
+
+  glm::u8vec4 fetch8(ivec2 texel) const {
+    const int x = std::clamp(texel.x, 0, static_cast<int>(state_->widthTexels) - 1);
+    const int y = std::clamp(texel.y, 0, static_cast<int>(state_->heightTexels) - 1);
+    const uint8_t* t = state_->texels.data() +
+                       (static_cast<size_t>(y) * state_->widthTexels + static_cast<size_t>(x)) * 4;
+    return {t[0], t[1], t[2], t[3]};
+  }
+
+  vec4 vtFetchCacheTexel(ivec2 texel) { return unorm8ToFloat(fetch8(texel)); }
+
+  vec4 vtSampleCacheLinear(vec2 texel) {
+    return sampleLinear(
+        [this](ivec2 t) { return fetch8(t); }, texel,
+        ivec2(static_cast<int>(state_->widthTexels), static_cast<int>(state_->heightTexels)),
+        profile_);
+  }
+
+ private:
+  const CacheState* state_;
+  PrecisionProfile profile_;
+};
 
 // Rule 6: a plane at integer pixel coordinates.
 float evaluate(const Plane& plane, int px, int py, bool fused) {
@@ -105,14 +175,16 @@ bool nearInteger(float x) {
 
 glm::uvec4 needClearValue(bool need8) { return need8 ? glm::uvec4(0, 0, 255, 0) : glm::uvec4(0); }
 
-Frame renderFrame(const ClipSpaceMesh& mesh, const ResidentTexture& texture,
-                  const RenderSettings& settings) {
+namespace {
+
+template <class Backend, class Source>
+Frame render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescription& d,
+             glm::vec2 cacheSize, const RenderSettings& settings) {
   const Viewport viewport = settings.viewport;
   const bool fused = usesFusedPlanes(settings.profile);
   const std::vector<SetupTriangle> triangles = setupTriangles(mesh, viewport, fused);
   const Visibility visibility(triangles, viewport, settings.depthFormat, fused);
 
-  const TextureDescription& d = texture.description();
   shader::VtParameters parameters{};
   parameters.pageSize = static_cast<int>(d.pageSize);
   parameters.border = static_cast<int>(d.border);
@@ -120,7 +192,7 @@ Frame renderFrame(const ClipSpaceMesh& mesh, const ResidentTexture& texture,
   parameters.trilinear = settings.trilinear ? 1 : 0;
   parameters.exactFilter = settings.exactFilter ? 1 : 0;
   parameters.need8 = settings.need8 ? 1 : 0;
-  parameters.cacheSize = vec2(static_cast<float>(d.storedPageSide()));
+  parameters.cacheSize = cacheSize;
 
   Frame frame;
   frame.viewport = viewport;
@@ -144,7 +216,7 @@ Frame renderFrame(const ClipSpaceMesh& mesh, const ResidentTexture& texture,
             tilesY = (viewport.height + kTile - 1) / kTile;
   tbb::parallel_for(0, tilesX * tilesY, [&](int tile) {
     const DenormalMode denormals(settings.profile);
-    OracleShader shader(&texture, settings.profile);
+    shader::ShaderLogic<Backend> shader(&texture, settings.profile);
     const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
     for (int py = y0; py < std::min(y0 + kTile, viewport.height); ++py) {
       for (int px = x0; px < std::min(x0 + kTile, viewport.width); ++px) {
@@ -191,6 +263,22 @@ Frame renderFrame(const ClipSpaceMesh& mesh, const ResidentTexture& texture,
     }
   });
   return frame;
+}
+
+}  // namespace
+
+Frame renderFrame(const ClipSpaceMesh& mesh, const ResidentTexture& texture,
+                  const RenderSettings& settings) {
+  const float side = static_cast<float>(texture.description().storedPageSide());
+  return render<ResidentBackend>(mesh, texture, texture.description(), glm::vec2(side), settings);
+}
+
+Frame renderFrame(const ClipSpaceMesh& mesh, const CacheState& cache,
+                  const RenderSettings& settings) {
+  return render<CacheBackend>(
+      mesh, cache, cache.description,
+      glm::vec2(static_cast<float>(cache.widthTexels), static_cast<float>(cache.heightTexels)),
+      settings);
 }
 
 }  // namespace vt::reference

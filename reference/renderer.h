@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include "reference/cache_state.h"
 #include "reference/frame.h"
 #include "reference/precision_profile.h"
 #include "reference/texture_source.h"
@@ -32,7 +33,13 @@ struct RenderSettings {
 // The needbuffer value of a pixel without geometry.
 glm::uvec4 needClearValue(bool need8);
 
+// Every page resident (golden images): each lookup finds the page itself or, on a sparse
+// texture, its nearest stored ancestor.
 Frame renderFrame(const ClipSpaceMesh& mesh, const ResidentTexture& texture,
+                  const RenderSettings& settings);
+
+// A given cache state, as the GL renderer holds it.
+Frame renderFrame(const ClipSpaceMesh& mesh, const CacheState& cache,
                   const RenderSettings& settings);
 
 }  // namespace vt::reference

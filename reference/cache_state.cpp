@@ -1,0 +1,76 @@
+#include "reference/cache_state.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace vt::reference {
+
+glm::u8vec4 expandToRgba(const std::byte* t, uint32_t channels) {
+  const auto c = [&](uint32_t k) { return std::to_integer<uint8_t>(t[k]); };
+  switch (channels) {
+    case 1:
+      return {c(0), c(0), c(0), 255};
+    case 2:
+      return {c(0), c(0), c(0), c(1)};
+    case 3:
+      return {c(0), c(1), c(2), 255};
+    default:
+      return {c(0), c(1), c(2), c(3)};
+  }
+}
+
+CacheState makeCacheState(const VirtualTextureReader& reader, std::span<const uint64_t> pages,
+                          uint32_t framesX, uint32_t framesY) {
+  CacheState state;
+  state.description = reader.description();
+  const TextureDescription& d = state.description;
+  std::vector<uint64_t> resident(pages.begin(), pages.end());
+  if (std::find(resident.begin(), resident.end(), uint64_t{0}) == resident.end())
+    resident.insert(resident.begin(), 0);
+  if (resident.size() > uint64_t{framesX} * framesY)
+    throw std::invalid_argument(std::to_string(resident.size()) + " pages do not fit into " +
+                                std::to_string(framesX) + " x " + std::to_string(framesY) +
+                                " frames");
+  const uint32_t side = d.storedPageSide();
+  state.framesX = framesX;
+  state.framesY = framesY;
+  state.widthTexels = framesX * side;
+  state.heightTexels = framesY * side;
+  state.texels.assign(size_t{state.widthTexels} * state.heightTexels * 4, 0);
+
+  // Frames: the page's own entry; everything else inherits its parent's, level by level.
+  std::vector<std::vector<glm::ivec2>> frameOf(d.levelCount);
+  for (uint32_t m = 0; m < d.levelCount; ++m) frameOf[m].assign(pagesInLevel(m), glm::ivec2(-1));
+  for (size_t k = 0; k < resident.size(); ++k) {
+    const PageId page = fromAbsoluteIndex(resident[k]);
+    if (page.level >= d.levelCount || !reader.contains(page))
+      throw std::invalid_argument("page " + std::to_string(resident[k]) + " is not stored");
+    const glm::ivec2 frame(static_cast<int>(k % framesX), static_cast<int>(k / framesX));
+    frameOf[page.level][relativeIndex(page)] = frame;
+    const std::vector<std::byte> texels = reader.readPage(page);
+    for (uint32_t y = 0; y < side; ++y)
+      for (uint32_t x = 0; x < side; ++x) {
+        const glm::u8vec4 rgba =
+            expandToRgba(texels.data() + (size_t{y} * side + x) * d.channels, d.channels);
+        uint8_t* out = state.texels.data() +
+                       ((size_t{static_cast<uint32_t>(frame.y) * side + y} * state.widthTexels) +
+                        static_cast<uint32_t>(frame.x) * side + x) *
+                           4;
+        for (int c = 0; c < 4; ++c) out[c] = rgba[c];
+      }
+  }
+  state.indirection.resize(d.levelCount);
+  for (uint32_t m = 0; m < d.levelCount; ++m) {
+    state.indirection[m].resize(pagesInLevel(m));
+    for (uint64_t p = 0; p < pagesInLevel(m); ++p) {
+      const PageId page = fromRelativeIndex(p, m);
+      const glm::ivec2 frame = frameOf[m][p];
+      state.indirection[m][p] =
+          frame.x >= 0 ? glm::u16vec4(frame.x, frame.y, m, 0) : state.entry(parent(page));
+    }
+  }
+  return state;
+}
+
+}  // namespace vt::reference

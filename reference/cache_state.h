@@ -1,0 +1,43 @@
+#pragma once
+// A page cache state as the GL renderer holds it (thesis 3.1.2, 3.2.2): a cache texture of
+// frames of (P + 2B)^2 texels and an indirection table whose entry for page (px, py, m) names the
+// frame of that page or of its best resident ancestor, and that page's level (3.2.2.2-3.2.2.3).
+// Both renderers read the same state: the GL path uploads it, the oracle samples it.
+//
+// Layout: frame (fx, fy) starts at texel (fx, fy) * (P + 2B), rows of increasing t. Texels are
+// RGBA8 whatever the texture's channels (gray spreads to RGB, missing alpha is opaque). The
+// indirection table has one level per page level m, 2^m x 2^m entries (fx, fy, i, 0), which the
+// GL path stores as mip level L - m of an RGBA16UI texture.
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <span>
+#include <vector>
+
+#include "format/virtual_texture_reader.h"
+
+namespace vt::reference {
+
+struct CacheState {
+  TextureDescription description;
+  uint32_t framesX = 0, framesY = 0;
+  uint32_t widthTexels = 0, heightTexels = 0;
+  std::vector<uint8_t> texels;                         // RGBA8, widthTexels x heightTexels
+  std::vector<std::vector<glm::u16vec4>> indirection;  // [m][px + py * 2^m]
+
+  glm::u16vec4 entry(PageId page) const {
+    return indirection[page.level][page.x + (size_t{page.y} << page.level)];
+  }
+};
+
+// Places `pages` (absolute indices; the root is added when missing) into frames in the order
+// given, row by row, reads them from `reader` and builds the indirection table. Throws
+// std::invalid_argument when they do not fit into framesX x framesY frames or a page is not
+// stored in the texture.
+CacheState makeCacheState(const VirtualTextureReader& reader, std::span<const uint64_t> pages,
+                          uint32_t framesX, uint32_t framesY);
+
+// RGBA8 of one stored texel of `channels` components.
+glm::u8vec4 expandToRgba(const std::byte* texel, uint32_t channels);
+
+}  // namespace vt::reference
