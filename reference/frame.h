@@ -6,7 +6,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
-#include "reference/clip_space_mesh.h"
+#include "scene/clip_space_mesh.h"
 
 namespace vt::reference {
 

@@ -21,7 +21,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "reference/clip_space_mesh.h"
+#include "scene/clip_space_mesh.h"
 
 namespace vt::reference {
 

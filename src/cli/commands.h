@@ -10,5 +10,6 @@ void addBuildCommand(CLI::App& app);
 void addInfoCommand(CLI::App& app);
 void addDemoCommand(CLI::App& app);
 void addExportLevelCommand(CLI::App& app);
+void addRenderCommand(CLI::App& app);
 
 }  // namespace vt

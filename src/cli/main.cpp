@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
   vt::addInfoCommand(app);
   vt::addDemoCommand(app);
   vt::addExportLevelCommand(app);
+  vt::addRenderCommand(app);
 
   try {
     app.parse(argc, argv);

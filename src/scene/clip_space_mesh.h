@@ -7,7 +7,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
-namespace vt::reference {
+namespace vt {
 
 struct ClipVertex {
   glm::vec4 position;  // clip space (x, y, z, w)
@@ -25,4 +25,11 @@ struct Viewport {
   int height = 0;
 };
 
-}  // namespace vt::reference
+// The oracle names them as its own inputs.
+namespace reference {
+using vt::ClipSpaceMesh;
+using vt::ClipVertex;
+using vt::Viewport;
+}  // namespace reference
+
+}  // namespace vt

@@ -1,0 +1,67 @@
+#include "reference/frame_images.h"
+
+#include <array>
+
+namespace vt::reference {
+namespace {
+
+constexpr std::array<std::array<uint8_t, 3>, 8> kLevelHues = {{
+    {230, 60, 60},
+    {240, 150, 40},
+    {220, 210, 50},
+    {70, 190, 80},
+    {50, 170, 200},
+    {70, 90, 220},
+    {160, 80, 210},
+    {210, 90, 160},
+}};
+
+size_t flippedIndex(const Frame& frame, int px, int imageRow) {
+  const int py = frame.viewport.height - 1 - imageRow;
+  return static_cast<size_t>(py) * static_cast<size_t>(frame.viewport.width) +
+         static_cast<size_t>(px);
+}
+
+}  // namespace
+
+std::optional<PageId> decodeNeed(glm::uvec4 v, bool need8) {
+  if (need8) {
+    if (v.z == 255) return std::nullopt;  // thesis 3.2.3.2, with b = 255 for no geometry
+    return PageId{v.x + (v.w & 15u) * 256u, v.y + (v.w >> 4) * 256u, v.z};
+  }
+  if (v.w == 0) return std::nullopt;
+  return PageId{v.x, v.y, v.z};
+}
+
+std::vector<uint8_t> colorImage(const Frame& frame) {
+  std::vector<uint8_t> image(frame.color.size());
+  for (int row = 0; row < frame.viewport.height; ++row)
+    for (int px = 0; px < frame.viewport.width; ++px) {
+      const size_t from = flippedIndex(frame, px, row) * 4;
+      const size_t to = (static_cast<size_t>(row) * static_cast<size_t>(frame.viewport.width) +
+                         static_cast<size_t>(px)) *
+                        4;
+      for (size_t c = 0; c < 4; ++c) image[to + c] = frame.color[from + c];
+    }
+  return image;
+}
+
+std::vector<uint8_t> needImage(const Frame& frame, bool need8) {
+  std::vector<uint8_t> image(frame.need.size() * 4, 0);
+  for (int row = 0; row < frame.viewport.height; ++row)
+    for (int px = 0; px < frame.viewport.width; ++px) {
+      const auto page = decodeNeed(frame.need[flippedIndex(frame, px, row)], need8);
+      uint8_t* out =
+          image.data() + (static_cast<size_t>(row) * static_cast<size_t>(frame.viewport.width) +
+                          static_cast<size_t>(px)) *
+                             4;
+      out[3] = 255;
+      if (!page) continue;
+      const auto& hue = kLevelHues[page->level % kLevelHues.size()];
+      const bool dark = ((page->x + page->y) & 1) != 0;
+      for (size_t c = 0; c < 3; ++c) out[c] = static_cast<uint8_t>(dark ? hue[c] * 3 / 5 : hue[c]);
+    }
+  return image;
+}
+
+}  // namespace vt::reference

@@ -1,0 +1,153 @@
+// vt render TEXTURE: one frame of a scene with the CPU oracle, to images, with its run time and,
+// given a reference image, its error.
+
+#include <OpenImageIO/imageio.h>
+
+#include <chrono>
+#include <iostream>
+#include <memory>
+#include <set>
+
+#include "cli/commands.h"
+#include "common/error.h"
+#include "common/image_file.h"
+#include "eval/image_metrics.h"
+#include "reference/frame_images.h"
+#include "reference/renderer.h"
+#include "scene/box_room.h"
+#include "scene/obj_mesh.h"
+
+namespace vt {
+namespace {
+
+Viewport parseSize(const std::string& text) {
+  int width = 0, height = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &width, &x, &height, &extra) != 3 || x != 'x' ||
+      width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw std::invalid_argument("size: '" + text + "' is not WIDTHxHEIGHT within 1..16384");
+  return {width, height};
+}
+
+std::vector<uint8_t> readReference(const std::filesystem::path& path, Viewport size) {
+  auto input = OIIO::ImageInput::open(path.string());
+  if (!input) throw InputError(path, "cannot read image: " + OIIO::geterror());
+  const auto& spec = input->spec();
+  if (spec.width != size.width || spec.height != size.height)
+    throw InputError(path, "reference is " + std::to_string(spec.width) + " x " +
+                               std::to_string(spec.height) + ", the frame " +
+                               std::to_string(size.width) + " x " + std::to_string(size.height));
+  std::vector<uint8_t> rgba(static_cast<size_t>(size.width) * size.height * 4, 255);
+  const int channels = std::min(spec.nchannels, 4);
+  std::vector<uint8_t> pixels(static_cast<size_t>(size.width) * size.height *
+                              static_cast<size_t>(channels));
+  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data()))
+    throw InputError(path, "cannot read image: " + input->geterror());
+  for (size_t i = 0; i < static_cast<size_t>(size.width) * size.height; ++i)
+    for (int c = 0; c < 4; ++c)
+      rgba[i * 4 + static_cast<size_t>(c)] =
+          c < channels ? pixels[i * static_cast<size_t>(channels) + static_cast<size_t>(c)]
+                       : (c < 3 ? pixels[i * static_cast<size_t>(channels)] : 255);
+  return rgba;
+}
+
+}  // namespace
+
+void addRenderCommand(CLI::App& app) {
+  struct Options {
+    std::string texture, mesh, camera, size = "640x360", profile = "exact", depth = "32f";
+    std::string output = "frame.png", needbuffer, reference;
+    bool bilinear = false, hardwareFilter = false, need8 = false;
+    int residentLevels = -1;
+    unsigned threads = 0;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* command = app.add_subcommand("render", "Render one frame with the CPU oracle");
+  command->add_option("TEXTURE", o->texture, "Virtual-texture file (.vt)")->required();
+  command->add_option("--mesh", o->mesh,
+                      "OBJ mesh with virtual texture coordinates (default: the box room)");
+  command->add_option("--camera", o->camera, "x,y,z:tx,ty,tz[:fov] (default: the box room's)");
+  command->add_option("--size", o->size, "WIDTHxHEIGHT")->capture_default_str();
+  command->add_option("--profile", o->profile, "Precision profile")
+      ->check(CLI::IsMember({"exact", "llvmpipe", "nvidia"}))
+      ->capture_default_str();
+  command->add_option("--depth", o->depth, "Depth buffer format")
+      ->check(CLI::IsMember({"24", "32f"}))
+      ->capture_default_str();
+  command->add_flag("--bilinear", o->bilinear, "Bilinear at the needed level instead of trilinear");
+  command->add_flag("--hardware-filter", o->hardwareFilter,
+                    "GL_LINEAR sampling instead of texel fetches");
+  command->add_flag("--need8", o->need8, "8-bit needbuffer encoding");
+  command->add_option("--resident-levels", o->residentLevels,
+                      "Only levels 0..K-1 resident (a cache state); default every page");
+  command->add_option("--threads", o->threads, "Worker threads (0: every core)");
+  command->add_option("-o,--output", o->output, "Colour image")->capture_default_str();
+  command->add_option("--needbuffer", o->needbuffer, "Needbuffer image, coloured by level");
+  command->add_option("--reference", o->reference,
+                      "Reference image: print RMSE and SSIM against it");
+  command->callback([o] {
+    reference::RenderSettings settings;
+    settings.viewport = parseSize(o->size);
+    settings.profile = reference::parsePrecisionProfile(o->profile);
+    settings.depthFormat =
+        o->depth == "24" ? reference::DepthFormat::kDepth24 : reference::DepthFormat::kDepth32F;
+    settings.trilinear = !o->bilinear;
+    settings.exactFilter = !o->hardwareFilter;
+    settings.need8 = o->need8;
+    settings.threads = o->threads;
+
+    const VirtualTextureReader reader(o->texture);
+    if (settings.need8 && reader.description().finestLevel() > 12)
+      throw InputError(o->texture, "the 8-bit needbuffer holds at most 4096 pages per side");
+    const Mesh mesh = o->mesh.empty() ? boxRoom() : loadObjMesh(o->mesh);
+    const Camera camera = o->camera.empty() ? boxRoomCamera() : parseCamera(o->camera);
+    const ClipSpaceMesh clip = toClipSpace(mesh, camera, settings.viewport);
+
+    const auto start = std::chrono::steady_clock::now();
+    reference::Frame frame;
+    if (o->residentLevels >= 0) {
+      std::vector<uint64_t> pages;
+      for (uint64_t slot = 0; slot < reader.storedPageCount(); ++slot)
+        if (levelOfAbsoluteIndex(reader.storedPage(slot)) <
+            static_cast<uint32_t>(o->residentLevels))
+          pages.push_back(reader.storedPage(slot));
+      const uint32_t frames =
+          static_cast<uint32_t>(std::ceil(std::sqrt(static_cast<double>(pages.size() + 1))));
+      const reference::CacheState cache = reference::makeCacheState(reader, pages, frames, frames);
+      frame = reference::renderFrame(clip, cache, settings);
+    } else {
+      const reference::ResidentTexture texture(reader);
+      frame = reference::renderFrame(clip, texture, settings);
+    }
+    const double milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+    std::set<uint64_t> pages;
+    size_t covered = 0;
+    for (const glm::uvec4& value : frame.need)
+      if (const auto page = reference::decodeNeed(value, settings.need8)) {
+        ++covered;
+        pages.insert(absoluteIndex(*page));
+      }
+    const std::vector<uint8_t> color = reference::colorImage(frame);
+    const auto width = static_cast<uint32_t>(settings.viewport.width),
+               height = static_cast<uint32_t>(settings.viewport.height);
+    writeImage8(o->output, width, height, 4, std::as_bytes(std::span(color)));
+    if (!o->needbuffer.empty()) {
+      const std::vector<uint8_t> need = reference::needImage(frame, settings.need8);
+      writeImage8(o->needbuffer, width, height, 4, std::as_bytes(std::span(need)));
+    }
+    std::cout << "rendered " << o->output << ": " << width << " x " << height << " in "
+              << milliseconds << " ms (oracle, profile " << o->profile << "), " << covered
+              << " pixels covered, " << pages.size() << " distinct pages needed\n";
+    if (!o->reference.empty()) {
+      const std::vector<uint8_t> expected = readReference(o->reference, settings.viewport);
+      const ImageView a{settings.viewport.width, settings.viewport.height, color};
+      const ImageView b{settings.viewport.width, settings.viewport.height, expected};
+      std::cout << "against " << o->reference << ": RMSE " << rmse(a, b) << " (8-bit units), SSIM "
+                << ssim(a, b) << ", in " << milliseconds << " ms\n";
+    }
+  });
+}
+
+}  // namespace vt

@@ -1,0 +1,15 @@
+#pragma once
+// Loads a triangle mesh with texture coordinates from a Wavefront OBJ file (tinyobjloader).
+// Texture coordinates are taken as virtual coordinates (s, t) with t along the texture's rows:
+// OBJ's v is flipped (t = 1 - v), as OBJ images have v up. Faces without texture coordinates, and
+// indices out of range, are errors naming the file.
+
+#include <filesystem>
+
+#include "scene/mesh.h"
+
+namespace vt {
+
+Mesh loadObjMesh(const std::filesystem::path& path);
+
+}  // namespace vt
