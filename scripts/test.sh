@@ -34,11 +34,8 @@ run_suite() {  # build folder, extra cmake arguments...
 
 run_suite build
 if ((sanitizers)); then
-  # Leak checking stays on for our code; Mesa's and LLVM's one-time allocations are suppressed.
-  # The slow unwinder lets LeakSanitizer name the driver library of an allocation even after Mesa
-  # has unloaded it, so the suppressions can match.
-  export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:fast_unwind_on_malloc=0
-  export LSAN_OPTIONS=suppressions=$PWD/.ci/lsan.supp:print_suppressions=0
+  # Leak checking stays on for our code (the GL tests turn it off: tests/CMakeLists.txt says why).
+  export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
   run_suite build-sanitize -DVT_SANITIZE=ON -DVT_BUILD_BENCHMARKS=OFF
 fi

@@ -66,8 +66,24 @@ void addRenderCommand(CLI::App& app) {
   command->add_option("TEXTURE", o->texture, "Virtual-texture file (.vt)")->required();
   command->add_option("--mesh", o->mesh,
                       "OBJ mesh with virtual texture coordinates (default: the box room)");
-  command->add_option("--camera", o->camera, "x,y,z:tx,ty,tz[:fov] (default: the box room's)");
-  command->add_option("--size", o->size, "WIDTHxHEIGHT")->capture_default_str();
+  // Malformed sizes and cameras are bad arguments: usage line and exit code 2.
+  const auto validating = [](auto parse, const char* name) {
+    return CLI::Validator(
+        [parse](std::string& text) {
+          try {
+            parse(text);
+            return std::string();
+          } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+          }
+        },
+        name);
+  };
+  command->add_option("--camera", o->camera, "x,y,z:tx,ty,tz[:fov] (default: the box room's)")
+      ->check(validating(parseCamera, "CAMERA"));
+  command->add_option("--size", o->size, "WIDTHxHEIGHT")
+      ->check(validating(parseSize, "SIZE"))
+      ->capture_default_str();
   command->add_option("--profile", o->profile, "Precision profile")
       ->check(CLI::IsMember({"exact", "llvmpipe", "nvidia"}))
       ->capture_default_str();

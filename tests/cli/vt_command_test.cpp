@@ -19,6 +19,7 @@ namespace {
 
 using ::testing::HasSubstr;
 using ::testing::MatchesRegex;
+using ::testing::Not;
 
 class VtCommand : public ::testing::Test {
  protected:
@@ -103,7 +104,7 @@ TEST_F(VtCommand, HelpAndVersion) {
   EXPECT_EQ(version.exitCode, 0);
   EXPECT_THAT(version.out,
               MatchesRegex("vt [0-9]+\\.[0-9]+\\.[0-9]+ \\(virtual-texture file format 1\\)\n"));
-  for (const char* command : {"build", "info", "demo", "export-level"}) {
+  for (const char* command : {"build", "info", "demo", "export-level", "render"}) {
     const auto help = vt({command, "--help"});
     EXPECT_EQ(help.exitCode, 0) << command;
     EXPECT_THAT(help.out, HasSubstr("Usage:")) << command;
@@ -184,6 +185,40 @@ TEST_F(VtCommand, BuildErrorsNameTheFile) {
   const auto badFilter = vt({"build", "x.png", "-o", output, "--filter", "lanczos"});
   EXPECT_EQ(badFilter.exitCode, 2);
   EXPECT_THAT(badFilter.err, HasSubstr("Usage: vt build"));
+}
+
+TEST_F(VtCommand, RenderDrawsTheBoxRoomAndMeasuresAgainstAReference) {
+  const auto texture = sparseTexture();
+  const auto frame = (dir_ / "frame.png").string(), need = (dir_ / "need.png").string();
+  const auto result = vt(
+      {"render", texture, "--size", "96x64", "-o", frame, "--needbuffer", need, "--threads", "2"});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_THAT(
+      result.out,
+      MatchesRegex("rendered .*frame.png: 96 x 64 in [0-9.]+ ms \\(oracle, profile exact\\), "
+                   "6144 pixels covered, [0-9]+ distinct pages needed\n"));
+  auto input = OIIO::ImageInput::open(need);
+  ASSERT_TRUE(input);
+  EXPECT_EQ(input->spec().width, 96);
+  // The same frame against itself: no error.
+  const auto again = vt({"render", texture, "--size", "96x64", "-o", (dir_ / "again.png").string(),
+                         "--reference", frame});
+  ASSERT_EQ(again.exitCode, 0) << again.err;
+  EXPECT_THAT(again.out, HasSubstr("RMSE 0 (8-bit units), SSIM 1,"));
+  // A cache state of levels 0..1 only: coarser, so the error against the full frame is positive.
+  const auto coarse =
+      vt({"render", texture, "--size", "96x64", "-o", (dir_ / "coarse.png").string(),
+          "--resident-levels", "2", "--reference", frame});
+  ASSERT_EQ(coarse.exitCode, 0) << coarse.err;
+  EXPECT_THAT(coarse.out, Not(HasSubstr("RMSE 0 ")));
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{"render", texture, "--size", "0x5"},
+        {"render", texture, "--camera", "1,2,nan:0,0,0"},
+        {"render", texture, "--profile", "fast"}}) {
+    const auto rejected = vt(bad);
+    EXPECT_EQ(rejected.exitCode, 2) << rejected.err;
+    EXPECT_THAT(rejected.err, HasSubstr("Usage: vt render"));
+  }
 }
 
 TEST_F(VtCommand, DemoBuildsAndVerifiesTheDefaultTexture) {
