@@ -252,12 +252,17 @@ Frame render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDesc
               std::sqrt(static_cast<double>(e.a) * e.a + static_cast<double>(e.b) * e.b);
           if (std::fabs(static_cast<double>(e.at(px, py))) <= length) reasons |= kNearEdge;
         }
+        // Depths within 4 ulps (32F) or 2 units of Z24: another implementation may pick the other.
+        const float depthTolerance = settings.depthFormat == DepthFormat::kDepth24
+                                         ? 2.0f / 16777215.0f
+                                         : 4.0f * (std::nextafter(hit.depth, 2.0f) - hit.depth);
+        if (hit.runnerUpDepth - hit.depth <= depthTolerance) reasons |= kNearlyCoplanar;
         const float scale = static_cast<float>(1 << f.neededLevel);
         if (nearInteger(here.uv.x * scale) || nearInteger(here.uv.y * scale))
           reasons |= kPageBoundary;
         if (std::fabs(f.lod - std::nearbyint(f.lod)) <= 1.0f / 4096.0f) reasons |= kLevelBoundary;
         for (const Attributes& a : {here, left, right, below, above})
-          if (!(std::fabs(a.w) >= 1e-6f)) reasons |= kNearZeroW;
+          if (!(a.w > 0.0f && a.w < 1e30f)) reasons |= kNearZeroW;
         frame.ambiguity[index] = reasons;
       }
     }

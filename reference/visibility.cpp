@@ -19,6 +19,7 @@ struct PixelQuery {
   int32_t best = -1;
   uint32_t bestKey = 0;
   float bestDepth = 1.0f;
+  float runnerUpDepth = 1.0f;
 };
 
 // The stored depth as an ordered key: Z24 is round-half-even(z * 16777215); 32F is the float,
@@ -61,11 +62,15 @@ void testCandidate(const RTCIntersectFunctionNArguments* args) {
   const float z = windowDepth(t, query->px, query->py, query->fused);
   const uint32_t key = depthKey(z, query->format);
   if (key >= depthKey(1.0f, query->format)) return;  // GL_LESS against the cleared 1.0
+  const float stored =
+      query->format == DepthFormat::kDepth24 ? static_cast<float>(key) / 16777215.0f : z;
   if (query->best < 0 || key < query->bestKey || (key == query->bestKey && k < query->best)) {
+    if (query->best >= 0) query->runnerUpDepth = std::min(query->runnerUpDepth, query->bestDepth);
     query->best = k;
     query->bestKey = key;
-    query->bestDepth =
-        query->format == DepthFormat::kDepth24 ? static_cast<float>(key) / 16777215.0f : z;
+    query->bestDepth = stored;
+  } else {
+    query->runnerUpDepth = std::min(query->runnerUpDepth, stored);
   }
 }
 
@@ -131,7 +136,7 @@ PixelHit Visibility::at(int px, int py) const {
   ray.ray.mask = 0xffffffffu;
   ray.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &query.context, &ray);
-  return {query.best, query.bestDepth};
+  return {query.best, query.bestDepth, query.runnerUpDepth};
 }
 
 }  // namespace vt::reference

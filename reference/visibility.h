@@ -25,6 +25,9 @@ enum class DepthFormat { kDepth24, kDepth32F };
 struct PixelHit {
   int32_t triangle = -1;  // index into the set-up triangles, -1 for no geometry
   float depth = 1.0f;     // window z of the winner, as stored (Z24: quantized back to float)
+  // The nearest depth of another covering triangle that passed the depth test against the clear
+  // value (1.0 when none): close to `depth`, the winner is a matter of precision (decals).
+  float runnerUpDepth = 1.0f;
 };
 
 class Visibility {

@@ -1,0 +1,364 @@
+// The numerical stability suite: stiff and extreme cases, each with its expected result derived
+// from first principles (geometry in double precision, or the formulas' limits), the measured
+// result of the oracle, and the bound between them. Every case prints one line
+// "stability | case | expected | measured | bound" that the README's table reproduces.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "build/synthetic_texture.h"
+#include "reference/frame_images.h"
+#include "reference/renderer.h"
+#include "scene/camera.h"
+#include "test_support.h"
+
+namespace vt::reference {
+namespace {
+
+void report(const char* name, const std::string& expected, const std::string& measured,
+            const std::string& bound) {
+  std::printf("stability | %s | %s | %s | %s\n", name, expected.c_str(), measured.c_str(),
+              bound.c_str());
+}
+
+std::string format(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+class Stability : public ::testing::Test {
+ protected:
+  // A dense texture of levels 0..L with P = 16 (finest side 16 * 2^L).
+  const ResidentTexture& texture(uint32_t levels) {
+    std::string name = "t";  // appended: GCC 12 warns falsely on "t" + std::string
+    name.append(std::to_string(levels)).append(".vt");
+    const auto path = dir_ / name;
+    if (!std::filesystem::exists(path))
+      writeSyntheticTexture(
+          path, {{.pageSize = 16, .border = 2, .levelCount = levels, .channels = 4}, std::nullopt});
+    readers_.push_back(std::make_unique<VirtualTextureReader>(path));
+    textures_.push_back(std::make_unique<ResidentTexture>(*readers_.back()));
+    return *textures_.back();
+  }
+
+  // Every covered pixel's needbuffer names a page inside its level, levels within [0, L], and
+  // the colour is a byte (not NaN). Returns the number of covered pixels.
+  static size_t expectDefined(const Frame& frame, uint32_t finestLevel) {
+    size_t covered = 0;
+    for (size_t i = 0; i < frame.need.size(); ++i) {
+      const auto page = decodeNeed(frame.need[i], false);
+      if (!page) continue;
+      ++covered;
+      EXPECT_LE(page->level, finestLevel);
+      EXPECT_LT(page->x, 1u << page->level);
+      EXPECT_LT(page->y, 1u << page->level);
+      EXPECT_GE(frame.lod[i], 0.0f);
+      EXPECT_LE(frame.lod[i], static_cast<float>(finestLevel));
+    }
+    return covered;
+  }
+
+  test::ScratchDirectory dir_;
+  std::vector<std::unique_ptr<VirtualTextureReader>> readers_;
+  std::vector<std::unique_ptr<ResidentTexture>> textures_;
+};
+
+// A quad in the plane through the origin whose normal makes angle theta with the view direction
+// (camera on +z looking at the origin from distance 400); uv = plane coordinates * scale + 0.5.
+ClipSpaceMesh tiltedQuad(double thetaDegrees, float scale, Viewport viewport, Camera& camera) {
+  const double theta = thetaDegrees * 3.14159265358979323846 / 180.0;
+  const glm::vec3 u(1, 0, 0),
+      v(0, static_cast<float>(std::cos(theta)), static_cast<float>(-std::sin(theta)));
+  Mesh mesh;
+  const float extent = 1e4f;
+  for (const auto& [a, b] :
+       std::vector<std::pair<float, float>>{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+    mesh.positions.push_back(a * extent * u + b * extent * v);
+    mesh.uvs.emplace_back(0.5f + a * extent * scale, 0.5f + b * extent * scale);
+  }
+  mesh.indices = {0, 1, 2, 0, 2, 3};
+  camera.position = {0, 0, 400};
+  camera.target = {0, 0, 0};
+  camera.nearPlane = 0.01f;
+  camera.farPlane = 1e6f;
+  camera.fovYDegrees = 60.0f;
+  return toClipSpace(mesh, camera, viewport);
+}
+
+// The lod at pixel (px, py) from first principles: rays through the quad's pixel centres hit the
+// plane (double precision), uv differences give the derivatives, then appendix B.
+double expectedLod(double thetaDegrees, double scale, Viewport viewport, const Camera& camera,
+                   int px, int py, int finestLevel, double finestSide) {
+  const double theta = thetaDegrees * 3.14159265358979323846 / 180.0;
+  const double f = 1.0 / std::tan(camera.fovYDegrees * 3.14159265358979323846 / 360.0);
+  const double aspect = static_cast<double>(viewport.width) / viewport.height;
+  const auto uvAt = [&](int x, int y) {
+    const double nx = (x + 0.5) / (viewport.width / 2.0) - 1.0,
+                 ny = (y + 0.5) / (viewport.height / 2.0) - 1.0;
+    const double dx = nx * aspect / f, dy = ny / f, dz = -1.0;  // view ray from (0, 0, 400)
+    // Plane through the origin with normal n = (0, sin, cos): t = -(o . n) / (d . n).
+    const double t = -(400.0 * std::cos(theta)) / (dy * std::sin(theta) + dz * std::cos(theta));
+    const double hy = dy * t, hz = 400.0 + dz * t;
+    const double a = dx * t, b = hy * std::cos(theta) - hz * std::sin(theta);
+    return std::pair<double, double>(0.5 + a * scale, 0.5 + b * scale);
+  };
+  const int qx = px & ~1, qy = py & ~1;
+  const auto [s0, t0] = uvAt(qx, py);
+  const auto [s1, t1] = uvAt(qx + 1, py);
+  const auto [s2, t2] = uvAt(px, qy);
+  const auto [s3, t3] = uvAt(px, qy + 1);
+  const double ex = (s1 - s0) * (s1 - s0) + (t1 - t0) * (t1 - t0);
+  const double ey = (s3 - s2) * (s3 - s2) + (t3 - t2) * (t3 - t2);
+  const double d = std::log2(std::sqrt(std::max(ex, ey)) * finestSide);
+  return finestLevel - std::clamp(d, 0.0, static_cast<double>(finestLevel));
+}
+
+TEST_F(Stability, GrazingAnglesUpTo8999Degrees) {
+  const ResidentTexture& t = texture(9);  // L = 8, 4096 texels
+  const Viewport viewport{128, 96};
+  const int px = 64, py = 10;  // well below the centre: on the plane at every angle
+  double worst = 0.0;
+  for (const double theta : {0.0, 45.0, 80.0, 89.0, 89.9, 89.99}) {
+    Camera camera;
+    const float scale = 1.0f / 4096.0f;  // about one texel per unit
+    const ClipSpaceMesh mesh = tiltedQuad(theta, scale, viewport, camera);
+    RenderSettings settings;
+    settings.viewport = viewport;
+    const Frame frame = renderFrame(mesh, t, settings);
+    expectDefined(frame, 8);
+    const size_t i = static_cast<size_t>(py * viewport.width + px);
+    ASSERT_GE(frame.triangle[i], 0) << theta;
+    const double expected = expectedLod(theta, scale, viewport, camera, px, py, 8, 4096.0);
+    const double error = std::fabs(frame.lod[i] - expected);
+    worst = std::max(worst, error);
+    EXPECT_LE(error, 2e-3) << "theta " << theta << ": lod " << frame.lod[i] << ", expected "
+                           << expected;
+  }
+  report("grazing angles 0..89.99 deg (lod at one pixel)", "ray-plane lod in double",
+         format("worst |error| %.2e", worst), "2e-3 levels");
+}
+
+TEST_F(Stability, ExtremeMagnificationAndMinificationClampTheLod) {
+  const ResidentTexture& t = texture(5);
+  RenderSettings settings;
+  settings.viewport = {64, 64};
+  for (const float scale : {1e-7f, 1e3f}) {
+    Camera camera;
+    const Frame frame = renderFrame(tiltedQuad(0.0, scale, settings.viewport, camera), t, settings);
+    expectDefined(frame, 4);
+    const float lod = frame.lod[static_cast<size_t>(32 * 64 + 32)];
+    EXPECT_EQ(lod, scale < 1.0f ? 4.0f : 0.0f);
+  }
+  report("extreme magnification / minification", "lod = L / lod = 0", "lod = L / lod = 0", "exact");
+}
+
+TEST_F(Stability, ZeroDerivativesNeedTheFinestLevel) {
+  const ResidentTexture& t = texture(5);
+  ClipSpaceMesh mesh;
+  for (const auto& [x, y] : std::vector<std::pair<float, float>>{{-1, -1}, {3, -1}, {-1, 3}})
+    mesh.vertices.push_back({{x, y, 0, 1}, {0.3f, 0.7f}});
+  mesh.indices = {0, 1, 2};
+  RenderSettings settings;
+  settings.viewport = {32, 32};
+  const Frame frame = renderFrame(mesh, t, settings);
+  EXPECT_EQ(expectDefined(frame, 4), 32u * 32u);
+  for (size_t i = 0; i < frame.need.size(); ++i) {
+    EXPECT_EQ(frame.lod[i], 4.0f);                      // log2(0) = -Inf clamps to the finest level
+    EXPECT_EQ(frame.need[i], glm::uvec4(4, 11, 4, 1));  // floor(0.3 * 16), floor(0.7 * 16)
+  }
+  report("zero derivatives (constant uv)", "lod = L, page floor(uv 2^L)", "lod = L, page (4, 11)",
+         "exact");
+}
+
+TEST_F(Stability, CoordinatesAtZeroAndOneStayInTheTexture) {
+  const ResidentTexture& t = texture(5);
+  RenderSettings settings;
+  settings.viewport = {16, 16};
+  for (const float value : {0.0f, 1.0f}) {
+    ClipSpaceMesh mesh;
+    for (const auto& [x, y] : std::vector<std::pair<float, float>>{{-1, -1}, {3, -1}, {-1, 3}})
+      mesh.vertices.push_back({{x, y, 0, 1}, {value, value}});
+    mesh.indices = {0, 1, 2};
+    const Frame frame = renderFrame(mesh, t, settings);
+    expectDefined(frame, 4);
+    const uint32_t page = value == 0.0f ? 0u : 15u;
+    EXPECT_EQ(frame.need[0], glm::uvec4(page, page, 4, 1));
+  }
+  report("s, t exactly 0 and 1.0", "first page / last page (15, 15) of level 4",
+         "(0, 0) / (15, 15)", "exact");
+}
+
+TEST_F(Stability, NanAndInfiniteAttributesGiveDefinedPages) {
+  const ResidentTexture& t = texture(5);
+  RenderSettings settings;
+  settings.viewport = {16, 16};
+  const float nan = std::numeric_limits<float>::quiet_NaN(),
+              inf = std::numeric_limits<float>::infinity();
+  for (const glm::vec2 uv : {glm::vec2(nan, 0.5f), glm::vec2(inf, -inf), glm::vec2(nan, nan)}) {
+    ClipSpaceMesh mesh;
+    mesh.vertices = {
+        {{-1, -1, 0, 1}, uv}, {{3, -1, 0, 1}, {0.5f, 0.5f}}, {{-1, 3, 0, 1}, {0.5f, 0.5f}}};
+    mesh.indices = {0, 1, 2};
+    const Frame frame = renderFrame(mesh, t, settings);
+    EXPECT_EQ(expectDefined(frame, 4), 256u);
+  }
+  // A NaN position drops the triangle (it draws nothing).
+  ClipSpaceMesh broken;
+  broken.vertices = {{{nan, -1, 0, 1}, {0, 0}}, {{3, -1, 0, 1}, {0, 0}}, {{-1, 3, 0, 1}, {0, 0}}};
+  broken.indices = {0, 1, 2};
+  EXPECT_EQ(expectDefined(renderFrame(broken, t, settings), 4), 0u);
+  report("NaN and Inf attributes", "pages inside their level, lod in [0, L]", "all pixels defined",
+         "exact");
+}
+
+TEST_F(Stability, HugeTextureCoordinatePrecision) {
+  // 2^19 texels per side (P = 128, L = 12): float s has 24 bits, so near s = 1 one ulp is
+  // 2^-24 * 2^19 = 1/32 texel. Measured: the interpolated s of a magnified quad near s = 1
+  // against the exact s (double) at every pixel.
+  const auto path = dir_ / "huge.vt";
+  writeSyntheticTexture(path,
+                        {{.pageSize = 128, .border = 1, .levelCount = 13, .channels = 1}, 0.0});
+  const VirtualTextureReader reader(path);
+  const ResidentTexture t(reader);
+  ClipSpaceMesh mesh;
+  // Perspective (w from 1 to 3 across the screen) and a start that is not a dyadic fraction.
+  const double s0 = 1.0 - 200.3 / 524288.0, span = 64.0 / 524288.0, wLeft = 1.0, wRight = 3.0;
+  const float sLeft = static_cast<float>(s0), sRight = static_cast<float>(s0 + span);
+  for (const auto& [x, y] :
+       std::vector<std::pair<float, float>>{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+    const float w = static_cast<float>(x < 0 ? wLeft : wRight);
+    mesh.vertices.push_back({{x * w, y * w, 0, w}, {x < 0 ? sLeft : sRight, 0.5f}});
+  }
+  mesh.indices = {0, 1, 2, 0, 2, 3};
+  RenderSettings settings;
+  settings.viewport = {256, 4};
+  const Frame frame = renderFrame(mesh, t, settings);
+  double worstTexels = 0.0;
+  for (int px = 0; px < 256; ++px) {
+    // Perspective-correct s at the pixel centre, in double, from the float vertex values.
+    const double a = (px + 0.5) / 256.0;
+    const double exact =
+        ((1 - a) * sLeft / wLeft + a * sRight / wRight) / ((1 - a) / wLeft + a / wRight);
+    worstTexels =
+        std::max(worstTexels, std::fabs(frame.uv[static_cast<size_t>(px)].x - exact) * 524288.0);
+  }
+  // Plane setup, two fused evaluations, a reciprocal and a product: a few ulps each way.
+  EXPECT_LE(worstTexels, 8.0 / 32.0);  // 8 ulps of s
+  report("2^19 texels per side, s near 1", "one ulp of s = 1/32 texel",
+         format("worst %.4f texel", worstTexels), "8 ulps = 0.25 texel");
+}
+
+TEST_F(Stability, DegenerateAndSliverTriangles) {
+  const ResidentTexture& t = texture(5);
+  ClipSpaceMesh mesh;
+  // Collinear vertices, a repeated vertex, and a sliver one hundredth of a pixel wide.
+  mesh.vertices = {{{-1, -1, 0, 1}, {0, 0}},
+                   {{0, 0, 0, 1}, {0, 0}},
+                   {{1, 1, 0, 1}, {0, 0}},
+                   {{0.5f, 0.5f, 0, 1}, {0, 0}},
+                   {{0.5f, 0.5f, 0, 1}, {0, 0}},
+                   {{0.9f, -0.3f, 0, 1}, {0, 0}},
+                   {{-1, -0.5159375f, 0, 1}, {0, 0}},
+                   {{1, -0.5159375f, 0, 1}, {0, 0}},
+                   {{1, -0.5149375f, 0, 1}, {0, 0}}};
+  mesh.indices = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+  SetupStatistics stats;
+  const Viewport viewport{64, 64};
+  const auto triangles = setupTriangles(mesh, viewport, false, &stats);
+  EXPECT_EQ(stats.empty, 2u);  // the collinear and the repeated-vertex triangles draw nothing
+  RenderSettings settings;
+  settings.viewport = viewport;
+  const Frame frame = renderFrame(mesh, t, settings);
+  // The sliver spans window y 15.49 at its left end and 15.49 .. 15.522 at its right end: only
+  // centres of row 15 (y = 15.5) can be covered, where its height exceeds 0.01 pixel, that is
+  // right of x = 0.3125 of its length: pixels 20 .. 63 (44), up to snapping at both ends.
+  size_t sliver = 0;
+  for (size_t i = 0; i < frame.triangle.size(); ++i) {
+    if (frame.triangle[i] != 2) continue;
+    ++sliver;
+    EXPECT_EQ(i / 64, 15u);
+  }
+  EXPECT_GE(sliver, 40u);
+  EXPECT_LE(sliver, 48u);
+  std::string measured = std::to_string(stats.empty);
+  measured.append(" dropped, sliver ").append(std::to_string(sliver)).append(" pixels");
+  report("degenerate and sliver triangles", "zero area draws nothing; sliver at most one row",
+         measured, "exact");
+}
+
+TEST_F(Stability, HelperPixelsBeyondTheHorizon) {
+  // A ground plane reaching within a hundredth of a pixel of the horizon: quads on its far edge
+  // have helper pixels above the horizon, where 1/w is negative and the texture coordinates are
+  // extrapolated through infinity. Their fragments still get defined pages.
+  const ResidentTexture& t = texture(5);
+  Mesh ground;
+  const float extent = 1e5f;
+  for (const auto& [x, z] :
+       std::vector<std::pair<float, float>>{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+    ground.positions.emplace_back(x * extent, 0.0f, z * extent);
+    ground.uvs.emplace_back(0.5f + x * 0.5f, 0.5f + z * 0.5f);
+  }
+  ground.indices = {0, 1, 2, 0, 2, 3};
+  Camera camera;
+  // Looking down by atan(tan(30 deg) / 32) puts the horizon at window y = 33, between the pixel
+  // rows 32 and 33 of one quad.
+  camera.position = {0, 1, 0};
+  camera.target = {0, 1.0f - static_cast<float>(std::tan(3.14159265358979 / 6) / 32), -1};
+  camera.farPlane = 1e7f;
+  RenderSettings settings;
+  settings.viewport = {64, 64};
+  const Frame frame = renderFrame(toClipSpace(ground, camera, settings.viewport), t, settings);
+  EXPECT_GT(expectDefined(frame, 4), 0u);
+  size_t beyond = 0;
+  for (const uint8_t reasons : frame.ambiguity) beyond += (reasons & kNearZeroW) != 0;
+  EXPECT_GT(beyond, 0u);  // the case really happens, and the oracle flags it
+  std::string measured = std::to_string(beyond);
+  measured.append(" pixels flagged, all defined");
+  report("helper pixels beyond w = 0", "defined pages; flagged near-zero w", measured, "exact");
+}
+
+TEST_F(Stability, CoplanarFacesFirstDrawnWinsAndIsFlagged) {
+  const ResidentTexture& t = texture(5);
+  ClipSpaceMesh mesh;
+  for (int copy = 0; copy < 2; ++copy)
+    for (const auto& [x, y] : std::vector<std::pair<float, float>>{{-1, -1}, {3, -1}, {-1, 3}})
+      mesh.vertices.push_back({{x, y, 0.3f, 1}, {copy * 0.5f + 0.1f, 0.2f}});
+  mesh.indices = {0, 1, 2, 3, 4, 5};
+  RenderSettings settings;
+  settings.viewport = {16, 16};
+  const Frame frame = renderFrame(mesh, t, settings);
+  for (size_t i = 0; i < frame.triangle.size(); ++i) {
+    EXPECT_EQ(frame.triangle[i], 0);  // GL_LESS: the later, equal depth fails
+    EXPECT_NE(frame.ambiguity[i] & kNearlyCoplanar, 0);
+  }
+  report("coplanar faces (decals)", "first drawn wins everywhere, flagged",
+         "first drawn, all flagged", "exact");
+}
+
+TEST_F(Stability, LodExactlyOnALevel) {
+  // Four finest texels per pixel on a screen-filling quad: lod = L - 2 exactly; the needbuffer
+  // asks for that level and trilinear filtering gives weight 0 to the finer one.
+  const ResidentTexture& t = texture(5);  // 256 texels
+  ClipSpaceMesh mesh;
+  for (const auto& [x, y] :
+       std::vector<std::pair<float, float>>{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}})
+    mesh.vertices.push_back({{x, y, 0, 1}, {(x + 1) / 2, (y + 1) / 2}});
+  mesh.indices = {0, 1, 2, 0, 2, 3};
+  RenderSettings trilinear;
+  trilinear.viewport = {64, 64};
+  RenderSettings bilinear = trilinear;
+  bilinear.trilinear = false;
+  const Frame a = renderFrame(mesh, t, trilinear), b = renderFrame(mesh, t, bilinear);
+  for (size_t i = 0; i < a.lod.size(); ++i) EXPECT_EQ(a.lod[i], 2.0f);
+  EXPECT_EQ(a.need, b.need);
+  EXPECT_EQ(a.color, b.color);
+  report("lod exactly on a level", "needs that level; trilinear = bilinear",
+         "lod 2.0, identical colours", "exact");
+}
+
+}  // namespace
+}  // namespace vt::reference
