@@ -1,0 +1,139 @@
+#include "gl/gl_frame_renderer.h"
+
+#include <cstddef>
+
+#include "gl/virtual_texture_program.h"
+
+namespace vt {
+
+GlFrameRenderer::GlFrameRenderer(const reference::CacheState& cache)
+    : cache_(cache), program_(virtualTextureVertexSource(), virtualTextureFragmentSource()) {
+  const TextureDescription& d = cache.description;
+  glCreateTextures(GL_TEXTURE_2D, 1, &indirection_);
+  const auto finestSide = static_cast<GLsizei>(pagesPerSide(d.finestLevel()));
+  glTextureStorage2D(indirection_, static_cast<GLsizei>(d.levelCount), GL_RGBA16UI, finestSide,
+                     finestSide);
+  for (uint32_t m = 0; m < d.levelCount; ++m) {
+    const auto side = static_cast<GLsizei>(pagesPerSide(m));
+    glTextureSubImage2D(indirection_, static_cast<GLint>(d.finestLevel() - m), 0, 0, side, side,
+                        GL_RGBA_INTEGER, GL_UNSIGNED_SHORT, cache.indirection[m].data());
+  }
+  glTextureParameteri(indirection_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+  glTextureParameteri(indirection_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glCreateTextures(GL_TEXTURE_2D, 1, &texels_);
+  const auto width = static_cast<GLsizei>(cache.widthTexels),
+             height = static_cast<GLsizei>(cache.heightTexels);
+  glTextureStorage2D(texels_, 1, GL_RGBA8, width, height);
+  glTextureSubImage2D(texels_, 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE,
+                      cache.texels.data());
+  glTextureParameteri(texels_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(texels_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(texels_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(texels_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+
+  glCreateVertexArrays(1, &vertexArray_);
+  glCreateBuffers(1, &vertices_);
+  glCreateBuffers(1, &indices_);
+  glVertexArrayVertexBuffer(vertexArray_, 0, vertices_, 0, sizeof(ClipVertex));
+  glVertexArrayElementBuffer(vertexArray_, indices_);
+  for (GLuint a = 0; a < 2; ++a) {
+    glEnableVertexArrayAttrib(vertexArray_, a);
+    glVertexArrayAttribBinding(vertexArray_, a, 0);
+  }
+  glVertexArrayAttribFormat(vertexArray_, 0, 4, GL_FLOAT, GL_FALSE, offsetof(ClipVertex, position));
+  glVertexArrayAttribFormat(vertexArray_, 1, 2, GL_FLOAT, GL_FALSE, offsetof(ClipVertex, uv));
+}
+
+GlFrameRenderer::~GlFrameRenderer() {
+  glDeleteBuffers(1, &vertices_);
+  glDeleteBuffers(1, &indices_);
+  glDeleteVertexArrays(1, &vertexArray_);
+  glDeleteFramebuffers(1, &framebuffer_);
+  glDeleteTextures(3, targets_);
+  glDeleteTextures(1, &texels_);
+  glDeleteTextures(1, &indirection_);
+}
+
+void GlFrameRenderer::prepareTargets(Viewport viewport, bool need8) {
+  if (framebuffer_ && viewport.width == viewport_.width && viewport.height == viewport_.height &&
+      need8 == need8_)
+    return;
+  glDeleteFramebuffers(1, &framebuffer_);
+  glDeleteTextures(3, targets_);
+  viewport_ = viewport;
+  need8_ = need8;
+  glCreateTextures(GL_TEXTURE_2D, 3, targets_);
+  glTextureStorage2D(targets_[0], 1, GL_RGBA8, viewport.width, viewport.height);
+  glTextureStorage2D(targets_[1], 1, need8 ? GL_RGBA8UI : GL_RGBA32UI, viewport.width,
+                     viewport.height);
+  glTextureStorage2D(targets_[2], 1, GL_DEPTH_COMPONENT32F, viewport.width, viewport.height);
+  glCreateFramebuffers(1, &framebuffer_);
+  glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0, targets_[0], 0);
+  glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT1, targets_[1], 0);
+  glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, targets_[2], 0);
+  const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(framebuffer_, 2, buffers);
+}
+
+void GlFrameRenderer::uploadMesh(const ClipSpaceMesh& mesh) {
+  glNamedBufferData(vertices_, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(ClipVertex)),
+                    mesh.vertices.data(), GL_STATIC_DRAW);
+  glNamedBufferData(indices_, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(uint32_t)),
+                    mesh.indices.data(), GL_STATIC_DRAW);
+}
+
+void GlFrameRenderer::draw(const ClipSpaceMesh& mesh, const reference::RenderSettings& settings) {
+  const TextureDescription& d = cache_.description;
+  prepareTargets(settings.viewport, settings.need8);
+  uploadMesh(mesh);
+  const GLfloat clearColor[4] = {0, 0, 0, 0}, one = 1.0f;
+  const glm::uvec4 clearNeed = reference::needClearValue(settings.need8);
+  glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 0, clearColor);
+  glClearNamedFramebufferuiv(framebuffer_, GL_COLOR, 1, &clearNeed.x);
+  glClearNamedFramebufferfv(framebuffer_, GL_DEPTH, 0, &one);
+
+  glUseProgram(program_.id());
+  glUniform1i(program_.uniform("uVt.pageSize"), static_cast<GLint>(d.pageSize));
+  glUniform1i(program_.uniform("uVt.border"), static_cast<GLint>(d.border));
+  glUniform1i(program_.uniform("uVt.finestLevel"), static_cast<GLint>(d.finestLevel()));
+  glUniform1i(program_.uniform("uVt.trilinear"), settings.trilinear ? 1 : 0);
+  glUniform1i(program_.uniform("uVt.exactFilter"), settings.exactFilter ? 1 : 0);
+  glUniform1i(program_.uniform("uVt.need8"), settings.need8 ? 1 : 0);
+  glUniform2f(program_.uniform("uVt.cacheSize"), static_cast<float>(cache_.widthTexels),
+              static_cast<float>(cache_.heightTexels));
+  glUniform1i(program_.uniform("uFinestLevel"), static_cast<GLint>(d.finestLevel()));
+  glUniform1i(program_.uniform("uIndirection"), 0);
+  glUniform1i(program_.uniform("uCache"), 1);
+  glBindTextureUnit(0, indirection_);
+  glBindTextureUnit(1, texels_);
+
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  glViewport(0, 0, settings.viewport.width, settings.viewport.height);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glBindVertexArray(vertexArray_);
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.indices.size()), GL_UNSIGNED_INT, nullptr);
+  glFinish();
+}
+
+GlFrame GlFrameRenderer::render(const ClipSpaceMesh& mesh,
+                                const reference::RenderSettings& settings) {
+  draw(mesh, settings);
+  const size_t pixels =
+      static_cast<size_t>(settings.viewport.width) * static_cast<size_t>(settings.viewport.height);
+  GlFrame frame{std::vector<uint8_t>(pixels * 4), std::vector<glm::uvec4>(pixels)};
+  glGetTextureImage(targets_[0], 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(pixels * 4),
+                    frame.color.data());
+  if (settings.need8) {
+    std::vector<glm::u8vec4> need(pixels);
+    glGetTextureImage(targets_[1], 0, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE,
+                      static_cast<GLsizei>(pixels * 4), need.data());
+    for (size_t i = 0; i < pixels; ++i) frame.need[i] = glm::uvec4(need[i]);
+  } else {
+    glGetTextureImage(targets_[1], 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                      static_cast<GLsizei>(pixels * 16), frame.need.data());
+  }
+  return frame;
+}
+
+}  // namespace vt

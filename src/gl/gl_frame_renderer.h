@@ -1,0 +1,53 @@
+#pragma once
+// The GL renderer of one frame: the virtual-texture program (the shared shader logic) over a cache
+// state uploaded as textures, drawing clip-space meshes into a colour target (RGBA8), a needbuffer
+// (RGBA32UI, or RGBA8UI for the 8-bit encoding) and a 32F depth buffer with GL_LESS, then reading
+// them back. Needs a current HeadlessContext. Rows of the readback run bottom to top, like the
+// oracle's frames.
+
+#include <epoxy/gl.h>
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <memory>
+#include <vector>
+
+#include "gl/gl_program.h"
+#include "reference/cache_state.h"
+#include "reference/renderer.h"
+
+namespace vt {
+
+struct GlFrame {
+  std::vector<uint8_t> color;    // RGBA8
+  std::vector<glm::uvec4> need;  // widened to 32 bits per channel
+};
+
+class GlFrameRenderer {
+ public:
+  // Uploads the cache state: the page cache as an RGBA8 texture with GL_LINEAR filtering and the
+  // indirection table as an RGBA16UI texture whose mip level L - m holds page level m.
+  explicit GlFrameRenderer(const reference::CacheState& cache);
+  ~GlFrameRenderer();
+  GlFrameRenderer(const GlFrameRenderer&) = delete;
+  GlFrameRenderer& operator=(const GlFrameRenderer&) = delete;
+
+  // Uploads the mesh, draws and waits for the GPU (glFinish) without reading back: for timing.
+  void draw(const ClipSpaceMesh& mesh, const reference::RenderSettings& settings);
+  // Draws and reads back colour and needbuffer.
+  GlFrame render(const ClipSpaceMesh& mesh, const reference::RenderSettings& settings);
+
+ private:
+  void prepareTargets(Viewport viewport, bool need8);
+  void uploadMesh(const ClipSpaceMesh& mesh);
+
+  const reference::CacheState& cache_;
+  GlProgram program_;
+  GLuint indirection_ = 0, texels_ = 0;
+  GLuint targets_[3] = {0, 0, 0};
+  GLuint framebuffer_ = 0, vertexArray_ = 0, vertices_ = 0, indices_ = 0;
+  Viewport viewport_{0, 0};
+  bool need8_ = false;
+};
+
+}  // namespace vt
