@@ -1,8 +1,12 @@
 // vt demo [--output DIR]: the project's main job on its bundled default scene. Today: generate the
 // default scene's material images and layout, build its virtual texture with `vt build`'s
-// builder, read it back, verify every page, print its summary and write one level as an image.
+// builder, read it back, verify every page, print its summary and write one level as an image;
+// then render the box room with the CPU oracle and with OpenGL (llvmpipe when no GPU) from the same
+// cache state and compare the two frames pixel by pixel.
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -13,12 +17,69 @@
 #include "cli/texture_report.h"
 #include "common/image_file.h"
 #include "format/level_image.h"
+#include "gl/gl_frame_renderer.h"
+#include "gl/headless_context.h"
+#include "reference/frame_images.h"
+#include "reference/renderer.h"
+#include "scene/box_room.h"
 
 namespace vt {
 namespace {
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Renders the box room from a cache state holding every page, with the oracle and with GL, and
+// compares colour and needbuffer.
+void renderAndCrossCheck(const VirtualTextureReader& reader, const std::filesystem::path& folder) {
+  std::vector<uint64_t> pages(reader.storedPageCount());
+  for (uint64_t slot = 0; slot < pages.size(); ++slot) pages[slot] = reader.storedPage(slot);
+  const auto frames =
+      static_cast<uint32_t>(std::ceil(std::sqrt(static_cast<double>(pages.size()))));
+  const reference::CacheState cache = reference::makeCacheState(reader, pages, frames, frames);
+  reference::RenderSettings settings;
+  settings.viewport = {640, 360};
+  const ClipSpaceMesh mesh = toClipSpace(boxRoom(), boxRoomCamera(), settings.viewport);
+
+  std::unique_ptr<HeadlessContext> context;
+  try {
+    context = std::make_unique<HeadlessContext>();
+  } catch (const std::exception& e) {
+    std::cout << "no OpenGL (" << e.what() << "): the oracle renders alone\n";
+  }
+  // The oracle follows the GL implementation at hand: llvmpipe's arithmetic on llvmpipe.
+  if (context && context->renderer().find("llvmpipe") != std::string::npos)
+    settings.profile = reference::PrecisionProfile::kLlvmpipe;
+  auto start = std::chrono::steady_clock::now();
+  const reference::Frame oracle = reference::renderFrame(mesh, cache, settings);
+  const double oracleSeconds = secondsSince(start);
+  const auto width = static_cast<uint32_t>(settings.viewport.width),
+             height = static_cast<uint32_t>(settings.viewport.height);
+  const std::vector<uint8_t> color = reference::colorImage(oracle),
+                             need = reference::needImage(oracle, false);
+  writeImage8(folder / "frame.png", width, height, 4, std::as_bytes(std::span(color)));
+  writeImage8(folder / "needbuffer.png", width, height, 4, std::as_bytes(std::span(need)));
+  std::cout << "oracle (profile " << reference::toString(settings.profile) << "): " << width
+            << " x " << height << " in " << oracleSeconds * 1000.0 << " ms, wrote "
+            << (folder / "frame.png").string() << " and " << (folder / "needbuffer.png").string()
+            << "\n";
+  if (!context) return;
+
+  GlFrameRenderer gl(cache);
+  start = std::chrono::steady_clock::now();
+  const GlFrame frame = gl.render(mesh, settings);
+  const double glSeconds = secondsSince(start);
+  size_t colorSame = 0, needSame = 0;
+  for (size_t i = 0; i < oracle.need.size(); ++i) {
+    needSame += frame.need[i] == oracle.need[i];
+    colorSame += std::equal(frame.color.begin() + static_cast<long>(4 * i),
+                            frame.color.begin() + static_cast<long>(4 * i + 4),
+                            oracle.color.begin() + static_cast<long>(4 * i));
+  }
+  std::cout << context->renderer() << ": the same frame in " << glSeconds * 1000.0 << " ms\n"
+            << "cross-check: colour identical in " << colorSame << " of " << oracle.need.size()
+            << " pixels, needbuffer identical in " << needSame << "\n";
 }
 
 }  // namespace
@@ -55,7 +116,8 @@ void addDemoCommand(CLI::App& app) {
     const LevelImage pixels = assembleLevel(reader, level);
     writeImage8(image, pixels.side, pixels.side, pixels.channels, pixels.texels);
     std::cout << "wrote " << image.string() << " (level " << level << ", " << pixels.side << " x "
-              << pixels.side << " texels)\n";
+              << pixels.side << " texels)\n\n";
+    renderAndCrossCheck(reader, folder);
   });
 }
 
