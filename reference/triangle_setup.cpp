@@ -82,7 +82,6 @@ struct WindowVertex {
   float x, y, z, oow;  // window coordinates and 1/w
   int64_t xf, yf;      // snapped: round-half-even((X - 0.5) * 256)
   glm::vec2 uv;
-  glm::vec3 clipXYW;
 };
 
 WindowVertex toWindow(const ClipPoint& p, Viewport viewport, bool fused) {
@@ -101,7 +100,6 @@ WindowVertex toWindow(const ClipPoint& p, Viewport viewport, bool fused) {
   v.xf = static_cast<int64_t>(std::nearbyint((v.x - 0.5f) * 256.0f));
   v.yf = static_cast<int64_t>(std::nearbyint((v.y - 0.5f) * 256.0f));
   v.uv = p.uv;
-  v.clipXYW = {p.position.x, p.position.y, p.position.w};
   return v;
 }
 
@@ -156,7 +154,6 @@ bool setupOne(WindowVertex v0, WindowVertex v1, WindowVertex v2, Viewport viewpo
   out.maxX = static_cast<int>(std::min<int64_t>(floorDiv(maxXf), viewport.width - 1));
   out.minY = static_cast<int>(std::max<int64_t>(ceilDiv(minYf), 0));
   out.maxY = static_cast<int>(std::min<int64_t>(floorDiv(maxYf), viewport.height - 1));
-  out.clipXYW = {v0.clipXYW, v1.clipXYW, v2.clipXYW};
   return out.minX <= out.maxX && out.minY <= out.maxY;
 }
 

@@ -46,8 +46,6 @@ struct SetupTriangle {
   Plane oneOverW;                                // 1/w
   Plane z;                                       // window z, not perspective-divided
   int minX = 0, minY = 0, maxX = -1, maxY = -1;  // pixels whose centres may be covered
-  // The clipped triangle in (x, y, w) clip coordinates, for the visibility search.
-  std::array<glm::vec3, 3> clipXYW;
 
   bool covers(int px, int py) const {
     return edges[0].at(px, py) > 0 && edges[1].at(px, py) > 0 && edges[2].at(px, py) > 0;

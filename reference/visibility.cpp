@@ -10,16 +10,15 @@
 namespace vt::reference {
 namespace {
 
-// What one ray collects while Embree walks the boxes it crosses.
-struct PixelQuery {
+// What one packet collects while Embree walks the boxes its rays cross.
+struct BlockQuery {
   RTCIntersectContext context;  // first member: Embree hands its address back to the callbacks
-  int px, py;
+  const std::vector<SetupTriangle>* triangles;
+  int x0, y0;
   DepthFormat format;
   bool fused;
-  int32_t best = -1;
-  uint32_t bestKey = 0;
-  float bestDepth = 1.0f;
-  float runnerUpDepth = 1.0f;
+  std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> hits;
+  std::array<uint32_t, Visibility::kBlock * Visibility::kBlock> keys;
 };
 
 // The stored depth as an ordered key: Z24 is round-half-even(z * 16777215); 32F is the float,
@@ -30,47 +29,47 @@ uint32_t depthKey(float z, DepthFormat format) {
   return std::bit_cast<uint32_t>(z);
 }
 
-using SceneView = Visibility::SceneData;
-
 void boundsOf(const RTCBoundsFunctionArguments* args) {
-  const auto* data = static_cast<const SceneView*>(args->geometryUserPtr);
-  const SetupTriangle& t = (*data->triangles)[args->primID];
-  glm::vec3 lo = t.clipXYW[0], hi = t.clipXYW[0];
-  for (const glm::vec3& p : t.clipXYW) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  const float w = std::max(hi.z, 0.0f);
-  const float mx = data->marginPerW[0] * w, my = data->marginPerW[1] * w;
-  args->bounds_o->lower_x = lo.x - mx;
-  args->bounds_o->lower_y = lo.y - my;
-  args->bounds_o->lower_z = lo.z;
-  args->bounds_o->upper_x = hi.x + mx;
-  args->bounds_o->upper_y = hi.y + my;
-  args->bounds_o->upper_z = hi.z;
+  const auto* triangles = static_cast<const std::vector<SetupTriangle>*>(args->geometryUserPtr);
+  const SetupTriangle& t = (*triangles)[args->primID];
+  // Pixel centres px + 0.5 for px in [minX, maxX], with a quarter pixel to spare each way.
+  args->bounds_o->lower_x = static_cast<float>(t.minX) + 0.25f;
+  args->bounds_o->upper_x = static_cast<float>(t.maxX) + 0.75f;
+  args->bounds_o->lower_y = static_cast<float>(t.minY) + 0.25f;
+  args->bounds_o->upper_y = static_cast<float>(t.maxY) + 0.75f;
+  args->bounds_o->lower_z = 0.0f;
+  args->bounds_o->upper_z = 1.0f;
 }
 
-// A candidate: apply the GL rules, keep the winner, never report a hit (so that Embree visits
-// every box the ray crosses).
+// A candidate for some rays of a packet: apply the GL rules per pixel, keep the winner, never
+// report a hit (so that Embree visits every box the rays cross).
 void testCandidate(const RTCIntersectFunctionNArguments* args) {
-  if (!args->valid[0]) return;
-  auto* query = reinterpret_cast<PixelQuery*>(args->context);
-  const auto* data = static_cast<const SceneView*>(args->geometryUserPtr);
+  auto* query = reinterpret_cast<BlockQuery*>(args->context);
   const int32_t k = static_cast<int32_t>(args->primID);
-  const SetupTriangle& t = (*data->triangles)[static_cast<size_t>(k)];
-  if (!t.covers(query->px, query->py)) return;
-  const float z = windowDepth(t, query->px, query->py, query->fused);
-  const uint32_t key = depthKey(z, query->format);
-  if (key >= depthKey(1.0f, query->format)) return;  // GL_LESS against the cleared 1.0
-  const float stored =
-      query->format == DepthFormat::kDepth24 ? static_cast<float>(key) / 16777215.0f : z;
-  if (query->best < 0 || key < query->bestKey || (key == query->bestKey && k < query->best)) {
-    if (query->best >= 0) query->runnerUpDepth = std::min(query->runnerUpDepth, query->bestDepth);
-    query->best = k;
-    query->bestKey = key;
-    query->bestDepth = stored;
-  } else {
-    query->runnerUpDepth = std::min(query->runnerUpDepth, stored);
+  const SetupTriangle& t = (*query->triangles)[static_cast<size_t>(k)];
+  RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
+  for (unsigned lane = 0; lane < args->N; ++lane) {
+    if (!args->valid[lane]) continue;
+    const int px = static_cast<int>(RTCRayN_org_x(rays, args->N, lane));
+    const int py = static_cast<int>(RTCRayN_org_y(rays, args->N, lane));
+    if (!t.covers(px, py)) continue;
+    const size_t slot =
+        static_cast<size_t>((px - query->x0) + Visibility::kBlock * (py - query->y0));
+    const float z = windowDepth(t, px, py, query->fused);
+    const uint32_t key = depthKey(z, query->format);
+    if (key >= depthKey(1.0f, query->format)) continue;  // GL_LESS against the cleared 1.0
+    const float stored =
+        query->format == DepthFormat::kDepth24 ? static_cast<float>(key) / 16777215.0f : z;
+    PixelHit& hit = query->hits[slot];
+    uint32_t& bestKey = query->keys[slot];
+    if (hit.triangle < 0 || key < bestKey || (key == bestKey && k < hit.triangle)) {
+      if (hit.triangle >= 0) hit.runnerUpDepth = std::min(hit.runnerUpDepth, hit.depth);
+      hit.triangle = k;
+      hit.depth = stored;
+      bestKey = key;
+    } else {
+      hit.runnerUpDepth = std::min(hit.runnerUpDepth, stored);
+    }
   }
 }
 
@@ -88,18 +87,13 @@ float windowDepth(const SetupTriangle& t, int px, int py, bool fused) {
 
 Visibility::Visibility(const std::vector<SetupTriangle>& triangles, Viewport viewport,
                        DepthFormat format, bool fused)
-    : data_{&triangles,
-            {2.0f / static_cast<float>(viewport.width) / 32.0f,
-             2.0f / static_cast<float>(viewport.height) / 32.0f}},
-      viewport_(viewport),
-      format_(format),
-      fused_(fused) {
+    : triangles_(triangles), viewport_(viewport), format_(format), fused_(fused) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("Embree: cannot create a device");
   scene_ = rtcNewScene(device_);
   RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
   rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(triangles.size()));
-  rtcSetGeometryUserData(geometry, &data_);
+  rtcSetGeometryUserData(geometry, const_cast<std::vector<SetupTriangle>*>(&triangles));
   rtcSetGeometryBoundsFunction(geometry, boundsOf, nullptr);
   rtcSetGeometryIntersectFunction(geometry, testCandidate);
   rtcSetGeometryOccludedFunction(geometry, testCandidateOccluded);
@@ -116,27 +110,42 @@ Visibility::~Visibility() {
   rtcReleaseDevice(device_);
 }
 
-PixelHit Visibility::at(int px, int py) const {
-  PixelQuery query;
+std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> Visibility::block(int x0,
+                                                                                int y0) const {
+  BlockQuery query;
   rtcInitIntersectContext(&query.context);
-  query.px = px;
-  query.py = py;
+  query.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  query.triangles = &triangles_;
+  query.x0 = x0;
+  query.y0 = y0;
   query.format = format_;
   query.fused = fused_;
-  RTCRayHit ray{};
-  // The ray of the pixel centre: (x_ndc, y_ndc, 1) in (x, y, w) clip coordinates.
-  ray.ray.org_x = ray.ray.org_y = ray.ray.org_z = 0.0f;
-  ray.ray.dir_x =
-      (static_cast<float>(px) + 0.5f) / (static_cast<float>(viewport_.width) * 0.5f) - 1.0f;
-  ray.ray.dir_y =
-      (static_cast<float>(py) + 0.5f) / (static_cast<float>(viewport_.height) * 0.5f) - 1.0f;
-  ray.ray.dir_z = 1.0f;
-  ray.ray.tnear = 0.0f;
-  ray.ray.tfar = std::numeric_limits<float>::infinity();
-  ray.ray.mask = 0xffffffffu;
-  ray.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene_, &query.context, &ray);
-  return {query.best, query.bestDepth, query.runnerUpDepth};
+  query.hits.fill(PixelHit{});
+  query.keys.fill(0);
+  alignas(64) RTCRayHit16 rays{};
+  alignas(64) int valid[16];
+  for (int lane = 0; lane < 16; ++lane) {
+    const int px = x0 + lane % kBlock, py = y0 + lane / kBlock;
+    valid[lane] = px < viewport_.width && py < viewport_.height ? -1 : 0;
+    // The ray through the pixel centre, along +z through the boxes' [0, 1].
+    rays.ray.org_x[lane] = static_cast<float>(px) + 0.5f;
+    rays.ray.org_y[lane] = static_cast<float>(py) + 0.5f;
+    rays.ray.org_z[lane] = -1.0f;
+    rays.ray.dir_x[lane] = 0.0f;
+    rays.ray.dir_y[lane] = 0.0f;
+    rays.ray.dir_z[lane] = 1.0f;
+    rays.ray.tnear[lane] = 0.0f;
+    rays.ray.tfar[lane] = std::numeric_limits<float>::infinity();
+    rays.ray.mask[lane] = 0xffffffffu;
+    rays.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect16(valid, scene_, &query.context, &rays);
+  return query.hits;
+}
+
+PixelHit Visibility::at(int px, int py) const {
+  const int x0 = px - px % kBlock, y0 = py - py % kBlock;
+  return block(x0, y0)[static_cast<size_t>((px - x0) + kBlock * (py - y0))];
 }
 
 }  // namespace vt::reference

@@ -1,17 +1,18 @@
 #pragma once
 // Which set-up triangle a GL rasterizer shows at each pixel, found with Embree.
 //
-// Embree supplies the search: every set-up triangle is a user primitive whose box, in clip
-// coordinates (x, y, w), is its clipped triangle's box widened by 1/32 pixel at its largest w,
-// far more than snapping (1/512 pixel) and float rounding move an edge. The ray of pixel (px, py)
-// runs from the origin along (x_ndc, y_ndc, 1), so it meets the box of every triangle whose
-// snapped shape could contain the pixel's centre. For each such candidate the GL rules decide
-// exactly: the integer edge functions with the tie rule (coverage), depth from the z plane
+// Embree supplies the search: every set-up triangle is a user primitive whose box, in window
+// coordinates, spans the pixel centres its snapped vertices can enclose (an integer range, so the
+// box is exact, not estimated). The ray of pixel (px, py) runs along +z through its centre, so it
+// meets the box of every triangle that could cover it. For each such candidate the GL rules
+// decide exactly: the integer edge functions with the tie rule (coverage), depth from the z plane
 // (rule 7) with the depth format's comparison, and GL_LESS against a cleared depth of 1.0, where
 // the earlier drawn triangle wins a tie. Embree's own intersection arithmetic never decides.
+// Pixels are queried in coherent packets of 4 x 4 rays (rtcIntersect16).
 
 #include <embree3/rtcore.h>
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -32,6 +33,8 @@ struct PixelHit {
 
 class Visibility {
  public:
+  static constexpr int kBlock = 4;  // pixels per side of a packet
+
   Visibility(const std::vector<SetupTriangle>& triangles, Viewport viewport, DepthFormat format,
              bool fused);
   ~Visibility();
@@ -40,15 +43,12 @@ class Visibility {
 
   // The triangle shown at pixel (px, py). Thread-safe.
   PixelHit at(int px, int py) const;
-
-  // What Embree's callbacks see of the scene.
-  struct SceneData {
-    const std::vector<SetupTriangle>* triangles;
-    float marginPerW[2];  // 1/32 pixel in clip x and y units, per unit of w
-  };
+  // The 4 x 4 pixels from (x0, y0): hits[dx + 4 dy]; pixels outside the viewport get no hit.
+  // Thread-safe.
+  std::array<PixelHit, kBlock * kBlock> block(int x0, int y0) const;
 
  private:
-  SceneData data_;
+  const std::vector<SetupTriangle>& triangles_;
   Viewport viewport_;
   DepthFormat format_;
   bool fused_;
