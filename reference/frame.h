@@ -26,7 +26,8 @@ struct Frame {
   std::vector<float> depth;        // window depth as stored; 1.0 where no geometry
   std::vector<uint8_t> ambiguity;  // AmbiguityReason bits
   std::vector<int32_t> triangle;   // index of the mesh triangle shown, -1 where none
-  // Debug channels: texture coordinates, their fine derivatives, the lod, the resident level.
+  // Debug channels, filled only when RenderSettings::debugChannels is set (empty otherwise):
+  // texture coordinates, their fine derivatives, the lod, the resident level.
   std::vector<glm::vec2> uv;
   std::vector<glm::vec4> derivatives;  // (ds/dx, dt/dx, ds/dy, dt/dy)
   std::vector<float> lod;

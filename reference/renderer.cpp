@@ -203,10 +203,13 @@ Frame render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDesc
   frame.depth.assign(pixels, 1.0f);
   frame.ambiguity.assign(pixels, 0);
   frame.triangle.assign(pixels, -1);
-  frame.uv.assign(pixels, vec2(0.0f));
-  frame.derivatives.assign(pixels, vec4(0.0f));
-  frame.lod.assign(pixels, 0.0f);
-  frame.residentLevel.assign(pixels, -1);
+  const bool debug = settings.debugChannels;
+  if (debug) {
+    frame.uv.assign(pixels, vec2(0.0f));
+    frame.derivatives.assign(pixels, vec4(0.0f));
+    frame.lod.assign(pixels, 0.0f);
+    frame.residentLevel.assign(pixels, -1);
+  }
 
   const unsigned threads =
       settings.threads ? settings.threads : std::thread::hardware_concurrency();
@@ -265,10 +268,12 @@ Frame render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDesc
               frame.need[index] = f.need;
               frame.depth[index] = hit.depth;
               frame.triangle[index] = static_cast<int32_t>(t.primitive);
-              frame.uv[index] = here.uv;
-              frame.derivatives[index] = vec4(dUVdx.x, dUVdx.y, dUVdy.x, dUVdy.y);
-              frame.lod[index] = f.lod;
-              frame.residentLevel[index] = static_cast<int8_t>(f.residentLevel);
+              if (debug) {
+                frame.uv[index] = here.uv;
+                frame.derivatives[index] = vec4(dUVdx.x, dUVdx.y, dUVdy.x, dUVdy.y);
+                frame.lod[index] = f.lod;
+                frame.residentLevel[index] = static_cast<int8_t>(f.residentLevel);
+              }
 
               if (settings.profile == PrecisionProfile::kLlvmpipe)
                 continue;  // exact: nothing to flag

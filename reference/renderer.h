@@ -25,9 +25,10 @@ struct RenderSettings {
   PrecisionProfile profile = PrecisionProfile::kExact;
   DepthFormat depthFormat = DepthFormat::kDepth32F;
   bool trilinear = true;
-  bool exactFilter = true;  // texel fetches and float filtering; false: the sampler's GL_LINEAR
-  bool need8 = false;       // 8-bit needbuffer (textures up to 4096 pages per side)
-  unsigned threads = 0;     // 0: every core
+  bool exactFilter = true;     // texel fetches and float filtering; false: the sampler's GL_LINEAR
+  bool need8 = false;          // 8-bit needbuffer (textures up to 4096 pages per side)
+  bool debugChannels = false;  // also fill Frame's uv, derivatives, lod and residentLevel
+  unsigned threads = 0;        // 0: every core
 };
 
 // The needbuffer value of a pixel without geometry.

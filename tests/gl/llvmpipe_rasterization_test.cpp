@@ -170,6 +170,7 @@ TEST_F(LlvmpipeRasterization, OracleMatchesEveryPixelBitForBit) {
   const VirtualTextureReader reader(dir_ / "t.vt");
   const reference::ResidentTexture texture(reader);
   reference::RenderSettings settings;
+  settings.debugChannels = true;
   settings.profile =
       cpuHasFma() ? reference::PrecisionProfile::kLlvmpipe : reference::PrecisionProfile::kExact;
   settings.viewport = {160, 120};

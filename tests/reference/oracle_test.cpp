@@ -112,6 +112,7 @@ TEST_F(Oracle, VisibilityMatchesBruteForceOnRandomTriangles) {
 
 TEST_F(Oracle, ScreenQuadHasExactCoordinatesAndDerivatives) {
   RenderSettings settings;
+  settings.debugChannels = true;
   settings.viewport = {256, 256};
   const Frame frame = renderFrame(screenQuad(), *texture_, settings);
   for (int py = 0; py < 256; py += 17)
@@ -136,6 +137,7 @@ TEST_F(Oracle, MinifiedQuadNeedsCoarserPagesAndEmptyPixelsAreMarked) {
   for (ClipVertex& v : mesh.vertices)
     v.position = glm::vec4(v.position.x * 0.25f - 0.5f, v.position.y * 0.25f - 0.5f, 0.0f, 1.0f);
   RenderSettings settings;
+  settings.debugChannels = true;
   settings.viewport = {256, 256};
   settings.need8 = true;
   const Frame frame = renderFrame(mesh, *texture_, settings);
@@ -157,6 +159,7 @@ TEST_F(Oracle, SameBytesForOneTwoAndEightThreads) {
     v.uv = glm::vec2(0.5f + 0.1f * v.position.x, 0.5f + 0.13f * v.position.y);
   }
   RenderSettings settings;
+  settings.debugChannels = true;
   settings.viewport = {123, 77};
   std::vector<Frame> frames;
   for (const unsigned threads : {1u, 2u, 8u}) {
@@ -183,6 +186,7 @@ TEST_F(Oracle, TriangleCrossingTheNearPlaneIsClippedNotDropped) {
   EXPECT_EQ(stats.clipped, 1u);
   EXPECT_GE(triangles.size(), 1u);
   RenderSettings settings;
+  settings.debugChannels = true;
   settings.viewport = {64, 64};
   const Frame frame = renderFrame(mesh, *texture_, settings);
   const Visibility visibility(triangles, settings.viewport, DepthFormat::kDepth32F, false);

@@ -127,6 +127,7 @@ TEST_F(Stability, GrazingAnglesUpTo8999Degrees) {
     const float scale = 1.0f / 4096.0f;  // about one texel per unit
     const ClipSpaceMesh mesh = tiltedQuad(theta, scale, viewport, camera);
     RenderSettings settings;
+    settings.debugChannels = true;
     settings.viewport = viewport;
     const Frame frame = renderFrame(mesh, t, settings);
     expectDefined(frame, 8);
@@ -145,6 +146,7 @@ TEST_F(Stability, GrazingAnglesUpTo8999Degrees) {
 TEST_F(Stability, ExtremeMagnificationAndMinificationClampTheLod) {
   const ResidentTexture& t = texture(5);
   RenderSettings settings;
+  settings.debugChannels = true;
   settings.viewport = {64, 64};
   for (const float scale : {1e-7f, 1e3f}) {
     Camera camera;
@@ -163,6 +165,7 @@ TEST_F(Stability, ZeroDerivativesNeedTheFinestLevel) {
     mesh.vertices.push_back({{x, y, 0, 1}, {0.3f, 0.7f}});
   mesh.indices = {0, 1, 2};
   RenderSettings settings;
+  settings.debugChannels = true;
   settings.viewport = {32, 32};
   const Frame frame = renderFrame(mesh, t, settings);
   EXPECT_EQ(expectDefined(frame, 4), 32u * 32u);
@@ -177,6 +180,7 @@ TEST_F(Stability, ZeroDerivativesNeedTheFinestLevel) {
 TEST_F(Stability, CoordinatesAtZeroAndOneStayInTheTexture) {
   const ResidentTexture& t = texture(5);
   RenderSettings settings;
+  settings.debugChannels = true;
   settings.viewport = {16, 16};
   for (const float value : {0.0f, 1.0f}) {
     ClipSpaceMesh mesh;
@@ -195,6 +199,7 @@ TEST_F(Stability, CoordinatesAtZeroAndOneStayInTheTexture) {
 TEST_F(Stability, NanAndInfiniteAttributesGiveDefinedPages) {
   const ResidentTexture& t = texture(5);
   RenderSettings settings;
+  settings.debugChannels = true;
   settings.viewport = {16, 16};
   const float nan = std::numeric_limits<float>::quiet_NaN(),
               inf = std::numeric_limits<float>::infinity();
@@ -235,6 +240,7 @@ TEST_F(Stability, HugeTextureCoordinatePrecision) {
   }
   mesh.indices = {0, 1, 2, 0, 2, 3};
   RenderSettings settings;
+  settings.debugChannels = true;
   settings.viewport = {256, 4};
   const Frame frame = renderFrame(mesh, t, settings);
   double worstTexels = 0.0;
@@ -271,6 +277,7 @@ TEST_F(Stability, DegenerateAndSliverTriangles) {
   const auto triangles = setupTriangles(mesh, viewport, false, &stats);
   EXPECT_EQ(stats.empty, 2u);  // the collinear and the repeated-vertex triangles draw nothing
   RenderSettings settings;
+  settings.debugChannels = true;
   settings.viewport = viewport;
   const Frame frame = renderFrame(mesh, t, settings);
   // The sliver spans window y 15.49 at its left end and 15.49 .. 15.522 at its right end: only
@@ -310,6 +317,7 @@ TEST_F(Stability, HelperPixelsBeyondTheHorizon) {
   camera.target = {0, 1.0f - static_cast<float>(std::tan(3.14159265358979 / 6) / 32), -1};
   camera.farPlane = 1e7f;
   RenderSettings settings;
+  settings.debugChannels = true;
   settings.viewport = {64, 64};
   const Frame frame = renderFrame(toClipSpace(ground, camera, settings.viewport), t, settings);
   EXPECT_GT(expectDefined(frame, 4), 0u);
@@ -329,6 +337,7 @@ TEST_F(Stability, CoplanarFacesFirstDrawnWinsAndIsFlagged) {
       mesh.vertices.push_back({{x, y, 0.3f, 1}, {copy * 0.5f + 0.1f, 0.2f}});
   mesh.indices = {0, 1, 2, 3, 4, 5};
   RenderSettings settings;
+  settings.debugChannels = true;
   settings.viewport = {16, 16};
   const Frame frame = renderFrame(mesh, t, settings);
   for (size_t i = 0; i < frame.triangle.size(); ++i) {
@@ -349,6 +358,7 @@ TEST_F(Stability, LodExactlyOnALevel) {
     mesh.vertices.push_back({{x, y, 0, 1}, {(x + 1) / 2, (y + 1) / 2}});
   mesh.indices = {0, 1, 2, 0, 2, 3};
   RenderSettings trilinear;
+  trilinear.debugChannels = true;
   trilinear.viewport = {64, 64};
   RenderSettings bilinear = trilinear;
   bilinear.trilinear = false;
