@@ -182,6 +182,11 @@ template <class Backend, class Source>
 Frame render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescription& d,
              glm::vec2 cacheSize, const RenderSettings& settings) {
   const Viewport viewport = settings.viewport;
+  // The thread limit covers everything: setup, Embree's scene build and the tiles.
+  const unsigned threads =
+      settings.threads ? settings.threads : std::thread::hardware_concurrency();
+  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
+                                        std::max(1u, threads));
   const bool fused = usesFusedPlanes(settings.profile);
   const std::vector<SetupTriangle> triangles = setupTriangles(mesh, viewport, fused);
   const Visibility visibility(triangles, viewport, settings.depthFormat, fused);
@@ -211,10 +216,6 @@ Frame render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDesc
     frame.residentLevel.assign(pixels, -1);
   }
 
-  const unsigned threads =
-      settings.threads ? settings.threads : std::thread::hardware_concurrency();
-  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
-                                        std::max(1u, threads));
   constexpr int kTile = 16;
   const int tilesX = (viewport.width + kTile - 1) / kTile,
             tilesY = (viewport.height + kTile - 1) / kTile;

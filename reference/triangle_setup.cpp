@@ -1,5 +1,7 @@
 #include "reference/triangle_setup.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -159,55 +161,80 @@ bool setupOne(WindowVertex v0, WindowVertex v1, WindowVertex v2, Viewport viewpo
 
 }  // namespace
 
+namespace {
+
+// Sets up mesh triangle k: culls, clips, and appends its (fan) triangles to `out`.
+void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport, bool fused,
+                    std::vector<SetupTriangle>& out, SetupStatistics& stats) {
+  ++stats.triangles;
+  std::vector<ClipPoint> polygon;
+  polygon.reserve(9);
+  unsigned any = 0, all = 63;
+  bool finite = true;
+  for (int corner = 0; corner < 3; ++corner) {
+    const ClipVertex& v = mesh.vertices.at(mesh.indices[3 * k + static_cast<size_t>(corner)]);
+    for (int c = 0; c < 4; ++c) finite = finite && std::isfinite(v.position[c]);
+    const unsigned code = outcode(v.position);
+    any |= code;
+    all &= code;
+    polygon.push_back({v.position, v.uv});
+  }
+  if (!finite) {
+    ++stats.nonFinite;
+    return;
+  }
+  if (all != 0) {
+    ++stats.culled;
+    return;
+  }
+  if (any != 0) {
+    ++stats.clipped;
+    if (!clipPolygon(polygon, any)) {
+      if (polygon.size() >= 3) ++stats.nonFinite;
+      return;
+    }
+  }
+  // A clipped polygon becomes the fan (p[i-1], p[i], p[0]) of rule 5; an unclipped triangle
+  // keeps its vertex order (v0, v1, v2).
+  for (size_t i = 2; i < polygon.size(); ++i) {
+    SetupTriangle triangle;
+    triangle.primitive = static_cast<uint32_t>(k);
+    triangle.fanIndex = static_cast<uint32_t>(i - 2);
+    const bool fan = any != 0;
+    const WindowVertex a = toWindow(polygon[fan ? i - 1 : 0], viewport, fused);
+    const WindowVertex b = toWindow(polygon[fan ? i : 1], viewport, fused);
+    const WindowVertex c = toWindow(polygon[fan ? 0 : 2], viewport, fused);
+    if (setupOne(a, b, c, viewport, triangle))
+      out.push_back(triangle);
+    else
+      ++stats.empty;
+  }
+}
+
+}  // namespace
+
 std::vector<SetupTriangle> setupTriangles(const ClipSpaceMesh& mesh, Viewport viewport, bool fused,
                                           SetupStatistics* statistics) {
-  SetupStatistics stats;
+  // Blocks of triangles in parallel, concatenated in draw order: the result does not depend on
+  // the thread count.
+  constexpr size_t kBlock = 2048;
+  const size_t triangles = mesh.indices.size() / 3, blocks = (triangles + kBlock - 1) / kBlock;
+  std::vector<std::vector<SetupTriangle>> parts(blocks);
+  std::vector<SetupStatistics> partStats(blocks);
+  tbb::parallel_for(size_t{0}, blocks, [&](size_t block) {
+    for (size_t k = block * kBlock; k < std::min(triangles, (block + 1) * kBlock); ++k)
+      setupPrimitive(mesh, k, viewport, fused, parts[block], partStats[block]);
+  });
   std::vector<SetupTriangle> result;
-  std::vector<ClipPoint> polygon;
-  const size_t triangles = mesh.indices.size() / 3;
-  for (size_t k = 0; k < triangles; ++k) {
-    ++stats.triangles;
-    polygon.clear();
-    unsigned any = 0, all = 63;
-    bool finite = true;
-    for (int corner = 0; corner < 3; ++corner) {
-      const ClipVertex& v = mesh.vertices.at(mesh.indices[3 * k + static_cast<size_t>(corner)]);
-      for (int c = 0; c < 4; ++c) finite = finite && std::isfinite(v.position[c]);
-      const unsigned code = outcode(v.position);
-      any |= code;
-      all &= code;
-      polygon.push_back({v.position, v.uv});
-    }
-    if (!finite) {
-      ++stats.nonFinite;
-      continue;
-    }
-    if (all != 0) {
-      ++stats.culled;
-      continue;
-    }
-    if (any != 0) {
-      ++stats.clipped;
-      if (!clipPolygon(polygon, any)) {
-        if (polygon.size() >= 3) ++stats.nonFinite;
-        continue;
-      }
-    }
-    // A clipped polygon becomes the fan (p[i-1], p[i], p[0]) of rule 5; an unclipped triangle
-    // keeps its vertex order (v0, v1, v2).
-    for (size_t i = 2; i < polygon.size(); ++i) {
-      SetupTriangle triangle;
-      triangle.primitive = static_cast<uint32_t>(k);
-      triangle.fanIndex = static_cast<uint32_t>(i - 2);
-      const bool fan = any != 0;
-      const WindowVertex a = toWindow(polygon[fan ? i - 1 : 0], viewport, fused);
-      const WindowVertex b = toWindow(polygon[fan ? i : 1], viewport, fused);
-      const WindowVertex c = toWindow(polygon[fan ? 0 : 2], viewport, fused);
-      if (setupOne(a, b, c, viewport, triangle))
-        result.push_back(triangle);
-      else
-        ++stats.empty;
-    }
+  SetupStatistics stats;
+  for (size_t block = 0; block < blocks; ++block) {
+    result.insert(result.end(), parts[block].begin(), parts[block].end());
+    const SetupStatistics& p = partStats[block];
+    stats.triangles += p.triangles;
+    stats.nonFinite += p.nonFinite;
+    stats.culled += p.culled;
+    stats.clipped += p.clipped;
+    stats.empty += p.empty;
   }
   if (statistics) *statistics = stats;
   return result;
