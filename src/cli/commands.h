@@ -7,6 +7,7 @@
 namespace vt {
 
 void addBuildCommand(CLI::App& app);
+void addCrosscheckCommand(CLI::App& app);
 void addInfoCommand(CLI::App& app);
 void addDemoCommand(CLI::App& app);
 void addExportLevelCommand(CLI::App& app);

@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
                        std::string("vt " VT_VERSION " (virtual-texture file format 1)"));
   app.require_subcommand(1);
   vt::addBuildCommand(app);
+  vt::addCrosscheckCommand(app);
   vt::addInfoCommand(app);
   vt::addDemoCommand(app);
   vt::addExportLevelCommand(app);

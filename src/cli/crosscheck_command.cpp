@@ -1,0 +1,197 @@
+// vt crosscheck TEXTURE: renders named scenes with the CPU oracle and with OpenGL from the same
+// cache state and compares them pixel by pixel (reference/frame_comparison.h). Writes difference
+// images and summary.json; exits 1 when any pixel is mismatched without the oracle's flag.
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli/commands.h"
+#include "common/error.h"
+#include "common/image_file.h"
+#include "gl/gl_frame_renderer.h"
+#include "gl/headless_context.h"
+#include "reference/frame_comparison.h"
+#include "scene/test_scenes.h"
+
+namespace vt {
+namespace {
+
+bool cpuHasFma() { return __builtin_cpu_supports("fma"); }
+
+std::string environment(const char* name) {
+  const char* value = std::getenv(name);
+  return value ? value : "";
+}
+
+// The pages the cache state holds: every stored page when they fit into a cache texture of at
+// most 8192 texels per side, else the coarsest levels that fit.
+std::vector<uint64_t> residentPages(const VirtualTextureReader& reader, uint32_t& frames) {
+  const uint32_t side = reader.description().storedPageSide();
+  const uint32_t maxFrames = 8192 / side;
+  std::vector<uint64_t> pages;
+  for (uint64_t slot = 0; slot < reader.storedPageCount(); ++slot)
+    pages.push_back(reader.storedPage(slot));
+  while (pages.size() > uint64_t{maxFrames} * maxFrames) {
+    const uint32_t finest = levelOfAbsoluteIndex(pages.back());
+    std::erase_if(pages, [finest](uint64_t p) { return levelOfAbsoluteIndex(p) == finest; });
+  }
+  frames = std::max<uint32_t>(
+      1, static_cast<uint32_t>(std::ceil(std::sqrt(static_cast<double>(pages.size())))));
+  return pages;
+}
+
+struct Mode {
+  const char* name;
+  bool exactFilter, trilinear, need8;
+};
+
+}  // namespace
+
+void addCrosscheckCommand(CLI::App& app) {
+  struct Options {
+    std::string texture, scenes = "all", size = "320x200", profile = "auto", output = "crosscheck";
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* command = app.add_subcommand(
+      "crosscheck",
+      "Render scenes with the oracle and with OpenGL and compare them pixel by pixel");
+  command->add_option("TEXTURE", o->texture, "Virtual-texture file (.vt)")->required();
+  command
+      ->add_option("--scenes", o->scenes,
+                   "Comma-separated scene names, or all: room, grazing, "
+                   "horizon, coplanar, minified")
+      ->capture_default_str();
+  command->add_option("--size", o->size, "WIDTHxHEIGHT")->capture_default_str();
+  command->add_option("--profile", o->profile, "Precision profile; auto follows GL_RENDERER")
+      ->check(CLI::IsMember({"auto", "exact", "llvmpipe", "nvidia"}))
+      ->capture_default_str();
+  command->add_option("-o,--output", o->output, "Folder for summary.json and difference images")
+      ->capture_default_str();
+  command->callback([o] {
+    reference::RenderSettings settings;
+    if (std::sscanf(o->size.c_str(), "%dx%d", &settings.viewport.width,
+                    &settings.viewport.height) != 2 ||
+        settings.viewport.width < 1 || settings.viewport.height < 1 ||
+        settings.viewport.width > 8192 || settings.viewport.height > 8192)
+      throw std::invalid_argument("size: '" + o->size + "' is not WIDTHxHEIGHT within 1..8192");
+    std::vector<std::string> scenes;
+    if (o->scenes == "all") {
+      scenes = testSceneNames();
+    } else {
+      std::stringstream list(o->scenes);
+      for (std::string name; std::getline(list, name, ',');) scenes.push_back(name);
+    }
+    for (const std::string& name : scenes) testScene(name);  // unknown names fail before any work
+
+    // llvmpipe's results depend on these; pin the thread count, record all three.
+    ::setenv("LP_NUM_THREADS",
+             environment("LP_NUM_THREADS").empty() ? "2" : environment("LP_NUM_THREADS").c_str(),
+             1);
+    const HeadlessContext context;
+    const std::string renderer = context.renderer();
+    const bool llvmpipe = renderer.find("llvmpipe") != std::string::npos;
+    if (o->profile == "auto")
+      settings.profile = llvmpipe ? (cpuHasFma() ? reference::PrecisionProfile::kLlvmpipe
+                                                 : reference::PrecisionProfile::kExact)
+                                  : reference::PrecisionProfile::kNvidia;
+    else
+      settings.profile = reference::parsePrecisionProfile(o->profile);
+
+    const VirtualTextureReader reader(o->texture);
+    uint32_t frames = 0;
+    const std::vector<uint64_t> pages = residentPages(reader, frames);
+    const reference::CacheState cache = reference::makeCacheState(reader, pages, frames, frames);
+    GlFrameRenderer gl(cache);
+    const std::filesystem::path folder = o->output;
+    std::filesystem::create_directories(folder);
+
+    std::vector<Mode> modes = {{"texelfetch-trilinear-need32", true, true, false},
+                               {"linear-bilinear-need8", false, false, true}};
+    if (reader.description().finestLevel() > 12) modes.pop_back();  // 8-bit needbuffer limit
+
+    nlohmann::json summary;
+    summary["gl_renderer"] = renderer;
+    summary["gl_version"] = context.version();
+    summary["profile"] = reference::toString(settings.profile);
+    summary["texture"] = o->texture;
+    summary["resident_pages"] = pages.size();
+    summary["settings"] = {{"LP_NUM_THREADS", environment("LP_NUM_THREADS")},
+                           {"GALLIVM_PERF", environment("GALLIVM_PERF")},
+                           {"GALLIUM_OVERRIDE_CPU_CAPS", environment("GALLIUM_OVERRIDE_CPU_CAPS")},
+                           {"cpu_fma", cpuHasFma()}};
+    summary["frames"] = nlohmann::json::array();
+    uint64_t totals[5] = {0, 0, 0, 0, 0};
+    const auto width = static_cast<uint32_t>(settings.viewport.width),
+               height = static_cast<uint32_t>(settings.viewport.height);
+    std::cout << "crosscheck on " << renderer << ", profile "
+              << reference::toString(settings.profile) << ", " << width << " x " << height << "\n";
+    for (const std::string& name : scenes) {
+      const NamedScene scene = testScene(name);
+      const ClipSpaceMesh mesh = toClipSpace(scene.mesh, scene.camera, settings.viewport);
+      for (const Mode& mode : modes) {
+        settings.exactFilter = mode.exactFilter;
+        settings.trilinear = mode.trilinear;
+        settings.need8 = mode.need8;
+        const reference::Frame oracle = reference::renderFrame(mesh, cache, settings);
+        const GlFrame frame = gl.render(mesh, settings);
+        const reference::FrameComparison c =
+            reference::compareFrames(oracle, frame.color, frame.need, settings.profile);
+        const std::string stem = name + "-" + mode.name;
+        writeImage8(folder / (stem + "-color-difference.png"), width, height, 4,
+                    std::as_bytes(std::span(c.colorDifferenceImage)));
+        writeImage8(folder / (stem + "-classes.png"), width, height, 4,
+                    std::as_bytes(std::span(c.classificationImage)));
+        summary["frames"].push_back({{"scene", name},
+                                     {"mode", mode.name},
+                                     {"pixels", c.pixels},
+                                     {"identical", c.identical},
+                                     {"flagged", c.flagged},
+                                     {"within_bound", c.withinBound},
+                                     {"mismatched", c.mismatched},
+                                     {"needbuffer_mismatched", c.needMismatched},
+                                     {"max_color_difference", c.maxColorDifference},
+                                     {"mean_color_difference", c.meanColorDifference}});
+        totals[0] += c.pixels;
+        totals[1] += c.identical;
+        totals[2] += c.flagged;
+        totals[3] += c.withinBound;
+        totals[4] += c.mismatched;
+        std::printf(
+            "  %-9s %-28s %8llu pixels: %8llu identical, %6llu flagged, %6llu within bound, %6llu "
+            "mismatched; "
+            "colour max %d, mean %.4f\n",
+            name.c_str(), mode.name, static_cast<unsigned long long>(c.pixels),
+            static_cast<unsigned long long>(c.identical),
+            static_cast<unsigned long long>(c.flagged),
+            static_cast<unsigned long long>(c.withinBound),
+            static_cast<unsigned long long>(c.mismatched), c.maxColorDifference,
+            c.meanColorDifference);
+      }
+    }
+    summary["totals"] = {{"pixels", totals[0]},
+                         {"identical", totals[1]},
+                         {"flagged", totals[2]},
+                         {"within_bound", totals[3]},
+                         {"mismatched", totals[4]}};
+    summary["passed"] = totals[4] == 0;
+    { std::ofstream(folder / "summary.json") << summary.dump(2) << '\n'; }
+    std::printf(
+        "crosscheck: %llu of %llu pixels identical, %llu flagged, %llu within bound, %llu "
+        "mismatched: %s\n",
+        static_cast<unsigned long long>(totals[1]), static_cast<unsigned long long>(totals[0]),
+        static_cast<unsigned long long>(totals[2]), static_cast<unsigned long long>(totals[3]),
+        static_cast<unsigned long long>(totals[4]), totals[4] == 0 ? "passed" : "FAILED");
+    std::fflush(stdout);
+    if (totals[4] != 0)
+      throw InputError(o->texture, "crosscheck found unflagged mismatches (see " +
+                                       (folder / "summary.json").string() + ")");
+  });
+}
+
+}  // namespace vt

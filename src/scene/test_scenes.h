@@ -1,0 +1,30 @@
+#pragma once
+// Named scenes for cross-checks and debugging: the box room and the extreme cases of the
+// numerical stability suite, as meshes with cameras. Texture coordinates lie in [0, 1], so any
+// virtual texture can be drawn on them.
+//
+//   room       the box room (box_room.h)
+//   grazing    a plane seen at 89.9 degrees from its normal
+//   horizon    a ground plane reaching the horizon (helper pixels beyond w = 0)
+//   coplanar   two coplanar overlapping quads with different texture areas (decals)
+//   minified   a whole texture on a few hundred pixels, and a magnified corner
+
+#include <string>
+#include <vector>
+
+#include "scene/camera.h"
+#include "scene/mesh.h"
+
+namespace vt {
+
+struct NamedScene {
+  std::string name;
+  Mesh mesh;
+  Camera camera;
+};
+
+std::vector<std::string> testSceneNames();
+// Throws std::invalid_argument for an unknown name.
+NamedScene testScene(const std::string& name);
+
+}  // namespace vt
