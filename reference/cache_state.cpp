@@ -1,6 +1,7 @@
 #include "reference/cache_state.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -33,6 +34,7 @@ CacheState makeCacheState(const VirtualTextureReader& reader, std::span<const ui
                                 std::to_string(framesX) + " x " + std::to_string(framesY) +
                                 " frames");
   const uint32_t side = d.storedPageSide();
+  state.residentPages = resident;
   state.framesX = framesX;
   state.framesY = framesY;
   state.widthTexels = framesX * side;
@@ -71,6 +73,24 @@ CacheState makeCacheState(const VirtualTextureReader& reader, std::span<const ui
     }
   }
   return state;
+}
+
+CacheState cacheOfLevels(const VirtualTextureReader& reader, int maxLevel, uint32_t maxSideTexels) {
+  const uint32_t maxFrames =
+      std::max<uint32_t>(1, maxSideTexels / reader.description().storedPageSide());
+  std::vector<uint64_t> pages;
+  for (uint64_t slot = 0; slot < reader.storedPageCount(); ++slot) {
+    const uint64_t page = reader.storedPage(slot);
+    if (maxLevel < 0 || levelOfAbsoluteIndex(page) <= static_cast<uint32_t>(maxLevel))
+      pages.push_back(page);
+  }
+  while (pages.size() > uint64_t{maxFrames} * maxFrames) {
+    const uint32_t finest = levelOfAbsoluteIndex(pages.back());
+    std::erase_if(pages, [finest](uint64_t p) { return levelOfAbsoluteIndex(p) == finest; });
+  }
+  const auto frames = std::max<uint32_t>(
+      1, static_cast<uint32_t>(std::ceil(std::sqrt(static_cast<double>(pages.size())))));
+  return makeCacheState(reader, pages, frames, frames);
 }
 
 }  // namespace vt::reference

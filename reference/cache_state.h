@@ -22,6 +22,7 @@ struct CacheState {
   TextureDescription description;
   uint32_t framesX = 0, framesY = 0;
   uint32_t widthTexels = 0, heightTexels = 0;
+  std::vector<uint64_t> residentPages;                 // absolute indices, frame by frame
   std::vector<uint8_t> texels;                         // RGBA8, widthTexels x heightTexels
   std::vector<std::vector<glm::u16vec4>> indirection;  // [m][px + py * 2^m]
 
@@ -36,6 +37,11 @@ struct CacheState {
 // stored in the texture.
 CacheState makeCacheState(const VirtualTextureReader& reader, std::span<const uint64_t> pages,
                           uint32_t framesX, uint32_t framesY);
+
+// A cache state of the stored pages of levels 0..maxLevel (all levels when maxLevel is negative),
+// dropping the finest levels until the pages fit into a square cache texture of at most
+// `maxSideTexels` texels per side; frames are laid out in a square grid.
+CacheState cacheOfLevels(const VirtualTextureReader& reader, int maxLevel, uint32_t maxSideTexels);
 
 // RGBA8 of one stored texel of `channels` components.
 glm::u8vec4 expandToRgba(const std::byte* texel, uint32_t channels);

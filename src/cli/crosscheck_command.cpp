@@ -29,23 +29,6 @@ std::string environment(const char* name) {
   return value ? value : "";
 }
 
-// The pages the cache state holds: every stored page when they fit into a cache texture of at
-// most 8192 texels per side, else the coarsest levels that fit.
-std::vector<uint64_t> residentPages(const VirtualTextureReader& reader, uint32_t& frames) {
-  const uint32_t side = reader.description().storedPageSide();
-  const uint32_t maxFrames = 8192 / side;
-  std::vector<uint64_t> pages;
-  for (uint64_t slot = 0; slot < reader.storedPageCount(); ++slot)
-    pages.push_back(reader.storedPage(slot));
-  while (pages.size() > uint64_t{maxFrames} * maxFrames) {
-    const uint32_t finest = levelOfAbsoluteIndex(pages.back());
-    std::erase_if(pages, [finest](uint64_t p) { return levelOfAbsoluteIndex(p) == finest; });
-  }
-  frames = std::max<uint32_t>(
-      1, static_cast<uint32_t>(std::ceil(std::sqrt(static_cast<double>(pages.size())))));
-  return pages;
-}
-
 struct Mode {
   const char* name;
   bool exactFilter, trilinear, need8;
@@ -104,9 +87,8 @@ void addCrosscheckCommand(CLI::App& app) {
       settings.profile = reference::parsePrecisionProfile(o->profile);
 
     const VirtualTextureReader reader(o->texture);
-    uint32_t frames = 0;
-    const std::vector<uint64_t> pages = residentPages(reader, frames);
-    const reference::CacheState cache = reference::makeCacheState(reader, pages, frames, frames);
+    // Every stored page, or the coarsest levels that fit into an 8192^2 cache texture.
+    const reference::CacheState cache = reference::cacheOfLevels(reader, -1, 8192);
     GlFrameRenderer gl(cache);
     const std::filesystem::path folder = o->output;
     std::filesystem::create_directories(folder);
@@ -120,7 +102,7 @@ void addCrosscheckCommand(CLI::App& app) {
     summary["gl_version"] = context.version();
     summary["profile"] = reference::toString(settings.profile);
     summary["texture"] = o->texture;
-    summary["resident_pages"] = pages.size();
+    summary["resident_pages"] = cache.residentPages.size();
     summary["settings"] = {{"LP_NUM_THREADS", environment("LP_NUM_THREADS")},
                            {"GALLIVM_PERF", environment("GALLIVM_PERF")},
                            {"GALLIUM_OVERRIDE_CPU_CAPS", environment("GALLIUM_OVERRIDE_CPU_CAPS")},

@@ -12,6 +12,8 @@
 #include "common/error.h"
 #include "common/image_file.h"
 #include "eval/image_metrics.h"
+#include "gl/gl_frame_renderer.h"
+#include "gl/headless_context.h"
 #include "reference/frame_images.h"
 #include "reference/renderer.h"
 #include "scene/box_room.h"
@@ -56,7 +58,7 @@ std::vector<uint8_t> readReference(const std::filesystem::path& path, Viewport s
 void addRenderCommand(CLI::App& app) {
   struct Options {
     std::string texture, mesh, camera, size = "640x360", profile = "exact", depth = "32f";
-    std::string output = "frame.png", needbuffer, reference;
+    std::string output = "frame.png", needbuffer, reference, backend = "oracle";
     bool bilinear = false, hardwareFilter = false, need8 = false;
     int residentLevels = -1;
     unsigned threads = 0;
@@ -94,9 +96,15 @@ void addRenderCommand(CLI::App& app) {
   command->add_flag("--hardware-filter", o->hardwareFilter,
                     "GL_LINEAR sampling instead of texel fetches");
   command->add_flag("--need8", o->need8, "8-bit needbuffer encoding");
-  command->add_option("--resident-levels", o->residentLevels,
-                      "Only levels 0..K-1 resident (a cache state); default every page");
-  command->add_option("--threads", o->threads, "Worker threads (0: every core)");
+  command
+      ->add_option("--resident-levels", o->residentLevels,
+                   "Only levels 0..K-1 resident (a cache state); default every page")
+      ->check(CLI::Range(1, 16));
+  command->add_option("--threads", o->threads, "Worker threads of the oracle (0: every core)");
+  command
+      ->add_option("--backend", o->backend, "oracle (the CPU reference) or gl (OpenGL, headless)")
+      ->check(CLI::IsMember({"oracle", "gl"}))
+      ->capture_default_str();
   command->add_option("-o,--output", o->output, "Colour image")->capture_default_str();
   command->add_option("--needbuffer", o->needbuffer, "Needbuffer image, coloured by level");
   command->add_option("--reference", o->reference,
@@ -118,25 +126,44 @@ void addRenderCommand(CLI::App& app) {
     const Mesh mesh = o->mesh.empty() ? boxRoom() : loadObjMesh(o->mesh);
     const Camera camera = o->camera.empty() ? boxRoomCamera() : parseCamera(o->camera);
     const ClipSpaceMesh clip = toClipSpace(mesh, camera, settings.viewport);
+    std::string backendName = "oracle, profile " + o->profile;
 
-    const auto start = std::chrono::steady_clock::now();
     reference::Frame frame;
-    if (o->residentLevels >= 0) {
-      std::vector<uint64_t> pages;
-      for (uint64_t slot = 0; slot < reader.storedPageCount(); ++slot)
-        if (levelOfAbsoluteIndex(reader.storedPage(slot)) <
-            static_cast<uint32_t>(o->residentLevels))
-          pages.push_back(reader.storedPage(slot));
-      const uint32_t frames =
-          static_cast<uint32_t>(std::ceil(std::sqrt(static_cast<double>(pages.size() + 1))));
-      const reference::CacheState cache = reference::makeCacheState(reader, pages, frames, frames);
-      frame = reference::renderFrame(clip, cache, settings);
+    double milliseconds = 0.0;
+    const auto timed = [&](const auto& draw) {
+      const auto start = std::chrono::steady_clock::now();
+      draw();
+      milliseconds =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count();
+    };
+    // Both backends draw from the same cache state: the levels asked for, or every page that fits
+    // into an 8192^2 cache texture (coarsest levels first), so that their frames can be compared
+    // bit for bit. Only the oracle can do without one: textures whose pages do not fit are drawn
+    // by it with every page resident, straight from the file.
+    const bool everyPage = o->residentLevels < 0;
+    const reference::CacheState cache =
+        reference::cacheOfLevels(reader, o->residentLevels - 1, 8192);
+    const bool cacheHoldsAll = cache.residentPages.size() == reader.storedPageCount();
+    if (o->backend == "gl") {
+      const HeadlessContext context;
+      GlFrameRenderer gl(cache);
+      gl.draw(clip, settings);  // compiles the shaders: not part of the frame time
+      GlFrame drawn;
+      timed([&] { drawn = gl.render(clip, settings); });
+      frame.viewport = settings.viewport;
+      frame.color = std::move(drawn.color);
+      frame.need = std::move(drawn.need);
+      backendName = "gl: " + context.renderer();
+    } else if (!everyPage || cacheHoldsAll) {
+      timed([&] { frame = reference::renderFrame(clip, cache, settings); });
     } else {
       const reference::ResidentTexture texture(reader);
-      frame = reference::renderFrame(clip, texture, settings);
+      timed([&] { frame = reference::renderFrame(clip, texture, settings); });
     }
-    const double milliseconds =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (cache.residentPages.size() < reader.storedPageCount() && (o->backend == "gl" || !everyPage))
+      std::cout << "cache state: " << cache.residentPages.size() << " of "
+                << reader.storedPageCount() << " pages resident\n";
 
     std::set<uint64_t> pages;
     size_t covered = 0;
@@ -154,8 +181,8 @@ void addRenderCommand(CLI::App& app) {
       writeImage8(o->needbuffer, width, height, 4, std::as_bytes(std::span(need)));
     }
     std::cout << "rendered " << o->output << ": " << width << " x " << height << " in "
-              << milliseconds << " ms (oracle, profile " << o->profile << "), " << covered
-              << " pixels covered, " << pages.size() << " distinct pages needed\n";
+              << milliseconds << " ms (" << backendName << "), " << covered << " pixels covered, "
+              << pages.size() << " distinct pages needed\n";
     if (!o->reference.empty()) {
       const std::vector<uint8_t> expected = readReference(o->reference, settings.viewport);
       const ImageView a{settings.viewport.width, settings.viewport.height, color};
