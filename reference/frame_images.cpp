@@ -24,15 +24,6 @@ size_t flippedIndex(const Frame& frame, int px, int imageRow) {
 
 }  // namespace
 
-std::optional<PageId> decodeNeed(glm::uvec4 v, bool need8) {
-  if (need8) {
-    if (v.z == 255) return std::nullopt;  // thesis 3.2.3.2, with b = 255 for no geometry
-    return PageId{v.x + (v.w & 15u) * 256u, v.y + (v.w >> 4) * 256u, v.z};
-  }
-  if (v.w == 0) return std::nullopt;
-  return PageId{v.x, v.y, v.z};
-}
-
 std::vector<uint8_t> colorImage(const Frame& frame) {
   std::vector<uint8_t> image(frame.color.size());
   for (int row = 0; row < frame.viewport.height; ++row)

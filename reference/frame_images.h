@@ -9,11 +9,11 @@
 
 #include "format/page_address.h"
 #include "reference/frame.h"
+#include "shader/needbuffer.h"
 
 namespace vt::reference {
 
-// The page a needbuffer value names, or nothing for "no geometry" (either encoding).
-std::optional<PageId> decodeNeed(glm::uvec4 value, bool need8);
+using vt::decodeNeed;
 
 std::vector<uint8_t> colorImage(const Frame& frame);
 std::vector<uint8_t> needImage(const Frame& frame, bool need8);

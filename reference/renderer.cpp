@@ -174,8 +174,6 @@ bool nearInteger(float x) {
 
 }  // namespace
 
-glm::uvec4 needClearValue(bool need8) { return need8 ? glm::uvec4(0, 0, 255, 0) : glm::uvec4(0); }
-
 namespace {
 
 template <class Backend, class Source>

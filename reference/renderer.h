@@ -17,6 +17,7 @@
 #include "reference/precision_profile.h"
 #include "reference/texture_source.h"
 #include "reference/visibility.h"
+#include "shader/needbuffer.h"
 
 namespace vt::reference {
 
@@ -31,8 +32,7 @@ struct RenderSettings {
   unsigned threads = 0;        // 0: every core
 };
 
-// The needbuffer value of a pixel without geometry.
-glm::uvec4 needClearValue(bool need8);
+using vt::needClearValue;
 
 // Every page resident (golden images): each lookup finds the page itself or, on a sparse
 // texture, its nearest stored ancestor.

@@ -1,0 +1,62 @@
+#pragma once
+// Page priority heuristics (thesis 4.2) and ancestor streaming (4.3): from one frame's needbuffer
+// analysis and the page table, the pages to stream, most important first.
+//
+// A heuristic is a product of factors named in a string, e.g. "pixelsum" or "pixelsum*noisevalue":
+//   random         uniform in [0, 1), from a hash of the page and the frame's seed (4.2.2)
+//   pixelsum       pixels that need the page (4.2.2)
+//   distance       1 - mean window depth of those pixels: nearer is more important (4.2.2)
+//   weightedpixel  pixels weighted by closeness to the screen centre (4.2.3.1)
+//   hotspot        pixels weighted by closeness to the hot spot, the centre shifted by the
+//                  camera's rotation (4.2.3.1); the caller places the hot spot
+//   noisevalue     sum of NoiseValues from the page up to its resident ancestor (4.2.3.2)
+//   mipgap         needed level minus resident level, as id Tech 5 ranks requests
+// Ties are broken by the smaller absolute page index, so the order is deterministic.
+//
+// Ancestor streaming (4.3) adds every non-resident ancestor of a needed page, with the sum of its
+// children's priorities:
+//   intern  an ancestor is streamed before its descendants; otherwise priority decides
+//   extern  coarser levels before finer ones; within a level, priority decides
+//   with NoiseValue skipping (extern), an ancestor is added only through a child whose NoiseValue
+//   (against that ancestor) reaches the threshold (default: the texture's mean NoiseValue).
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runtime/needbuffer_analysis.h"
+#include "runtime/page_table.h"
+
+namespace vt {
+
+enum class AncestorStrategy { kNone, kIntern, kExtern };
+
+struct PriorityOptions {
+  std::string heuristic = "pixelsum";
+  AncestorStrategy ancestors = AncestorStrategy::kNone;
+  bool noiseValueSkipping = false;
+  float noiseThreshold = 0.0f;  // used with noiseValueSkipping
+  uint64_t seed = 0;            // for `random`: the frame number, say
+};
+
+struct StreamRequest {
+  uint64_t page;  // absolute index
+  double priority;
+  friend bool operator==(const StreamRequest&, const StreamRequest&) = default;
+};
+
+// The NoiseValue of a stored page (VirtualTextureReader::noiseValue, or a test's table).
+using NoiseValues = std::function<float(PageId)>;
+
+// Throws std::invalid_argument naming an unknown factor.
+void validateHeuristic(const std::string& heuristic);
+AncestorStrategy parseAncestorStrategy(const std::string& name);  // none, intern, extern
+
+// Non-resident needed pages (and ancestors, by the strategy), in the order to stream them.
+std::vector<StreamRequest> prioritizePages(const NeedBufferAnalysis& analysis,
+                                           const PageTable& table, const NoiseValues& noise,
+                                           const PriorityOptions& options);
+
+}  // namespace vt

@@ -1,0 +1,28 @@
+#pragma once
+// The needbuffer encodings of the shader (virtual_texture.glsl, thesis 3.2.3.2), read back on the
+// CPU: what a pixel without geometry holds, and the page a value names.
+//   32-bit: r = px, g = py, b = m, a = 1; no geometry (0, 0, 0, 0).
+//   8-bit:  r = px mod 256, g = py mod 256, b = m, a = px / 256 + (py / 256) * 16;
+//           no geometry b = 255.
+
+#include <glm/glm.hpp>
+#include <optional>
+
+#include "format/page_address.h"
+
+namespace vt {
+
+inline glm::uvec4 needClearValue(bool need8) {
+  return need8 ? glm::uvec4(0, 0, 255, 0) : glm::uvec4(0);
+}
+
+inline std::optional<PageId> decodeNeed(glm::uvec4 v, bool need8) {
+  if (need8) {
+    if (v.z == 255) return std::nullopt;
+    return PageId{v.x + (v.w & 15u) * 256u, v.y + (v.w >> 4) * 256u, v.z};
+  }
+  if (v.w == 0) return std::nullopt;
+  return PageId{v.x, v.y, v.z};
+}
+
+}  // namespace vt
