@@ -50,17 +50,8 @@ CacheState makeCacheState(const VirtualTextureReader& reader, std::span<const ui
       throw std::invalid_argument("page " + std::to_string(resident[k]) + " is not stored");
     const glm::ivec2 frame(static_cast<int>(k % framesX), static_cast<int>(k / framesX));
     frameOf[page.level][relativeIndex(page)] = frame;
-    const std::vector<std::byte> texels = reader.readPage(page);
-    for (uint32_t y = 0; y < side; ++y)
-      for (uint32_t x = 0; x < side; ++x) {
-        const glm::u8vec4 rgba =
-            expandToRgba(texels.data() + (size_t{y} * side + x) * d.channels, d.channels);
-        uint8_t* out = state.texels.data() +
-                       ((size_t{static_cast<uint32_t>(frame.y) * side + y} * state.widthTexels) +
-                        static_cast<uint32_t>(frame.x) * side + x) *
-                           4;
-        for (int c = 0; c < 4; ++c) out[c] = rgba[c];
-      }
+    storePage(state, static_cast<uint32_t>(frame.x), static_cast<uint32_t>(frame.y),
+              reader.readPage(page));
   }
   state.indirection.resize(d.levelCount);
   for (uint32_t m = 0; m < d.levelCount; ++m) {
@@ -73,6 +64,22 @@ CacheState makeCacheState(const VirtualTextureReader& reader, std::span<const ui
     }
   }
   return state;
+}
+
+void storePage(CacheState& cache, uint32_t frameX, uint32_t frameY,
+               std::span<const std::byte> texels) {
+  const TextureDescription& d = cache.description;
+  const uint32_t side = d.storedPageSide();
+  if (texels.size() != d.pageBytes() || frameX >= cache.framesX || frameY >= cache.framesY)
+    throw std::invalid_argument("storePage: page or frame does not fit the cache");
+  for (uint32_t y = 0; y < side; ++y)
+    for (uint32_t x = 0; x < side; ++x) {
+      const glm::u8vec4 rgba =
+          expandToRgba(texels.data() + (size_t{y} * side + x) * d.channels, d.channels);
+      uint8_t* out = cache.texels.data() +
+                     ((size_t{frameY * side + y} * cache.widthTexels) + frameX * side + x) * 4;
+      for (int c = 0; c < 4; ++c) out[c] = rgba[c];
+    }
 }
 
 CacheState cacheOfLevels(const VirtualTextureReader& reader, int maxLevel, uint32_t maxSideTexels) {

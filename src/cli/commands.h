@@ -11,6 +11,7 @@ void addCrosscheckCommand(CLI::App& app);
 void addInfoCommand(CLI::App& app);
 void addDemoCommand(CLI::App& app);
 void addExportLevelCommand(CLI::App& app);
+void addFlyCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
 
 }  // namespace vt

@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
   vt::addInfoCommand(app);
   vt::addDemoCommand(app);
   vt::addExportLevelCommand(app);
+  vt::addFlyCommand(app);
   vt::addRenderCommand(app);
 
   try {

@@ -6,6 +6,7 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "build/synthetic_texture.h"
 #include "build/texture_builder.h"
@@ -172,6 +173,41 @@ TEST_F(VtCommand, BuildPeakMemoryStaysFarBelowTheFinestLevel) {
   EXPECT_LT(build.maxRssKb - baselineKb, boundKb)
       << "build " << build.maxRssKb << " KB, vt --version " << baselineKb << " KB";
   EXPECT_LT(boundKb, 1024 * 1024 / 16);
+}
+
+TEST_F(VtCommand, FlyStreamsTheDefaultPathWithTheSameBytesForAnyThreadCount) {
+  const auto texture = sparseTexture();
+  const auto fly = [&](const std::string& threads, const std::string& out) {
+    return vt({"fly", texture, "--size", "96x64", "--budget", "3", "--cache-frames", "5",
+               "--ancestors", "extern", "--heuristic", "pixelsum*noisevalue", "--threads", threads,
+               "-o", (dir_ / out).string()});
+  };
+  const auto one = fly("1", "one"), two = fly("2", "two");
+  ASSERT_EQ(one.exitCode, 0) << one.err;
+  ASSERT_EQ(two.exitCode, 0) << two.err;
+  EXPECT_THAT(one.out, HasSubstr("flew 51 frames"));
+  const auto csv = test::readBytes(dir_ / "one" / "frames.csv");
+  EXPECT_EQ(csv, test::readBytes(dir_ / "two" / "frames.csv"));
+  EXPECT_EQ(test::readBytes(dir_ / "one" / "summary.json"),
+            test::readBytes(dir_ / "two" / "summary.json"));
+  // The budget holds: no frame streams more than 3 pages.
+  std::ifstream in(dir_ / "one" / "frames.csv");
+  std::string line;
+  std::getline(in, line);
+  int frames = 0;
+  while (std::getline(in, line)) {
+    std::vector<std::string> fields;
+    std::stringstream row(line);
+    for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+    ASSERT_EQ(fields.size(), 10u);
+    EXPECT_LE(std::stoi(fields[7]), 3) << line;
+    ++frames;
+  }
+  EXPECT_EQ(frames, 51);
+  const auto bad =
+      vt({"fly", texture, "--heuristic", "pixelsum*speed", "-o", (dir_ / "bad").string()});
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_THAT(bad.err, HasSubstr("'speed' is not one of"));
 }
 
 TEST_F(VtCommand, BuildErrorsNameTheFile) {

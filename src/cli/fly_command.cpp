@@ -1,0 +1,206 @@
+// vt fly TEXTURE: a camera path frame by frame with streaming (thesis chapter 4's setup): each
+// frame is drawn from the current cache state, its needbuffer analysed and prioritised, and a
+// budget of pages streamed for the next frame. Writes per-frame statistics (frames.csv,
+// summary.json) that are the same bytes for any thread count, the run time separately
+// (timing.json), and optionally every n-th frame as an image.
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli/commands.h"
+#include "common/error.h"
+#include "common/image_file.h"
+#include "gl/gl_frame_renderer.h"
+#include "gl/headless_context.h"
+#include "reference/frame_images.h"
+#include "reference/renderer.h"
+#include "runtime/virtual_texture_runtime.h"
+#include "scene/box_room.h"
+#include "scene/camera_path.h"
+#include "scene/obj_mesh.h"
+
+namespace vt {
+
+void addFlyCommand(CLI::App& app) {
+  struct Options {
+    std::string texture, path, mesh, size = "320x200", heuristic = "pixelsum", ancestors = "none";
+    std::string output = "fly", backend = "oracle";
+    uint32_t budget = 10, latency = 0, lockedLevels = 0, initialLevels = 3, frames = 16;
+    float noiseThreshold = -1.0f;
+    bool noiseSkipping = false;
+    unsigned threads = 0;
+    int imagesEvery = 0;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* command = app.add_subcommand(
+      "fly", "Render a camera path with streaming and write per-frame statistics");
+  command->add_option("TEXTURE", o->texture, "Virtual-texture file (.vt)")->required();
+  command->add_option("--path", o->path,
+                      "Camera path (.json); default: a turn around the box room");
+  command->add_option("--mesh", o->mesh,
+                      "OBJ mesh with virtual texture coordinates (default: the box room)");
+  command->add_option("--size", o->size, "WIDTHxHEIGHT")->capture_default_str();
+  command->add_option("--budget", o->budget, "Pages streamed per frame (thesis 4.1.1)")
+      ->capture_default_str();
+  command->add_option("--latency", o->latency, "Frames between a request and its page's arrival")
+      ->capture_default_str();
+  command
+      ->add_option("--heuristic", o->heuristic,
+                   "Factors joined by '*': random, pixelsum, distance, weightedpixel, "
+                   "hotspot, noisevalue, mipgap")
+      ->capture_default_str();
+  command->add_option("--ancestors", o->ancestors, "Ancestor streaming: none, intern, extern")
+      ->check(CLI::IsMember({"none", "intern", "extern"}))
+      ->capture_default_str();
+  command->add_flag("--noise-skipping", o->noiseSkipping, "NoiseValueSkipping (with extern)");
+  command->add_option("--noise-threshold", o->noiseThreshold,
+                      "NoiseValueSkipping threshold (default: the mean NoiseValue)");
+  command
+      ->add_option("--locked-levels", o->lockedLevels,
+                   "Levels 0..K-1 never leave the cache (4.3.1)")
+      ->capture_default_str();
+  command
+      ->add_option("--initial-levels", o->initialLevels,
+                   "Levels 0..K-1 loaded before the first frame (4.2.1)")
+      ->capture_default_str();
+  command->add_option("--cache-frames", o->frames, "The cache holds N x N frames")
+      ->capture_default_str();
+  command->add_option("--backend", o->backend, "oracle or gl")
+      ->check(CLI::IsMember({"oracle", "gl"}))
+      ->capture_default_str();
+  command->add_option("--threads", o->threads, "Worker threads of the oracle (0: every core)");
+  command->add_option("--images-every", o->imagesEvery,
+                      "Write every n-th frame as an image (0: none)");
+  command->add_option("-o,--output", o->output, "Output folder")->capture_default_str();
+  command->callback([o] {
+    validateHeuristic(o->heuristic);
+    reference::RenderSettings settings;
+    if (std::sscanf(o->size.c_str(), "%dx%d", &settings.viewport.width,
+                    &settings.viewport.height) != 2 ||
+        settings.viewport.width < 2 || settings.viewport.height < 2 ||
+        settings.viewport.width > 8192 || settings.viewport.height > 8192)
+      throw std::invalid_argument("size: '" + o->size + "' is not WIDTHxHEIGHT within 2..8192");
+    settings.threads = o->threads;
+    const VirtualTextureReader reader(o->texture);
+    settings.need8 = reader.description().finestLevel() <= 12;  // the narrowest encoding that fits
+    const CameraPath path = o->path.empty() ? boxRoomPath() : CameraPath::load(o->path);
+    const Mesh mesh = o->mesh.empty() ? boxRoom() : loadObjMesh(o->mesh);
+
+    RuntimeOptions options;
+    options.framesX = options.framesY = std::max(1u, o->frames);
+    options.lockedLevels = o->lockedLevels;
+    options.priority.heuristic = o->heuristic;
+    options.priority.ancestors = parseAncestorStrategy(o->ancestors);
+    options.priority.noiseValueSkipping = o->noiseSkipping;
+    double meanNoise = 0.0;
+    for (const float n : reader.noiseValues()) meanNoise += n;
+    meanNoise /= static_cast<double>(std::max<size_t>(1, reader.noiseValues().size()));
+    options.priority.noiseThreshold =
+        o->noiseThreshold >= 0.0f ? o->noiseThreshold : static_cast<float>(meanNoise);
+    VirtualTextureRuntime runtime(reader, options);
+    std::vector<uint64_t> initial;
+    for (uint64_t p = 0;
+         p < pageCount(std::min(o->initialLevels, reader.description().levelCount) - 1) &&
+         o->initialLevels > 0;
+         ++p)
+      initial.push_back(p);
+    runtime.preload(initial);
+    BudgetStreamer streamer(reader, o->budget, o->latency);
+
+    std::unique_ptr<HeadlessContext> context;
+    if (o->backend == "gl") context = std::make_unique<HeadlessContext>();
+    if (context && context->renderer().find("llvmpipe") != std::string::npos)
+      settings.profile = reference::PrecisionProfile::kLlvmpipe;
+
+    const std::filesystem::path folder = o->output;
+    std::filesystem::create_directories(folder);
+    std::ostringstream csv;
+    csv << "frame,covered_pixels,needed_pages,hits,misses,hit_pixels,requested,streamed,evicted,"
+           "resident\n";
+    FrameStatistics totals;
+    const auto start = std::chrono::steady_clock::now();
+    uint64_t streamedBefore = 0, evictedBefore = 0;
+    for (int frameNumber = 0; frameNumber < path.frameCount(); ++frameNumber) {
+      const ClipSpaceMesh clip = toClipSpace(mesh, path.at(frameNumber), settings.viewport);
+      std::vector<uint8_t> color;
+      std::vector<glm::uvec4> need;
+      std::vector<float> depth;
+      if (context) {
+        GlFrameRenderer gl(runtime.cacheState());
+        GlFrame frame = gl.render(clip, settings);
+        color = std::move(frame.color);
+        need = std::move(frame.need);
+        if (runtime.needsDepth())
+          throw InputError(
+              o->texture,
+              "the GL backend does not read back depth yet: use --backend oracle for distance");
+      } else {
+        reference::Frame frame = reference::renderFrame(clip, runtime.cacheState(), settings);
+        color = std::move(frame.color);
+        need = std::move(frame.need);
+        if (runtime.needsDepth()) depth = std::move(frame.depth);
+      }
+      FrameStatistics statistics;
+      statistics.streamed = streamedBefore;
+      statistics.evicted = evictedBefore;
+      const std::vector<StreamRequest> requests =
+          runtime.analyze(need, depth, settings.viewport.width, settings.viewport.height,
+                          settings.need8, static_cast<uint64_t>(frameNumber), statistics);
+      csv << frameNumber << ',' << statistics.coveredPixels << ',' << statistics.neededPages << ','
+          << statistics.hits << ',' << statistics.misses << ',' << statistics.hitPixels << ','
+          << statistics.requested << ',' << statistics.streamed << ',' << statistics.evicted << ','
+          << statistics.resident << '\n';
+      totals.hits += statistics.hits;
+      totals.misses += statistics.misses;
+      totals.streamed += statistics.streamed;
+      totals.evicted += statistics.evicted;
+      if (o->imagesEvery > 0 && frameNumber % o->imagesEvery == 0) {
+        reference::Frame image;
+        image.viewport = settings.viewport;
+        image.color = color;
+        const std::vector<uint8_t> rows = reference::colorImage(image);
+        char name[32];
+        std::snprintf(name, sizeof name, "frame%04d.png", frameNumber);
+        writeImage8(folder / name, static_cast<uint32_t>(settings.viewport.width),
+                    static_cast<uint32_t>(settings.viewport.height), 4,
+                    std::as_bytes(std::span(rows)));
+      }
+      // Streaming for the next frame (budget mode), applied by the management step.
+      const auto [applied, evicted] = runtime.apply(streamer.frame(requests));
+      streamedBefore = applied;
+      evictedBefore = evicted;
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::ofstream(folder / "frames.csv") << csv.str();
+    nlohmann::json summary = {{"texture", o->texture},
+                              {"frames", path.frameCount()},
+                              {"heuristic", o->heuristic},
+                              {"ancestors", o->ancestors},
+                              {"noise_skipping", o->noiseSkipping},
+                              {"budget", o->budget},
+                              {"latency", o->latency},
+                              {"cache_frames", o->frames},
+                              {"locked_levels", o->lockedLevels},
+                              {"initial_levels", o->initialLevels},
+                              {"hits", totals.hits},
+                              {"misses", totals.misses},
+                              {"streamed", totals.streamed},
+                              {"evicted", totals.evicted},
+                              {"backend", o->backend}};
+    std::ofstream(folder / "summary.json") << summary.dump(2) << '\n';
+    std::ofstream(folder / "timing.json")
+        << nlohmann::json{{"seconds", seconds}, {"frames", path.frameCount()}}.dump(2) << '\n';
+    std::cout << "flew " << path.frameCount() << " frames in " << seconds << " s (" << o->backend
+              << "): " << totals.hits << " needed-page hits, " << totals.misses << " misses, "
+              << totals.streamed << " pages streamed, " << totals.evicted << " evicted; wrote "
+              << (folder / "frames.csv").string() << "\n";
+  });
+}
+
+}  // namespace vt

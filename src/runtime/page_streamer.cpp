@@ -1,0 +1,96 @@
+#include "runtime/page_streamer.h"
+
+#include <algorithm>
+
+namespace vt {
+
+BudgetStreamer::BudgetStreamer(const VirtualTextureReader& reader, uint32_t pagesPerFrame,
+                               uint32_t latencyFrames)
+    : reader_(reader), pagesPerFrame_(pagesPerFrame), latencyFrames_(latencyFrames) {}
+
+std::vector<StreamedPage> BudgetStreamer::frame(const std::vector<StreamRequest>& requests) {
+  std::vector<StreamedPage> loaded;
+  for (size_t k = 0; k < requests.size() && loaded.size() < pagesPerFrame_; ++k) {
+    // A page still on its way is not requested twice.
+    const uint64_t page = requests[k].page;
+    const bool inFlight = std::any_of(inFlight_.begin(), inFlight_.end(), [&](const auto& batch) {
+      return std::any_of(batch.begin(), batch.end(),
+                         [&](const StreamedPage& p) { return p.page == page; });
+    });
+    if (!inFlight) loaded.push_back({page, reader_.readPage(fromAbsoluteIndex(page))});
+  }
+  inFlight_.push_back(std::move(loaded));
+  if (inFlight_.size() <= latencyFrames_) return {};
+  std::vector<StreamedPage> arrived = std::move(inFlight_.front());
+  inFlight_.pop_front();
+  return arrived;
+}
+
+ThreadedStreamer::ThreadedStreamer(const VirtualTextureReader& reader)
+    : reader_(reader), thread_([this] { run(); }) {}
+
+ThreadedStreamer::~ThreadedStreamer() {
+  {
+    const std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+void ThreadedStreamer::request(const std::vector<StreamRequest>& requests) {
+  {
+    const std::lock_guard lock(mutex_);
+    pending_.clear();
+    for (const StreamRequest& r : requests)
+      if (r.page != reading_) pending_.push_back(r.page);
+  }
+  wake_.notify_one();
+}
+
+std::vector<StreamedPage> ThreadedStreamer::takeStreamed() {
+  const std::lock_guard lock(mutex_);
+  std::vector<StreamedPage> pages;
+  pages.swap(streamed_);
+  return pages;
+}
+
+void ThreadedStreamer::drain() {
+  std::unique_lock lock(mutex_);
+  idle_.wait(lock, [this] { return pending_.empty() && !busy_; });
+}
+
+uint64_t ThreadedStreamer::failures() const {
+  const std::lock_guard lock(mutex_);
+  return failures_;
+}
+
+void ThreadedStreamer::run() {
+  std::unique_lock lock(mutex_);
+  while (true) {
+    wake_.wait(lock, [this] { return stop_ || !pending_.empty(); });
+    if (stop_) return;
+    const uint64_t page = pending_.front();
+    pending_.pop_front();
+    reading_ = page;
+    busy_ = true;
+    lock.unlock();
+    std::vector<std::byte> texels;
+    bool ok = true;
+    try {
+      texels = reader_.readPage(fromAbsoluteIndex(page));  // the file, unlocked
+    } catch (const std::exception&) {
+      ok = false;
+    }
+    lock.lock();
+    if (ok)
+      streamed_.push_back({page, std::move(texels)});
+    else
+      ++failures_;
+    reading_ = ~uint64_t{0};
+    busy_ = false;
+    if (pending_.empty()) idle_.notify_all();
+  }
+}
+
+}  // namespace vt

@@ -1,0 +1,73 @@
+#pragma once
+// Streaming (thesis 3.2.5): reading requested pages from the virtual-texture file into the list of
+// streamed pages that the management step applies to the cache.
+//
+// BudgetStreamer is the deterministic mode of the evaluations (thesis 4.1.1): each frame at most
+// `pagesPerFrame` of the frame's requests, in order, optionally arriving `latencyFrames` frames
+// later (a link with latency and bandwidth measured in pages per frame). ThreadedStreamer is the
+// interactive mode: a thread pops the most important request, reads it and hands it over; every
+// frame's requests replace the previous ones, so requests no longer needed are dropped.
+
+#include <condition_variable>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "format/virtual_texture_reader.h"
+#include "runtime/page_priority.h"
+
+namespace vt {
+
+struct StreamedPage {
+  uint64_t page;  // absolute index
+  std::vector<std::byte> texels;
+};
+
+class BudgetStreamer {
+ public:
+  BudgetStreamer(const VirtualTextureReader& reader, uint32_t pagesPerFrame,
+                 uint32_t latencyFrames = 0);
+
+  // Takes this frame's requests (most important first) and returns the pages that arrive now.
+  std::vector<StreamedPage> frame(const std::vector<StreamRequest>& requests);
+
+ private:
+  const VirtualTextureReader& reader_;
+  uint32_t pagesPerFrame_, latencyFrames_;
+  std::deque<std::vector<StreamedPage>> inFlight_;  // front arrives next
+};
+
+class ThreadedStreamer {
+ public:
+  explicit ThreadedStreamer(const VirtualTextureReader& reader);
+  ~ThreadedStreamer();
+  ThreadedStreamer(const ThreadedStreamer&) = delete;
+  ThreadedStreamer& operator=(const ThreadedStreamer&) = delete;
+
+  // Replaces the pending requests with this frame's (pages already in flight are not repeated).
+  void request(const std::vector<StreamRequest>& requests);
+  // The pages read since the last call.
+  std::vector<StreamedPage> takeStreamed();
+  // Waits until no request is pending (for tests and orderly shutdown).
+  void drain();
+  // Pages that could not be read (a corrupt page, say); they are dropped, the thread goes on.
+  uint64_t failures() const;
+
+ private:
+  void run();
+
+  const VirtualTextureReader& reader_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_, idle_;
+  std::deque<uint64_t> pending_;
+  std::vector<StreamedPage> streamed_;
+  uint64_t reading_ = ~uint64_t{0};
+  bool busy_ = false, stop_ = false;
+  uint64_t failures_ = 0;
+  std::thread thread_;
+};
+
+}  // namespace vt

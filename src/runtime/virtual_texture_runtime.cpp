@@ -1,0 +1,129 @@
+#include "runtime/virtual_texture_runtime.h"
+
+#include <algorithm>
+
+namespace vt {
+
+VirtualTextureRuntime::VirtualTextureRuntime(const VirtualTextureReader& reader,
+                                             const RuntimeOptions& options)
+    : reader_(reader),
+      options_(options),
+      pageCache_(options.framesX, options.framesY, options.lockedLevels),
+      table_(reader.description().levelCount) {
+  validateHeuristic(options.priority.heuristic);
+  const TextureDescription& d = reader.description();
+  cache_.description = d;
+  cache_.framesX = options.framesX;
+  cache_.framesY = options.framesY;
+  cache_.widthTexels = options.framesX * d.storedPageSide();
+  cache_.heightTexels = options.framesY * d.storedPageSide();
+  cache_.texels.assign(size_t{cache_.widthTexels} * cache_.heightTexels * 4, 0);
+  cache_.indirection.resize(d.levelCount);
+  for (uint32_t m = 0; m < d.levelCount; ++m) cache_.indirection[m] = table_.level(m);
+  // The root first: every lookup then finds a resident page.
+  uint64_t evicted = 0;
+  insert(0, reader.readPage(PageId{}), evicted);
+  syncIndirection();
+}
+
+void VirtualTextureRuntime::insert(uint64_t page, std::span<const std::byte> texels,
+                                   uint64_t& evicted) {
+  if (pageCache_.contains(page)) return;
+  const auto placement = pageCache_.insert(page);
+  if (!placement) return;  // every frame holds a locked page
+  if (placement->evicted) {
+    table_.evict(fromAbsoluteIndex(*placement->evicted));
+    ++evicted;
+  }
+  table_.insert(fromAbsoluteIndex(page), placement->frame);
+  reference::storePage(cache_, placement->frame.x, placement->frame.y, texels);
+}
+
+void VirtualTextureRuntime::syncIndirection() {
+  // Copy the subtrees the table changed, level by level, into the indirection table.
+  for (const PageId root : table_.takeChanges()) {
+    for (uint32_t m = root.level; m < table_.levelCount(); ++m) {
+      const uint32_t shift = m - root.level;
+      const uint64_t side = uint64_t{1} << shift, stride = pagesPerSide(m);
+      for (uint64_t y = 0; y < side; ++y) {
+        const uint64_t first =
+            ((uint64_t{root.y} << shift) + y) * stride + (uint64_t{root.x} << shift);
+        std::copy_n(table_.level(m).begin() + static_cast<long>(first), side,
+                    cache_.indirection[m].begin() + static_cast<long>(first));
+      }
+    }
+  }
+  cache_.residentPages = pageCache_.residentPages();
+}
+
+void VirtualTextureRuntime::preload(std::span<const uint64_t> pages) {
+  uint64_t evicted = 0;
+  for (const uint64_t page : pages)
+    if (reader_.contains(fromAbsoluteIndex(page)))
+      insert(page, reader_.readPage(fromAbsoluteIndex(page)), evicted);
+  syncIndirection();
+}
+
+std::pair<uint64_t, uint64_t> VirtualTextureRuntime::apply(std::vector<StreamedPage> pages) {
+  uint64_t applied = 0, evicted = 0;
+  for (const StreamedPage& streamed : pages) {
+    if (pageCache_.contains(streamed.page)) continue;
+    insert(streamed.page, streamed.texels, evicted);
+    applied += pageCache_.contains(streamed.page);
+  }
+  syncIndirection();
+  return {applied, evicted};
+}
+
+bool VirtualTextureRuntime::needsDepth() const {
+  return options_.priority.heuristic.find("distance") != std::string::npos;
+}
+
+std::vector<StreamRequest> VirtualTextureRuntime::analyze(std::span<const glm::uvec4> need,
+                                                          std::span<const float> depth, int width,
+                                                          int height, bool need8,
+                                                          uint64_t frameNumber,
+                                                          FrameStatistics& statistics) {
+  const std::string& heuristic = options_.priority.heuristic;
+  AnalysisOptions analysisOptions;
+  analysisOptions.need8 = need8;
+  analysisOptions.depth = needsDepth();
+  analysisOptions.centreWeight = heuristic.find("weightedpixel") != std::string::npos;
+  if (heuristic.find("hotspot") != std::string::npos)
+    analysisOptions.hotSpot =
+        glm::vec2(static_cast<float>(width), static_cast<float>(height)) * 0.5f;
+  const NeedBufferAnalysis analysis =
+      analyzeNeedBuffer(need, depth, width, height, analysisOptions);
+
+  statistics.coveredPixels = analysis.coveredPixels;
+  statistics.neededPages = analysis.pages.size();
+  std::vector<uint64_t> residentNeeded;
+  for (const auto& [page, pageStatistics] : analysis.pages) {
+    if (pageCache_.contains(page)) {
+      ++statistics.hits;
+      statistics.hitPixels += pageStatistics.pixels;
+      residentNeeded.push_back(page);
+    } else {
+      ++statistics.misses;
+    }
+  }
+  // Touch in page order: the LRU order, and so every later eviction, is deterministic.
+  std::sort(residentNeeded.begin(), residentNeeded.end());
+  for (const uint64_t page : residentNeeded) pageCache_.touch(page);
+
+  PriorityOptions priority = options_.priority;
+  priority.seed = frameNumber;
+  const NoiseValues noise = [this](PageId page) {
+    return reader_.contains(page) ? reader_.noiseValue(page) : 0.0f;
+  };
+  std::vector<StreamRequest> requests = prioritizePages(analysis, table_, noise, priority);
+  // Pages the file does not store (outside a sparse layout) cannot be streamed.
+  std::erase_if(requests, [this](const StreamRequest& r) {
+    return !reader_.contains(fromAbsoluteIndex(r.page));
+  });
+  statistics.requested = requests.size();
+  statistics.resident = pageCache_.size();
+  return requests;
+}
+
+}  // namespace vt

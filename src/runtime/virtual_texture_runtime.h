@@ -1,0 +1,72 @@
+#pragma once
+// The management step of the renderer (thesis 3.2.2): streamed pages go into the page cache (LRU
+// frames, locked levels), the page table follows incrementally, and the cache state the renderers
+// read (cache texture and indirection table, reference/cache_state.h) is updated where it changed.
+// Then, after a frame is drawn, the analysis step (3.2.4) turns its needbuffer into the requests
+// for the streaming step, and the frame's statistics.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "format/virtual_texture_reader.h"
+#include "reference/cache_state.h"
+#include "runtime/needbuffer_analysis.h"
+#include "runtime/page_cache.h"
+#include "runtime/page_priority.h"
+#include "runtime/page_streamer.h"
+#include "runtime/page_table.h"
+
+namespace vt {
+
+struct RuntimeOptions {
+  uint32_t framesX = 16, framesY = 16;  // the cache: framesX x framesY frames of (P + 2B)^2
+  uint32_t lockedLevels = 0;            // levels 0 .. lockedLevels - 1 never leave the cache
+  PriorityOptions priority;
+};
+
+struct FrameStatistics {
+  uint64_t coveredPixels = 0;
+  uint64_t neededPages = 0;       // distinct pages the needbuffer names
+  uint64_t hits = 0, misses = 0;  // needed pages resident / not resident
+  uint64_t hitPixels = 0;         // pixels whose needed page is resident
+  uint64_t requested = 0;         // pages requested for streaming (ancestors included)
+  uint64_t streamed = 0;          // pages applied to the cache before this frame
+  uint64_t evicted = 0;
+  uint64_t resident = 0;  // pages in the cache
+};
+
+class VirtualTextureRuntime {
+ public:
+  VirtualTextureRuntime(const VirtualTextureReader& reader, const RuntimeOptions& options);
+
+  const reference::CacheState& cacheState() const { return cache_; }
+  const PageTable& pageTable() const { return table_; }
+  const PageCache& pageCache() const { return pageCache_; }
+
+  // Loads pages at once (an initial cache state); the root always comes first.
+  void preload(std::span<const uint64_t> pages);
+  // Applies streamed pages; returns how many were applied and evicted.
+  std::pair<uint64_t, uint64_t> apply(std::vector<StreamedPage> pages);
+
+  // Analyzes a drawn frame (needbuffer, and depth when the heuristic needs it), touches the
+  // resident needed pages (LRU), and returns the requests, most important first.
+  std::vector<StreamRequest> analyze(std::span<const glm::uvec4> need, std::span<const float> depth,
+                                     int width, int height, bool need8, uint64_t frameNumber,
+                                     FrameStatistics& statistics);
+
+  // Whether the configured heuristic reads depth (only then need the renderer deliver it).
+  bool needsDepth() const;
+
+ private:
+  void insert(uint64_t page, std::span<const std::byte> texels, uint64_t& evicted);
+  void syncIndirection();
+
+  const VirtualTextureReader& reader_;
+  RuntimeOptions options_;
+  PageCache pageCache_;
+  PageTable table_;
+  reference::CacheState cache_;
+};
+
+}  // namespace vt

@@ -1,0 +1,105 @@
+// The management step against first principles: after any preload and streaming, every
+// indirection entry names the frame that holds the page's best resident ancestor, and that frame
+// holds exactly that page's texels. Streaming respects its budget, latency and ordering.
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "build/synthetic_texture.h"
+#include "reference/cache_state.h"
+#include "runtime/virtual_texture_runtime.h"
+#include "test_support.h"
+
+namespace vt {
+namespace {
+
+class Runtime : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    writeSyntheticTexture(
+        dir_ / "t.vt",
+        {{.pageSize = 8, .border = 1, .levelCount = 4, .channels = 3}, std::nullopt});
+    reader_ = std::make_unique<VirtualTextureReader>(dir_ / "t.vt");
+  }
+
+  // Checks the whole cache state against the page table's resident set, texel by texel.
+  void expectConsistent(const VirtualTextureRuntime& runtime) {
+    const reference::CacheState& cache = runtime.cacheState();
+    const TextureDescription& d = cache.description;
+    const uint32_t side = d.storedPageSide();
+    for (uint32_t m = 0; m < d.levelCount; ++m)
+      for (uint64_t p = 0; p < pagesInLevel(m); ++p) {
+        PageId page = fromRelativeIndex(p, m);
+        while (!runtime.pageTable().resident(page)) page = parent(page);
+        const glm::u16vec4 entry = cache.entry(fromRelativeIndex(p, m));
+        ASSERT_EQ(entry.z, page.level);
+        ASSERT_EQ(runtime.pageCache().frameOf(absoluteIndex(page)), (FrameId{entry.x, entry.y}));
+        // The frame's first texel row equals the page's.
+        const std::vector<std::byte> texels = reader_->readPage(page);
+        for (uint32_t x = 0; x < side; ++x) {
+          const glm::u8vec4 expected =
+              reference::expandToRgba(texels.data() + x * d.channels, d.channels);
+          const uint8_t* got =
+              cache.texels.data() +
+              (size_t{entry.y} * side * cache.widthTexels + entry.x * side + x) * 4;
+          ASSERT_EQ(glm::u8vec4(got[0], got[1], got[2], got[3]), expected);
+        }
+      }
+  }
+
+  test::ScratchDirectory dir_;
+  std::unique_ptr<VirtualTextureReader> reader_;
+};
+
+TEST_F(Runtime, CacheStateFollowsEveryInsertionAndEviction) {
+  RuntimeOptions options;
+  options.framesX = 3;
+  options.framesY = 2;  // six frames for 85 pages: evictions all the time
+  options.lockedLevels = 1;
+  VirtualTextureRuntime runtime(*reader_, options);
+  expectConsistent(runtime);
+  const std::vector<uint64_t> initial = {1, 2, 3, 4};
+  runtime.preload(initial);
+  expectConsistent(runtime);
+  BudgetStreamer streamer(*reader_, 2);
+  for (uint64_t step = 0; step < 30; ++step) {
+    const std::vector<StreamRequest> requests = {{5 + (step * 7) % 80, 1.0},
+                                                 {5 + (step * 13) % 80, 0.5}};
+    runtime.apply(streamer.frame(requests));
+    expectConsistent(runtime);
+    EXPECT_TRUE(runtime.pageCache().contains(0));  // locked
+  }
+  EXPECT_GT(runtime.pageCache().statistics().evictions, 10u);
+}
+
+TEST_F(Runtime, BudgetStreamerLoadsAtMostItsBudgetAfterTheLatency) {
+  BudgetStreamer streamer(*reader_, 2, 1);
+  const std::vector<StreamRequest> requests = {{7, 3.0}, {8, 2.0}, {9, 1.0}};
+  EXPECT_TRUE(streamer.frame(requests).empty());  // one frame of latency
+  const auto arrived = streamer.frame(requests);  // 7 and 8 are in flight: 9 is read now
+  ASSERT_EQ(arrived.size(), 2u);
+  EXPECT_EQ(arrived[0].page, 7u);
+  EXPECT_EQ(arrived[1].page, 8u);
+  EXPECT_EQ(arrived[0].texels, reader_->readPage(fromAbsoluteIndex(7)));
+  const auto next = streamer.frame({});
+  ASSERT_EQ(next.size(), 1u);
+  EXPECT_EQ(next[0].page, 9u);
+}
+
+TEST_F(Runtime, ThreadedStreamerReadsTheLatestRequests) {
+  ThreadedStreamer streamer(*reader_);
+  streamer.request({{3, 1.0}, {4, 1.0}, {5, 1.0}});
+  streamer.drain();
+  std::set<uint64_t> pages;
+  for (const StreamedPage& page : streamer.takeStreamed()) {
+    pages.insert(page.page);
+    EXPECT_EQ(page.texels, reader_->readPage(fromAbsoluteIndex(page.page)));
+  }
+  EXPECT_EQ(pages, (std::set<uint64_t>{3, 4, 5}));
+  EXPECT_TRUE(streamer.takeStreamed().empty());
+  EXPECT_EQ(streamer.failures(), 0u);
+}
+
+}  // namespace
+}  // namespace vt
