@@ -9,9 +9,9 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <map>
 #include <random>
 
+#include "benchmarks/ratio_reporter.h"
 #include "build/synthetic_texture.h"
 #include "format/virtual_texture_reader.h"
 
@@ -55,25 +55,6 @@ void readPageBarePread(benchmark::State& state, const std::filesystem::path& fil
   state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * pageBytes));
 }
 
-// Collects each benchmark's time per iteration to print the ratio after the usual table.
-class RatioReporter : public benchmark::ConsoleReporter {
- public:
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const auto& run : runs) seconds_[run.run_name.function_name] = run.GetAdjustedRealTime();
-    ConsoleReporter::ReportRuns(runs);
-  }
-  void printRatio() const {
-    const auto verified = seconds_.find("readPageVerified"),
-               bare = seconds_.find("readPageBarePread");
-    if (verified == seconds_.end() || bare == seconds_.end()) return;
-    std::printf("\nreadPage (pread + XXH3 check) / bare pread: %.2fx the time per page\n",
-                verified->second / bare->second);
-  }
-
- private:
-  std::map<std::string, double> seconds_;
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -87,7 +68,8 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("readPageBarePread", readPageBarePread, file);
   RatioReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
-  reporter.printRatio();
+  reporter.printRatio("readPageVerified", "readPageBarePread",
+                      "readPage (pread + XXH3 check) / bare pread: %.2fx the time per page\n");
   std::filesystem::remove(file);
   benchmark::Shutdown();
 }
