@@ -21,6 +21,7 @@
 #include "reference/renderer.h"
 #include "runtime/virtual_texture_runtime.h"
 #include "scene/box_room.h"
+#include "scene/camera_motion.h"
 #include "scene/camera_path.h"
 #include "scene/obj_mesh.h"
 
@@ -29,7 +30,7 @@ namespace vt {
 void addFlyCommand(CLI::App& app) {
   struct Options {
     std::string texture, path, mesh, size = "320x200", heuristic = "pixelsum", ancestors = "none";
-    std::string output = "fly", backend = "oracle";
+    std::string output = "fly", backend = "oracle", lookAhead = "none", hotSpot = "shifted";
     uint32_t budget = 10, latency = 0, lockedLevels = 0, initialLevels = 3, frames = 16;
     float noiseThreshold = -1.0f;
     bool noiseSkipping = false;
@@ -58,6 +59,12 @@ void addFlyCommand(CLI::App& app) {
       ->check(CLI::IsMember({"none", "intern", "extern"}))
       ->capture_default_str();
   command->add_flag("--noise-skipping", o->noiseSkipping, "NoiseValueSkipping (with extern)");
+  command->add_option("--lookahead", o->lookAhead, "LookAhead camera (4.2.4): none, plain, stopfix")
+      ->check(CLI::IsMember({"none", "plain", "stopfix"}))
+      ->capture_default_str();
+  command->add_option("--hotspot", o->hotSpot, "HotSpot centre (4.2.3.1): fixed, shifted, sliding")
+      ->check(CLI::IsMember({"fixed", "shifted", "sliding"}))
+      ->capture_default_str();
   command->add_option("--noise-threshold", o->noiseThreshold,
                       "NoiseValueSkipping threshold (default: the mean NoiseValue)");
   command
@@ -111,6 +118,8 @@ void addFlyCommand(CLI::App& app) {
       initial.push_back(p);
     runtime.preload(initial);
     BudgetStreamer streamer(reader, o->budget, o->latency);
+    const LookAhead lookAhead = parseLookAhead(o->lookAhead);
+    const HotSpotMode hotSpotMode = parseHotSpotMode(o->hotSpot);
 
     std::unique_ptr<HeadlessContext> context;
     if (o->backend == "gl") context = std::make_unique<HeadlessContext>();
@@ -125,32 +134,46 @@ void addFlyCommand(CLI::App& app) {
     FrameStatistics totals;
     const auto start = std::chrono::steady_clock::now();
     uint64_t streamedBefore = 0, evictedBefore = 0;
-    for (int frameNumber = 0; frameNumber < path.frameCount(); ++frameNumber) {
-      const ClipSpaceMesh clip = toClipSpace(mesh, path.at(frameNumber), settings.viewport);
-      std::vector<uint8_t> color;
-      std::vector<glm::uvec4> need;
-      std::vector<float> depth;
+    // Draws a camera's view from the current cache state: colour, needbuffer, depth if asked.
+    const auto draw = [&](const Camera& camera, std::vector<uint8_t>* color,
+                          std::vector<glm::uvec4>& need, std::vector<float>* depth) {
+      const ClipSpaceMesh clip = toClipSpace(mesh, camera, settings.viewport);
       if (context) {
         GlFrameRenderer gl(runtime.cacheState());
         GlFrame frame = gl.render(clip, settings);
-        color = std::move(frame.color);
+        if (color) *color = std::move(frame.color);
         need = std::move(frame.need);
-        if (runtime.needsDepth())
+        if (depth)
           throw InputError(
               o->texture,
               "the GL backend does not read back depth yet: use --backend oracle for distance");
-      } else {
-        reference::Frame frame = reference::renderFrame(clip, runtime.cacheState(), settings);
-        color = std::move(frame.color);
-        need = std::move(frame.need);
-        if (runtime.needsDepth()) depth = std::move(frame.depth);
+        return;
+      }
+      reference::Frame frame = reference::renderFrame(clip, runtime.cacheState(), settings);
+      if (color) *color = std::move(frame.color);
+      need = std::move(frame.need);
+      if (depth) *depth = std::move(frame.depth);
+    };
+    for (int frameNumber = 0; frameNumber < path.frameCount(); ++frameNumber) {
+      const Camera current = path.at(frameNumber), previous = path.at(std::max(0, frameNumber - 1)),
+                   beforePrevious = path.at(std::max(0, frameNumber - 2));
+      std::vector<uint8_t> color;
+      std::vector<glm::uvec4> need, lookAheadNeed;
+      std::vector<float> depth;
+      draw(current, &color, need, runtime.needsDepth() ? &depth : nullptr);
+      VirtualTextureRuntime::Prediction prediction;
+      prediction.hotSpot = vt::hotSpot(previous, current, settings.viewport, hotSpotMode);
+      if (lookAhead != LookAhead::kNone) {
+        draw(lookAheadCamera(beforePrevious, previous, current, lookAhead), nullptr, lookAheadNeed,
+             nullptr);
+        prediction.lookAheadNeed = lookAheadNeed;
       }
       FrameStatistics statistics;
       statistics.streamed = streamedBefore;
       statistics.evicted = evictedBefore;
-      const std::vector<StreamRequest> requests =
-          runtime.analyze(need, depth, settings.viewport.width, settings.viewport.height,
-                          settings.need8, static_cast<uint64_t>(frameNumber), statistics);
+      const std::vector<StreamRequest> requests = runtime.analyze(
+          need, depth, settings.viewport.width, settings.viewport.height, settings.need8,
+          static_cast<uint64_t>(frameNumber), statistics, prediction);
       csv << frameNumber << ',' << statistics.coveredPixels << ',' << statistics.neededPages << ','
           << statistics.hits << ',' << statistics.misses << ',' << statistics.hitPixels << ','
           << statistics.requested << ',' << statistics.streamed << ',' << statistics.evicted << ','

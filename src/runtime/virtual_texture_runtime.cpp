@@ -79,21 +79,33 @@ bool VirtualTextureRuntime::needsDepth() const {
   return options_.priority.heuristic.find("distance") != std::string::npos;
 }
 
-std::vector<StreamRequest> VirtualTextureRuntime::analyze(std::span<const glm::uvec4> need,
-                                                          std::span<const float> depth, int width,
-                                                          int height, bool need8,
-                                                          uint64_t frameNumber,
-                                                          FrameStatistics& statistics) {
+std::vector<StreamRequest> VirtualTextureRuntime::analyze(
+    std::span<const glm::uvec4> need, std::span<const float> depth, int width, int height,
+    bool need8, uint64_t frameNumber, FrameStatistics& statistics, const Prediction& prediction) {
   const std::string& heuristic = options_.priority.heuristic;
   AnalysisOptions analysisOptions;
   analysisOptions.need8 = need8;
   analysisOptions.depth = needsDepth();
   analysisOptions.centreWeight = heuristic.find("weightedpixel") != std::string::npos;
   if (heuristic.find("hotspot") != std::string::npos)
-    analysisOptions.hotSpot =
-        glm::vec2(static_cast<float>(width), static_cast<float>(height)) * 0.5f;
+    analysisOptions.hotSpot = prediction.hotSpot.value_or(
+        glm::vec2(static_cast<float>(width), static_cast<float>(height)) * 0.5f);
   const NeedBufferAnalysis analysis =
       analyzeNeedBuffer(need, depth, width, height, analysisOptions);
+  // The LookAhead pass adds its pages' statistics (its depth is not read: Distance ranks by the
+  // drawn frame).
+  NeedBufferAnalysis combined = analysis;
+  if (!prediction.lookAheadNeed.empty()) {
+    AnalysisOptions predicted = analysisOptions;
+    predicted.depth = false;
+    for (const auto& [page, s] :
+         analyzeNeedBuffer(prediction.lookAheadNeed, {}, width, height, predicted).pages) {
+      PageStatistics& total = combined.pages[page];
+      total.pixels += s.pixels;
+      total.centreWeight += s.centreWeight;
+      total.hotSpotWeight += s.hotSpotWeight;
+    }
+  }
 
   statistics.coveredPixels = analysis.coveredPixels;
   statistics.neededPages = analysis.pages.size();
@@ -116,7 +128,7 @@ std::vector<StreamRequest> VirtualTextureRuntime::analyze(std::span<const glm::u
   const NoiseValues noise = [this](PageId page) {
     return reader_.contains(page) ? reader_.noiseValue(page) : 0.0f;
   };
-  std::vector<StreamRequest> requests = prioritizePages(analysis, table_, noise, priority);
+  std::vector<StreamRequest> requests = prioritizePages(combined, table_, noise, priority);
   // Pages the file does not store (outside a sparse layout) cannot be streamed.
   std::erase_if(requests, [this](const StreamRequest& r) {
     return !reader_.contains(fromAbsoluteIndex(r.page));

@@ -49,11 +49,20 @@ class VirtualTextureRuntime {
   // Applies streamed pages; returns how many were applied and evicted.
   std::pair<uint64_t, uint64_t> apply(std::vector<StreamedPage> pages);
 
+  // What a frame's analysis may add: the hot spot (HotSpot; default the screen centre), and the
+  // needbuffer of the LookAhead camera's second pass, whose pages are requested as well.
+  struct Prediction {
+    std::optional<glm::vec2> hotSpot;
+    std::span<const glm::uvec4> lookAheadNeed;
+  };
+
   // Analyzes a drawn frame (needbuffer, and depth when the heuristic needs it), touches the
-  // resident needed pages (LRU), and returns the requests, most important first.
+  // resident needed pages (LRU), and returns the requests, most important first. Statistics
+  // describe the drawn frame only.
   std::vector<StreamRequest> analyze(std::span<const glm::uvec4> need, std::span<const float> depth,
                                      int width, int height, bool need8, uint64_t frameNumber,
-                                     FrameStatistics& statistics);
+                                     FrameStatistics& statistics,
+                                     const Prediction& prediction = {});
 
   // Whether the configured heuristic reads depth (only then need the renderer deliver it).
   bool needsDepth() const;
