@@ -8,6 +8,11 @@ target_compile_options(vt_compile_options INTERFACE -Wall -Wextra -Wpedantic -ff
 if(VT_WARNINGS_AS_ERRORS)
   target_compile_options(vt_compile_options INTERFACE -Werror)
 endif()
+option(VT_SANITIZE_THREAD "Build with ThreadSanitizer" OFF)
+if(VT_SANITIZE_THREAD)
+  target_compile_options(vt_compile_options INTERFACE -fsanitize=thread -fno-omit-frame-pointer)
+  target_link_options(vt_compile_options INTERFACE -fsanitize=thread)
+endif()
 if(VT_SANITIZE)
   target_compile_options(vt_compile_options INTERFACE -fsanitize=address,undefined
                                                       -fno-sanitize-recover=all -fno-omit-frame-pointer)

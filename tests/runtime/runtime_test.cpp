@@ -101,5 +101,23 @@ TEST_F(Runtime, ThreadedStreamerReadsTheLatestRequests) {
   EXPECT_EQ(streamer.failures(), 0u);
 }
 
+TEST_F(Runtime, ThreadedStreamerTakesRequestsReplacedWhileItReads) {
+  // The management thread replaces the requests and takes pages while the streaming thread reads
+  // (the case the ThreadSanitizer run of CI watches).
+  ThreadedStreamer streamer(*reader_);
+  std::set<uint64_t> received;
+  for (uint64_t round = 0; round < 200; ++round) {
+    streamer.request({{(round * 17) % 85, 1.0}, {(round * 31) % 85, 0.5}, {(round * 7) % 85, 0.2}});
+    for (const StreamedPage& page : streamer.takeStreamed()) {
+      ASSERT_EQ(page.texels.size(), reader_->description().pageBytes());
+      received.insert(page.page);
+    }
+  }
+  streamer.drain();
+  for (const StreamedPage& page : streamer.takeStreamed()) received.insert(page.page);
+  EXPECT_FALSE(received.empty());
+  EXPECT_EQ(streamer.failures(), 0u);
+}
+
 }  // namespace
 }  // namespace vt
