@@ -2,19 +2,10 @@
 
 #include <array>
 
+#include "common/level_hues.h"
+
 namespace vt::reference {
 namespace {
-
-constexpr std::array<std::array<uint8_t, 3>, 8> kLevelHues = {{
-    {230, 60, 60},
-    {240, 150, 40},
-    {220, 210, 50},
-    {70, 190, 80},
-    {50, 170, 200},
-    {70, 90, 220},
-    {160, 80, 210},
-    {210, 90, 160},
-}};
 
 size_t flippedIndex(const Frame& frame, int px, int imageRow) {
   const int py = frame.viewport.height - 1 - imageRow;
@@ -48,7 +39,7 @@ std::vector<uint8_t> needImage(const Frame& frame, bool need8) {
                              4;
       out[3] = 255;
       if (!page) continue;
-      const auto& hue = kLevelHues[page->level % kLevelHues.size()];
+      const auto& hue = levelHue(page->level);
       const bool dark = ((page->x + page->y) & 1) != 0;
       for (size_t c = 0; c < 3; ++c) out[c] = static_cast<uint8_t>(dark ? hue[c] * 3 / 5 : hue[c]);
     }

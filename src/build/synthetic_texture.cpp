@@ -4,22 +4,11 @@
 #include <array>
 
 #include "build/noise_value.h"
+#include "common/level_hues.h"
 #include "format/virtual_texture_writer.h"
 
 namespace vt {
 namespace {
-
-// One hue per level, repeating after eight levels.
-constexpr std::array<std::array<uint32_t, 3>, 8> kLevelHues = {{
-    {230, 60, 60},
-    {240, 150, 40},
-    {220, 210, 50},
-    {70, 190, 80},
-    {50, 170, 200},
-    {70, 90, 220},
-    {160, 80, 210},
-    {210, 90, 160},
-}};
 
 std::array<uint8_t, 4> texel(const TextureDescription& d, uint32_t level, int64_t x, int64_t y) {
   const int64_t side = static_cast<int64_t>(levelSide(d.pageSize, level));
@@ -29,7 +18,7 @@ std::array<uint8_t, 4> texel(const TextureDescription& d, uint32_t level, int64_
   if (cx % d.pageSize == 0 || cy % d.pageSize == 0) return {255, 255, 255, 255};
   const uint64_t square = std::max<uint32_t>(d.pageSize / 8, 1);
   const uint32_t shade = ((cx / square + cy / square) & 1) ? 256 : 160;
-  const auto& hue = kLevelHues[level % kLevelHues.size()];
+  const auto& hue = levelHue(level);
   // Gradient: 3/4 of the hue at s = 0 rising to all of it at s = 1 (t for green).
   const uint64_t rampS = 192 + (64 * cx) / static_cast<uint64_t>(side);
   const uint64_t rampT = 192 + (64 * cy) / static_cast<uint64_t>(side);

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/image_file.h"
 #include "gl/gl_frame_renderer.h"
@@ -50,7 +51,9 @@ void addCrosscheckCommand(CLI::App& app) {
                    "Comma-separated scene names, or all: room, grazing, "
                    "horizon, coplanar, minified")
       ->capture_default_str();
-  command->add_option("--size", o->size, "WIDTHxHEIGHT")->capture_default_str();
+  command->add_option("--size", o->size, "WIDTHxHEIGHT")
+      ->check(sizeValidator())
+      ->capture_default_str();
   command->add_option("--profile", o->profile, "Precision profile; auto follows GL_RENDERER")
       ->check(CLI::IsMember({"auto", "exact", "llvmpipe", "nvidia"}))
       ->capture_default_str();
@@ -58,11 +61,7 @@ void addCrosscheckCommand(CLI::App& app) {
       ->capture_default_str();
   command->callback([o] {
     reference::RenderSettings settings;
-    if (std::sscanf(o->size.c_str(), "%dx%d", &settings.viewport.width,
-                    &settings.viewport.height) != 2 ||
-        settings.viewport.width < 1 || settings.viewport.height < 1 ||
-        settings.viewport.width > 8192 || settings.viewport.height > 8192)
-      throw std::invalid_argument("size: '" + o->size + "' is not WIDTHxHEIGHT within 1..8192");
+    settings.viewport = parseSize(o->size);
     std::vector<std::string> scenes;
     if (o->scenes == "all") {
       scenes = testSceneNames();

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/image_file.h"
 #include "gl/gl_frame_renderer.h"
@@ -45,7 +46,9 @@ void addFlyCommand(CLI::App& app) {
                       "Camera path (.json); default: a turn around the box room");
   command->add_option("--mesh", o->mesh,
                       "OBJ mesh with virtual texture coordinates (default: the box room)");
-  command->add_option("--size", o->size, "WIDTHxHEIGHT")->capture_default_str();
+  command->add_option("--size", o->size, "WIDTHxHEIGHT")
+      ->check(sizeValidator())
+      ->capture_default_str();
   command->add_option("--budget", o->budget, "Pages streamed per frame (thesis 4.1.1)")
       ->capture_default_str();
   command->add_option("--latency", o->latency, "Frames between a request and its page's arrival")
@@ -87,11 +90,7 @@ void addFlyCommand(CLI::App& app) {
   command->callback([o] {
     validateHeuristic(o->heuristic);
     reference::RenderSettings settings;
-    if (std::sscanf(o->size.c_str(), "%dx%d", &settings.viewport.width,
-                    &settings.viewport.height) != 2 ||
-        settings.viewport.width < 2 || settings.viewport.height < 2 ||
-        settings.viewport.width > 8192 || settings.viewport.height > 8192)
-      throw std::invalid_argument("size: '" + o->size + "' is not WIDTHxHEIGHT within 2..8192");
+    settings.viewport = parseSize(o->size);
     settings.threads = o->threads;
     const VirtualTextureReader reader(o->texture);
     settings.need8 = reader.description().finestLevel() <= 12;  // the narrowest encoding that fits

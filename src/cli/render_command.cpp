@@ -9,6 +9,7 @@
 #include <set>
 
 #include "cli/commands.h"
+#include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/image_file.h"
 #include "eval/image_metrics.h"
@@ -21,15 +22,6 @@
 
 namespace vt {
 namespace {
-
-Viewport parseSize(const std::string& text) {
-  int width = 0, height = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &width, &x, &height, &extra) != 3 || x != 'x' ||
-      width < 1 || height < 1 || width > 16384 || height > 16384)
-    throw std::invalid_argument("size: '" + text + "' is not WIDTHxHEIGHT within 1..16384");
-  return {width, height};
-}
 
 std::vector<uint8_t> readReference(const std::filesystem::path& path, Viewport size) {
   auto input = OIIO::ImageInput::open(path.string());
@@ -84,7 +76,7 @@ void addRenderCommand(CLI::App& app) {
   command->add_option("--camera", o->camera, "x,y,z:tx,ty,tz[:fov] (default: the box room's)")
       ->check(validating(parseCamera, "CAMERA"));
   command->add_option("--size", o->size, "WIDTHxHEIGHT")
-      ->check(validating(parseSize, "SIZE"))
+      ->check(sizeValidator())
       ->capture_default_str();
   command->add_option("--profile", o->profile, "Precision profile")
       ->check(CLI::IsMember({"exact", "llvmpipe", "nvidia"}))

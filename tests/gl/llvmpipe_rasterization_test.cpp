@@ -21,14 +21,6 @@
 namespace vt {
 namespace {
 
-bool cpuHasFma() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string word;
-  while (cpuinfo >> word)
-    if (word == "fma") return true;
-  return false;
-}
-
 const char* kVertex = R"(#version 450 core
 layout(location = 0) in vec4 aClipPosition;
 layout(location = 1) in vec2 aUV;
@@ -171,8 +163,8 @@ TEST_F(LlvmpipeRasterization, OracleMatchesEveryPixelBitForBit) {
   const reference::ResidentTexture texture(reader);
   reference::RenderSettings settings;
   settings.debugChannels = true;
-  settings.profile =
-      cpuHasFma() ? reference::PrecisionProfile::kLlvmpipe : reference::PrecisionProfile::kExact;
+  settings.profile = __builtin_cpu_supports("fma") ? reference::PrecisionProfile::kLlvmpipe
+                                                   : reference::PrecisionProfile::kExact;
   settings.viewport = {160, 120};
   for (const unsigned seed : {1u, 2u, 3u}) {
     const reference::ClipSpaceMesh mesh = randomScene(seed, 120);

@@ -20,14 +20,6 @@
 namespace vt {
 namespace {
 
-bool cpuHasFma() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string word;
-  while (cpuinfo >> word)
-    if (word == "fma") return true;
-  return false;
-}
-
 // Textured triangles at many scales and angles: magnified, minified, grazing, some clipped.
 reference::ClipSpaceMesh texturedScene(unsigned seed) {
   std::mt19937 random(seed);
@@ -79,8 +71,8 @@ TEST_P(LlvmpipeShading, OracleMatchesColourAndNeedbufferBitForBit) {
 
   reference::RenderSettings settings;
   settings.viewport = {192, 128};
-  settings.profile =
-      cpuHasFma() ? reference::PrecisionProfile::kLlvmpipe : reference::PrecisionProfile::kExact;
+  settings.profile = __builtin_cpu_supports("fma") ? reference::PrecisionProfile::kLlvmpipe
+                                                   : reference::PrecisionProfile::kExact;
   settings.exactFilter = GetParam().exactFilter;
   settings.trilinear = GetParam().trilinear;
   settings.need8 = GetParam().need8;
