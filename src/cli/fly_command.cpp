@@ -10,6 +10,7 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "cli/commands.h"
@@ -34,7 +35,7 @@ void addFlyCommand(CLI::App& app) {
     std::string output = "fly", backend = "oracle", lookAhead = "none", hotSpot = "shifted";
     uint32_t budget = 10, latency = 0, lockedLevels = 0, initialLevels = 3, frames = 16;
     float noiseThreshold = -1.0f;
-    bool noiseSkipping = false;
+    bool noiseSkipping = false, preloadVisible = false;
     unsigned threads = 0;
     int imagesEvery = 0;
   };
@@ -78,6 +79,8 @@ void addFlyCommand(CLI::App& app) {
       ->add_option("--initial-levels", o->initialLevels,
                    "Levels 0..K-1 loaded before the first frame (4.2.1)")
       ->capture_default_str();
+  command->add_flag("--preload-visible", o->preloadVisible,
+                    "Also load the pages the first frame needs before it (4.2.1)");
   command->add_option("--cache-frames", o->frames, "The cache holds N x N frames")
       ->capture_default_str();
   command->add_option("--backend", o->backend, "oracle or gl")
@@ -109,12 +112,22 @@ void addFlyCommand(CLI::App& app) {
     options.priority.noiseThreshold =
         o->noiseThreshold >= 0.0f ? o->noiseThreshold : static_cast<float>(meanNoise);
     VirtualTextureRuntime runtime(reader, options);
+    // The initial cache state (thesis 4.2.1): levels 0..K-1 and, with --preload-visible, every
+    // page the first frame needs, found by drawing it with every page resident.
     std::vector<uint64_t> initial;
-    for (uint64_t p = 0;
-         p < pageCount(std::min(o->initialLevels, reader.description().levelCount) - 1) &&
-         o->initialLevels > 0;
-         ++p)
+    const uint32_t initialLevels = std::min(o->initialLevels, reader.description().levelCount);
+    for (uint64_t p = 0; initialLevels > 0 && p < pageCount(initialLevels - 1); ++p)
       initial.push_back(p);
+    if (o->preloadVisible) {
+      const reference::ResidentTexture everything(reader);
+      const reference::Frame first = reference::renderFrame(
+          toClipSpace(mesh, path.at(0), settings.viewport), everything, settings);
+      std::set<uint64_t> visible;
+      for (const glm::uvec4& value : first.need)
+        if (const auto page = decodeNeed(value, settings.need8))
+          visible.insert(absoluteIndex(*page));
+      initial.insert(initial.end(), visible.begin(), visible.end());
+    }
     runtime.preload(initial);
     BudgetStreamer streamer(reader, o->budget, o->latency);
     const LookAhead lookAhead = parseLookAhead(o->lookAhead);
@@ -210,6 +223,7 @@ void addFlyCommand(CLI::App& app) {
                               {"cache_frames", o->frames},
                               {"locked_levels", o->lockedLevels},
                               {"initial_levels", o->initialLevels},
+                              {"preload_visible", o->preloadVisible},
                               {"hits", totals.hits},
                               {"misses", totals.misses},
                               {"streamed", totals.streamed},
