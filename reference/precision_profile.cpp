@@ -71,6 +71,11 @@ float llvmpipeExp2(float x) {
   return poly * std::bit_cast<float>(static_cast<uint32_t>(exponent + 127) << 23);
 }
 
+PrecisionProfile profileForRenderer(const std::string& glRenderer) {
+  if (glRenderer.find("llvmpipe") == std::string::npos) return PrecisionProfile::kNvidia;
+  return __builtin_cpu_supports("fma") ? PrecisionProfile::kLlvmpipe : PrecisionProfile::kExact;
+}
+
 float profileLog2(PrecisionProfile profile, float x) {
   return profile == PrecisionProfile::kLlvmpipe ? llvmpipeLog2(x) : std::log2(x);
 }

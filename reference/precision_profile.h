@@ -30,6 +30,10 @@ bool flushesDenormals(PrecisionProfile profile);
 float llvmpipeLog2(float x);
 float llvmpipeExp2(float x);
 
+// The profile that describes a GL implementation, from its GL_RENDERER: llvmpipe on a CPU with FMA
+// (exact, with the same arithmetic, where llvmpipe runs without FMA), nvidia for anything else.
+PrecisionProfile profileForRenderer(const std::string& glRenderer);
+
 // The profile's log2.
 float profileLog2(PrecisionProfile profile, float x);
 

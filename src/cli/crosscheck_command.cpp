@@ -23,8 +23,6 @@
 namespace vt {
 namespace {
 
-bool cpuHasFma() { return __builtin_cpu_supports("fma"); }
-
 std::string environment(const char* name) {
   const char* value = std::getenv(name);
   return value ? value : "";
@@ -77,11 +75,8 @@ void addCrosscheckCommand(CLI::App& app) {
              1);
     const HeadlessContext context;
     const std::string renderer = context.renderer();
-    const bool llvmpipe = renderer.find("llvmpipe") != std::string::npos;
     if (o->profile == "auto")
-      settings.profile = llvmpipe ? (cpuHasFma() ? reference::PrecisionProfile::kLlvmpipe
-                                                 : reference::PrecisionProfile::kExact)
-                                  : reference::PrecisionProfile::kNvidia;
+      settings.profile = reference::profileForRenderer(renderer);
     else
       settings.profile = reference::parsePrecisionProfile(o->profile);
 
@@ -105,7 +100,7 @@ void addCrosscheckCommand(CLI::App& app) {
     summary["settings"] = {{"LP_NUM_THREADS", environment("LP_NUM_THREADS")},
                            {"GALLIVM_PERF", environment("GALLIVM_PERF")},
                            {"GALLIUM_OVERRIDE_CPU_CAPS", environment("GALLIUM_OVERRIDE_CPU_CAPS")},
-                           {"cpu_fma", cpuHasFma()}};
+                           {"cpu_fma", static_cast<bool>(__builtin_cpu_supports("fma"))}};
     summary["frames"] = nlohmann::json::array();
     uint64_t totals[5] = {0, 0, 0, 0, 0};
     const auto width = static_cast<uint32_t>(settings.viewport.width),

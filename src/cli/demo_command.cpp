@@ -49,8 +49,7 @@ void renderAndCrossCheck(const VirtualTextureReader& reader, const std::filesyst
     std::cout << "no OpenGL (" << e.what() << "): the oracle renders alone\n";
   }
   // The oracle follows the GL implementation at hand: llvmpipe's arithmetic on llvmpipe.
-  if (context && context->renderer().find("llvmpipe") != std::string::npos)
-    settings.profile = reference::PrecisionProfile::kLlvmpipe;
+  if (context) settings.profile = reference::profileForRenderer(context->renderer());
   auto start = std::chrono::steady_clock::now();
   const reference::Frame oracle = reference::renderFrame(mesh, cache, settings);
   const double oracleSeconds = secondsSince(start);

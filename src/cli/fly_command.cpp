@@ -135,8 +135,7 @@ void addFlyCommand(CLI::App& app) {
 
     std::unique_ptr<HeadlessContext> context;
     if (o->backend == "gl") context = std::make_unique<HeadlessContext>();
-    if (context && context->renderer().find("llvmpipe") != std::string::npos)
-      settings.profile = reference::PrecisionProfile::kLlvmpipe;
+    if (context) settings.profile = reference::profileForRenderer(context->renderer());
 
     const std::filesystem::path folder = o->output;
     std::filesystem::create_directories(folder);
