@@ -136,6 +136,9 @@ void addFlyCommand(CLI::App& app) {
     std::unique_ptr<HeadlessContext> context;
     if (o->backend == "gl") context = std::make_unique<HeadlessContext>();
     if (context) settings.profile = reference::profileForRenderer(context->renderer());
+    // One program and one set of textures for the whole flight (the cache keeps its layout).
+    std::unique_ptr<GlFrameRenderer> gl;
+    if (context) gl = std::make_unique<GlFrameRenderer>(runtime.cacheState());
 
     const std::filesystem::path folder = o->output;
     std::filesystem::create_directories(folder);
@@ -149,9 +152,9 @@ void addFlyCommand(CLI::App& app) {
     const auto draw = [&](const Camera& camera, std::vector<uint8_t>* color,
                           std::vector<glm::uvec4>& need, std::vector<float>* depth) {
       const ClipSpaceMesh clip = toClipSpace(mesh, camera, settings.viewport);
-      if (context) {
-        GlFrameRenderer gl(runtime.cacheState());
-        GlFrame frame = gl.render(clip, settings);
+      if (gl) {
+        gl->uploadCache();  // the management step changed it since the last draw
+        GlFrame frame = gl->render(clip, settings);
         if (color) *color = std::move(frame.color);
         need = std::move(frame.need);
         if (depth)

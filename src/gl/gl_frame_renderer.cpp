@@ -13,19 +13,12 @@ GlFrameRenderer::GlFrameRenderer(const reference::CacheState& cache)
   const auto finestSide = static_cast<GLsizei>(pagesPerSide(d.finestLevel()));
   glTextureStorage2D(indirection_, static_cast<GLsizei>(d.levelCount), GL_RGBA16UI, finestSide,
                      finestSide);
-  for (uint32_t m = 0; m < d.levelCount; ++m) {
-    const auto side = static_cast<GLsizei>(pagesPerSide(m));
-    glTextureSubImage2D(indirection_, static_cast<GLint>(d.finestLevel() - m), 0, 0, side, side,
-                        GL_RGBA_INTEGER, GL_UNSIGNED_SHORT, cache.indirection[m].data());
-  }
   glTextureParameteri(indirection_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
   glTextureParameteri(indirection_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glCreateTextures(GL_TEXTURE_2D, 1, &texels_);
   const auto width = static_cast<GLsizei>(cache.widthTexels),
              height = static_cast<GLsizei>(cache.heightTexels);
   glTextureStorage2D(texels_, 1, GL_RGBA8, width, height);
-  glTextureSubImage2D(texels_, 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE,
-                      cache.texels.data());
   glTextureParameteri(texels_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(texels_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(texels_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -42,6 +35,19 @@ GlFrameRenderer::GlFrameRenderer(const reference::CacheState& cache)
   }
   glVertexArrayAttribFormat(vertexArray_, 0, 4, GL_FLOAT, GL_FALSE, offsetof(ClipVertex, position));
   glVertexArrayAttribFormat(vertexArray_, 1, 2, GL_FLOAT, GL_FALSE, offsetof(ClipVertex, uv));
+  uploadCache();
+}
+
+void GlFrameRenderer::uploadCache() {
+  const TextureDescription& d = cache_.description;
+  for (uint32_t m = 0; m < d.levelCount; ++m) {
+    const auto side = static_cast<GLsizei>(pagesPerSide(m));
+    glTextureSubImage2D(indirection_, static_cast<GLint>(d.finestLevel() - m), 0, 0, side, side,
+                        GL_RGBA_INTEGER, GL_UNSIGNED_SHORT, cache_.indirection[m].data());
+  }
+  glTextureSubImage2D(texels_, 0, 0, 0, static_cast<GLsizei>(cache_.widthTexels),
+                      static_cast<GLsizei>(cache_.heightTexels), GL_RGBA, GL_UNSIGNED_BYTE,
+                      cache_.texels.data());
 }
 
 GlFrameRenderer::~GlFrameRenderer() {

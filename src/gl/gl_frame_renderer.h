@@ -32,6 +32,10 @@ class GlFrameRenderer {
   GlFrameRenderer(const GlFrameRenderer&) = delete;
   GlFrameRenderer& operator=(const GlFrameRenderer&) = delete;
 
+  // Uploads the cache state's texels and indirection table again, after the runtime changed them
+  // (the textures keep their size: the cache's layout is fixed).
+  void uploadCache();
+
   // Uploads the mesh, draws and waits for the GPU (glFinish) without reading back: for timing.
   void draw(const ClipSpaceMesh& mesh, const reference::RenderSettings& settings);
   // Draws and reads back colour and needbuffer.
