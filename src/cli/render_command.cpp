@@ -60,21 +60,8 @@ void addRenderCommand(CLI::App& app) {
   command->add_option("TEXTURE", o->texture, "Virtual-texture file (.vt)")->required();
   command->add_option("--mesh", o->mesh,
                       "OBJ mesh with virtual texture coordinates (default: the box room)");
-  // Malformed sizes and cameras are bad arguments: usage line and exit code 2.
-  const auto validating = [](auto parse, const char* name) {
-    return CLI::Validator(
-        [parse](std::string& text) {
-          try {
-            parse(text);
-            return std::string();
-          } catch (const std::invalid_argument& e) {
-            return std::string(e.what());
-          }
-        },
-        name);
-  };
   command->add_option("--camera", o->camera, "x,y,z:tx,ty,tz[:fov] (default: the box room's)")
-      ->check(validating(parseCamera, "CAMERA"));
+      ->check(cameraValidator());
   command->add_option("--size", o->size, "WIDTHxHEIGHT")
       ->check(sizeValidator())
       ->capture_default_str();

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "scene/camera.h"
+
 namespace vt {
 
 Viewport parseSize(const std::string& text) {
@@ -14,17 +16,26 @@ Viewport parseSize(const std::string& text) {
   return {width, height};
 }
 
-CLI::Validator sizeValidator() {
+namespace {
+
+// A validator that reports the std::invalid_argument of `parse` as CLI11's error text.
+template <class Parse>
+CLI::Validator validatorFrom(Parse parse, const char* name) {
   return CLI::Validator(
-      [](std::string& text) {
+      [parse](std::string& text) {
         try {
-          parseSize(text);
+          parse(text);
           return std::string();
         } catch (const std::invalid_argument& e) {
           return std::string(e.what());
         }
       },
-      "SIZE");
+      name);
 }
+
+}  // namespace
+
+CLI::Validator sizeValidator() { return validatorFrom(parseSize, "SIZE"); }
+CLI::Validator cameraValidator() { return validatorFrom(parseCamera, "CAMERA"); }
 
 }  // namespace vt

@@ -1,6 +1,6 @@
 #pragma once
-// The WIDTHxHEIGHT argument of the rendering commands, checked by CLI11 so that a malformed size
-// is a bad argument (usage line, exit code 2).
+// The WIDTHxHEIGHT and camera arguments of the rendering commands, checked by CLI11 so that a
+// malformed value is a bad argument (usage line, exit code 2).
 
 #include <CLI/CLI.hpp>
 #include <string>
@@ -14,5 +14,7 @@ Viewport parseSize(const std::string& text);
 
 // A CLI11 validator running parseSize.
 CLI::Validator sizeValidator();
+// A CLI11 validator running parseCamera (scene/camera.h).
+CLI::Validator cameraValidator();
 
 }  // namespace vt
