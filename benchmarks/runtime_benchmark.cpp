@@ -96,16 +96,20 @@ void pageTableFullLoop(benchmark::State& state) {
   }
 }
 
-// The benchmark's virtual-texture file: P = 128, B = 4, RGBA8, levels 0..4 (341 pages, 25 MB).
+// The benchmark's virtual-texture file: P = 128, B = 4, RGBA8, levels 0..4 (341 pages, 25 MB),
+// written when a streaming benchmark first runs and removed at exit.
 const std::filesystem::path& streamingFile() {
-  static const std::filesystem::path file = [] {
-    const auto path = std::filesystem::temp_directory_path() /
-                      ("vt-runtime-bench-" + std::to_string(::getpid()) + ".vt");
-    vt::writeSyntheticTexture(
-        path, {{.pageSize = 128, .border = 4, .levelCount = 5, .channels = 4}, std::nullopt});
-    return path;
-  }();
-  return file;
+  struct File {
+    std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                 ("vt-runtime-bench-" + std::to_string(::getpid()) + ".vt");
+    File() {
+      vt::writeSyntheticTexture(
+          path, {{.pageSize = 128, .border = 4, .levelCount = 5, .channels = 4}, std::nullopt});
+    }
+    ~File() { std::filesystem::remove(path); }
+  };
+  static const File file;
+  return file.path;
 }
 
 void streamingThread(benchmark::State& state) {
@@ -155,6 +159,5 @@ int main(int argc, char** argv) {
   reporter.printRatio("streamingThread", "sequentialRead",
                       "every page through the streaming thread (pread, checksum, hand-over) / a "
                       "sequential read of the file: %.2fx the time\n");
-  std::filesystem::remove(streamingFile());
   benchmark::Shutdown();
 }
