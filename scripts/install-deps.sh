@@ -8,6 +8,8 @@ packages=(
   g++ cmake ninja-build pkg-config clang-format
   # geometry, images, ray tracing, meshes
   libglm-dev libopenimageio-dev openimageio-tools libembree-dev libtinyobjloader-dev
+  # Quake 3 maps: .pk3 archives are zip files
+  libzip-dev
   # headless OpenGL through EGL (Mesa llvmpipe) with libepoxy
   libegl-dev libegl1-mesa-dev libgl1-mesa-dri libopengl-dev libgl-dev libepoxy-dev
   # tests, benchmarks, command line, JSON, checksums

@@ -16,6 +16,9 @@ done
 
 jobs=$(nproc)
 bash scripts/install-deps.sh
+# The real Quake 3 map the retexturing tests use (q3dm6ish), from Debian's OpenArena packages.
+VT_OPENARENA_DIR=$(bash scripts/fetch-openarena.sh)
+export VT_OPENARENA_DIR
 
 # llvmpipe's results depend on these (shared/DESIGN.md section 7): pin them for every test run.
 export LP_NUM_THREADS=${LP_NUM_THREADS:-2}

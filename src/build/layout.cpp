@@ -5,8 +5,11 @@
 #include <algorithm>
 #include <bit>
 #include <fstream>
+#include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <numeric>
+#include <queue>
 
 #include "common/error.h"
 
@@ -15,20 +18,32 @@ namespace {
 
 using nlohmann::json;
 
+struct ImageInfo {
+  uint32_t width = 0, height = 0, channels = 0;
+};
+
 // Reads the image's header for its size and channels.
-void probeImage(Placement& placement, const std::string& namedBy) {
-  if (!std::filesystem::exists(placement.file))
-    throw InputError(placement.file, "image not found (named by " + namedBy + ")");
-  auto input = OIIO::ImageInput::open(placement.file.string());
+ImageInfo probeImage(const std::filesystem::path& file, const std::string& namedBy) {
+  if (!std::filesystem::exists(file))
+    throw InputError(file, "image not found (named by " + namedBy + ")");
+  auto input = OIIO::ImageInput::open(file.string());
   if (!input)
-    throw InputError(placement.file,
-                     "cannot read image (named by " + namedBy + "): " + OIIO::geterror());
+    throw InputError(file, "cannot read image (named by " + namedBy + "): " + OIIO::geterror());
   const OIIO::ImageSpec& spec = input->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    throw InputError(placement.file, "image has no texels");
-  placement.width = static_cast<uint32_t>(spec.width);
-  placement.height = static_cast<uint32_t>(spec.height);
-  placement.channels = static_cast<uint32_t>(spec.nchannels);
+    throw InputError(file, "image has no texels");
+  return {static_cast<uint32_t>(spec.width), static_cast<uint32_t>(spec.height),
+          static_cast<uint32_t>(spec.nchannels)};
+}
+
+// Fills the image's own size and channels and, where no region gave them, the placed size.
+void setImage(Placement& placement, const ImageInfo& image, std::optional<uint32_t> width,
+              std::optional<uint32_t> height) {
+  placement.imageWidth = image.width;
+  placement.imageHeight = image.height;
+  placement.channels = image.channels;
+  placement.width = width.value_or(image.width);
+  placement.height = height.value_or(image.height);
 }
 
 uint64_t unsignedField(const json& object, const char* key, const std::filesystem::path& file,
@@ -38,6 +53,75 @@ uint64_t unsignedField(const json& object, const char* key, const std::filesyste
     throw InputError(
         file, where + "field " + key + ": " + value.dump() + " is not a non-negative integer");
   return value.get<uint64_t>();
+}
+
+// An optional placed width or height: [1, kMaxPlacedSide].
+std::optional<uint32_t> placedSideField(const json& entry, const char* key,
+                                        const std::filesystem::path& file,
+                                        const std::string& where) {
+  if (!entry.contains(key)) return std::nullopt;
+  const uint64_t value = unsignedField(entry, key, file, where);
+  if (value < 1 || value > kMaxPlacedSide)
+    throw InputError(file, where + "field " + key + ": " + std::to_string(value) +
+                               " is not in [1, " + std::to_string(kMaxPlacedSide) +
+                               "] (the format's widest texture)");
+  return static_cast<uint32_t>(value);
+}
+
+// An optional source offset: an integer in [-2^40, 2^40].
+std::optional<int64_t> sourceOffsetField(const json& entry, const char* key,
+                                         const std::filesystem::path& file,
+                                         const std::string& where) {
+  if (!entry.contains(key)) return std::nullopt;
+  const json& value = entry.at(key);
+  const bool valid = value.is_number_unsigned()
+                         ? value.get<uint64_t>() <= static_cast<uint64_t>(kMaxSourceOffset)
+                         : value.is_number_integer() && value.get<int64_t>() >= -kMaxSourceOffset;
+  if (!valid)
+    throw InputError(
+        file, where + "field " + key + ": " + value.dump() + " is not an integer in [-2^40, 2^40]");
+  return value.get<int64_t>();
+}
+
+// at + size, saturated: x and y are any 64-bit value of the file.
+uint64_t endOf(uint64_t at, uint32_t size) {
+  return at > UINT64_MAX - size ? UINT64_MAX : at + size;
+}
+
+// Throws when two placements overlap. Sweep along x: the placements crossing the sweep line are
+// disjoint in y (else we had thrown), so a new one can only overlap its neighbours in y order.
+// O(n log n) for the thousands of faces a retextured map places.
+void requireNoOverlap(const Layout& layout) {
+  const std::vector<Placement>& images = layout.images;
+  std::vector<size_t> order(images.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return std::pair(images[a].x, a) < std::pair(images[b].x, b);
+  });
+  std::map<uint64_t, size_t> crossing;        // top row -> placement crossing the sweep line
+  using End = std::pair<uint64_t, uint64_t>;  // (end column, top row)
+  std::priority_queue<End, std::vector<End>, std::greater<>> ends;
+  const auto overlap = [&](size_t a, size_t b) {
+    throw InputError(layout.source, "images " + images[a].file.string() + " and " +
+                                        images[b].file.string() + " overlap (images[" +
+                                        std::to_string(a) + "] and images[" + std::to_string(b) +
+                                        "])");
+  };
+  for (const size_t i : order) {
+    const Placement& p = images[i];
+    while (!ends.empty() && ends.top().first <= p.x) {
+      crossing.erase(ends.top().second);
+      ends.pop();
+    }
+    const auto below = crossing.lower_bound(p.y);
+    if (below != crossing.end() && below->first < p.y + p.height) overlap(below->second, i);
+    if (below != crossing.begin()) {
+      const size_t above = std::prev(below)->second;
+      if (images[above].y + images[above].height > p.y) overlap(above, i);
+    }
+    crossing.emplace(p.y, i);
+    ends.emplace(p.x + p.width, p.y);
+  }
 }
 
 uint32_t smallField(const json& object, const char* key, const std::filesystem::path& file) {
@@ -66,7 +150,7 @@ void finish(Layout& layout, std::optional<uint64_t> side, std::optional<uint32_t
 
   uint64_t extent = 0;
   for (const Placement& image : layout.images)
-    extent = std::max({extent, image.x + image.width, image.y + image.height});
+    extent = std::max({extent, endOf(image.x, image.width), endOf(image.y, image.height)});
   const uint64_t wanted = side.value_or(std::max<uint64_t>(extent, d.pageSize));
   const uint64_t maxSide = levelSide(d.pageSize, kMaxLevel);
   if (wanted > maxSide)
@@ -83,29 +167,18 @@ void finish(Layout& layout, std::optional<uint64_t> side, std::optional<uint32_t
   d.levelCount = finest + 1;
   const uint64_t textureSide = d.sideTexels();
 
-  for (const Placement& image : layout.images)
-    if (image.x + image.width > textureSide || image.y + image.height > textureSide)
+  for (size_t i = 0; i < layout.images.size(); ++i) {
+    const Placement& image = layout.images[i];
+    if (endOf(image.x, image.width) > textureSide || endOf(image.y, image.height) > textureSide)
       throw InputError(file, "image " + image.file.string() + " (" + std::to_string(image.width) +
                                  " x " + std::to_string(image.height) + " at " +
                                  std::to_string(image.x) + ", " + std::to_string(image.y) +
                                  ") reaches outside the texture of " + std::to_string(textureSide) +
-                                 " x " + std::to_string(textureSide) + " texels");
-
-  // Overlaps: sweep the images in order of x; only those starting before one ends can overlap it.
-  std::vector<size_t> order(layout.images.size());
-  std::iota(order.begin(), order.end(), size_t{0});
-  std::sort(order.begin(), order.end(),
-            [&](size_t a, size_t b) { return layout.images[a].x < layout.images[b].x; });
-  for (size_t i = 0; i < order.size(); ++i) {
-    const Placement& a = layout.images[order[i]];
-    for (size_t j = i + 1; j < order.size(); ++j) {
-      const Placement& b = layout.images[order[j]];
-      if (b.x >= a.x + a.width) break;
-      if (b.y < a.y + a.height && a.y < b.y + b.height)
-        throw InputError(file,
-                         "images " + a.file.string() + " and " + b.file.string() + " overlap");
-    }
+                                 " x " + std::to_string(textureSide) + " texels (images[" +
+                                 std::to_string(i) + "])");
   }
+
+  requireNoOverlap(layout);
 }
 
 }  // namespace
@@ -151,6 +224,7 @@ Layout readLayout(const std::filesystem::path& file, const LayoutOverrides& over
     if (!root.contains("images") || !root["images"].is_array())
       throw InputError(file, "field images: expected an array of {file, x, y}");
     const std::filesystem::path folder = file.parent_path();
+    std::map<std::filesystem::path, ImageInfo> probed;
     size_t index = 0;
     for (const json& entry : root["images"]) {
       const std::string where = "images[" + std::to_string(index) + "] ";
@@ -161,7 +235,22 @@ Layout readLayout(const std::filesystem::path& file, const LayoutOverrides& over
       placement.file = folder / entry["file"].get<std::string>();
       placement.x = unsignedField(entry, "x", file, where);
       placement.y = unsignedField(entry, "y", file, where);
-      probeImage(placement, file.string() + " " + where.substr(0, where.size() - 1));
+      const std::optional<uint32_t> width = placedSideField(entry, "width", file, where);
+      const std::optional<uint32_t> height = placedSideField(entry, "height", file, where);
+      const std::optional<int64_t> sourceX = sourceOffsetField(entry, "source_x", file, where);
+      const std::optional<int64_t> sourceY = sourceOffsetField(entry, "source_y", file, where);
+      placement.region = width || height || sourceX || sourceY;
+      placement.sourceX = sourceX.value_or(0);
+      placement.sourceY = sourceY.value_or(0);
+      // Thousands of faces may name the same few images: each header is read once.
+      const std::filesystem::path key = placement.file.lexically_normal();
+      auto known = probed.find(key);
+      if (known == probed.end())
+        known = probed
+                    .emplace(key, probeImage(placement.file, file.string() + " " +
+                                                                 where.substr(0, where.size() - 1)))
+                    .first;
+      setImage(placement, known->second, width, height);
       layout.images.push_back(std::move(placement));
       ++index;
     }
@@ -183,7 +272,7 @@ Layout singleImageLayout(const std::filesystem::path& image, const LayoutOverrid
   layout.filter = overrides.filter.value_or(MipFilter::kBox);
   Placement placement;
   placement.file = image;
-  probeImage(placement, "the command line");
+  setImage(placement, probeImage(image, "the command line"), std::nullopt, std::nullopt);
   layout.images.push_back(placement);
   finish(layout, overrides.side, overrides.channels);
   return layout;

@@ -14,8 +14,19 @@
 //     "background": [0, 0, 0, 0],  // texels no image covers (default transparent black)
 //     "images": [ { "file": "wall.tga", "x": 0, "y": 0 }, ... ]
 //   }
-// x grows with s, y with t (rows of the texture, top row of each image first). Images must not
-// overlap and must lie inside the texture.
+// x grows with s, y with t (rows of the texture, top row of each image first). Placements must
+// not overlap and must lie inside the texture.
+//
+// A placement may name a region of its image, repeated (thesis 3.3.2: the retexturing tool gives
+// each face its own area, filled with the part of the texture the face uses, which repeats where
+// texture coordinates leave [0, 1]):
+//   { "file": "wall.tga", "x": 1024, "y": 0, "width": 300, "height": 140,
+//     "source_x": -37, "source_y": 250 }
+// Destination texel (x + i, y + j), 0 <= i < width, 0 <= j < height, takes image texel
+// ((source_x + i) mod w, (source_y + j) mod h), mod the non-negative remainder, w x h the image's
+// size. width, height (1 to kMaxPlacedSide) default to w, h; source_x, source_y (integers within
+// +-2^40) to 0; any of the four may be given alone, and any one makes a region placement, which
+// is read whole (image_rows.h). Without them a placement shows its whole image once, streamed.
 
 #include <array>
 #include <cstdint>
@@ -37,10 +48,18 @@ enum class MipFilter {
 
 struct Placement {
   std::filesystem::path file;
-  uint64_t x = 0, y = 0;           // texel position of the image's top-left texel, finest level
-  uint32_t width = 0, height = 0;  // from the image file
-  uint32_t channels = 0;           // from the image file
+  uint64_t x = 0, y = 0;  // texel position of the placed area's top-left texel, finest level
+  uint32_t width = 0, height = 0;            // placed size: the image's, or the region's
+  int64_t sourceX = 0, sourceY = 0;          // image texel shown at (x, y), before the modulo
+  bool region = false;                       // any region field given: the image is read whole
+  uint32_t imageWidth = 0, imageHeight = 0;  // from the image file
+  uint32_t channels = 0;                     // from the image file
 };
+
+// The largest placed width or height: the widest texture the format allows.
+inline constexpr uint64_t kMaxPlacedSide = levelSide(kMaxPageSize, kMaxLevel);
+// Bound on |source_x|, |source_y|: sums with any placed offset stay far inside 64 bits.
+inline constexpr int64_t kMaxSourceOffset = int64_t{1} << 40;
 
 struct Layout {
   std::filesystem::path source;  // the layout file, or the single image
@@ -60,9 +79,9 @@ struct LayoutOverrides {
   std::optional<MipFilter> filter = std::nullopt;
 };
 
-// Reads and validates a layout file: every image is opened (header only) for its size and
-// channels, placements are checked against the texture and each other. Throws InputError naming
-// the layout file or the image and the problem; nothing is written.
+// Reads and validates a layout file: every distinct image is opened once (header only) for its
+// size and channels, placements are checked against the texture and each other. Throws InputError
+// naming the layout file or the image and the problem; nothing is written.
 Layout readLayout(const std::filesystem::path& file, const LayoutOverrides& overrides = {});
 
 // A layout of one image at (0, 0).

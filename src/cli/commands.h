@@ -13,5 +13,6 @@ void addDemoCommand(CLI::App& app);
 void addExportLevelCommand(CLI::App& app);
 void addFlyCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
+void addRetextureCommand(CLI::App& app);
 
 }  // namespace vt

@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   vt::addExportLevelCommand(app);
   vt::addFlyCommand(app);
   vt::addRenderCommand(app);
+  vt::addRetextureCommand(app);
 
   try {
     app.parse(argc, argv);

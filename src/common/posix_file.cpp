@@ -138,3 +138,13 @@ void TemporaryFile::commit() {
 }
 
 }  // namespace vt
+
+namespace vt {
+
+void writeFileAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes) {
+  TemporaryFile temporary(path);
+  temporary.file().writeAll(0, bytes);
+  temporary.commit();
+}
+
+}  // namespace vt

@@ -59,3 +59,10 @@ class TemporaryFile {
 };
 
 }  // namespace vt
+
+namespace vt {
+
+// Writes `bytes` as `path` through a TemporaryFile (the parent folder must exist).
+void writeFileAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes);
+
+}  // namespace vt

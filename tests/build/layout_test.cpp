@@ -58,6 +58,91 @@ TEST_F(LayoutInput, ValidLayoutGetsItsSizesFromTheImages) {
   EXPECT_EQ(l.images[1].file, dir_ / "b.png");
 }
 
+TEST_F(LayoutInput, RegionFieldsDefaultToTheWholeImage) {
+  const Layout l = readLayout(layout(
+      R"({"images": [{"file": "a.png", "x": 0, "y": 0},
+          {"file": "a.png", "x": 40, "y": 0, "width": 300, "source_y": -7},
+          {"file": "b.png", "x": 0, "y": 30, "source_x": 3}]})"));
+  ASSERT_EQ(l.images.size(), 3u);
+  EXPECT_FALSE(l.images[0].region);
+  EXPECT_EQ(l.images[0].width, 40u);
+  EXPECT_EQ(l.images[0].imageWidth, 40u);
+  const Placement& wide = l.images[1];
+  EXPECT_TRUE(wide.region);
+  EXPECT_EQ(wide.width, 300u);
+  EXPECT_EQ(wide.height, 30u);  // the image's
+  EXPECT_EQ(wide.imageWidth, 40u);
+  EXPECT_EQ(wide.imageHeight, 30u);
+  EXPECT_EQ(wide.sourceX, 0);
+  EXPECT_EQ(wide.sourceY, -7);
+  EXPECT_TRUE(l.images[2].region);
+  EXPECT_EQ(l.images[2].width, 20u);
+  EXPECT_EQ(l.images[2].sourceX, 3);
+  EXPECT_EQ(l.description.sideTexels(), 512u);  // the smallest 128 * 2^L holding x = 340
+}
+
+TEST_F(LayoutInput, InvalidRegionFields) {
+  const std::string named = (dir_ / "layout.json").string() + ": images[1] field ";
+  const auto second = [](const std::string& fields) {
+    return R"({"images": [{"file": "a.png", "x": 0, "y": 0},
+                          {"file": "b.png", "x": 0, "y": 30, )" +
+           fields + "}]}";
+  };
+  EXPECT_THAT(error(second(R"("width": 0)")),
+              HasSubstr(named + "width: 0 is not in [1, 134217728] (the format's widest texture)"));
+  EXPECT_THAT(error(second(R"("height": 134217729)")),
+              HasSubstr(named + "height: 134217729 is not in [1, 134217728]"));
+  EXPECT_THAT(error(second(R"("height": -4)")),
+              HasSubstr(named + "height: -4 is not a non-negative integer"));
+  EXPECT_THAT(error(second(R"("width": 2.5)")),
+              HasSubstr(named + "width: 2.5 is not a non-negative integer"));
+  EXPECT_THAT(error(second(R"("source_x": 1099511627777)")),
+              HasSubstr(named + "source_x: 1099511627777 is not an integer in [-2^40, 2^40]"));
+  EXPECT_THAT(error(second(R"("source_y": -1099511627777)")),
+              HasSubstr(named + "source_y: -1099511627777 is not an integer in [-2^40, 2^40]"));
+  EXPECT_THAT(error(second(R"("source_y": 0.5)")),
+              HasSubstr(named + "source_y: 0.5 is not an integer in [-2^40, 2^40]"));
+  EXPECT_THAT(error(second(R"("source_x": "3")")),
+              HasSubstr(named + "source_x: \"3\" is not an integer in [-2^40, 2^40]"));
+  // The limits themselves are valid.
+  EXPECT_EQ(error(second(R"("source_x": -1099511627776, "source_y": 1099511627776)")),
+            "(accepted)");
+}
+
+TEST_F(LayoutInput, RegionsAreCheckedWithTheirPlacedSize) {
+  // b.png is 20 x 10; placed 30 wide it reaches into a.png's columns.
+  EXPECT_THAT(
+      error(R"({"images": [{"file": "a.png", "x": 50, "y": 0},
+                                  {"file": "b.png", "x": 21, "y": 5, "width": 30}]})"),
+      HasSubstr("b.png and " + (dir_ / "a.png").string() + " overlap (images[1] and images[0])"));
+  EXPECT_EQ(error(R"({"images": [{"file": "a.png", "x": 50, "y": 0},
+                                {"file": "b.png", "x": 20, "y": 5, "width": 30}]})"),
+            "(accepted)");
+  EXPECT_THAT(error(R"({"page_size": 16, "side": 64,
+                        "images": [{"file": "b.png", "x": 0, "y": 0, "height": 65}]})"),
+              HasSubstr("(20 x 65 at 0, 0) reaches outside the texture of 64 x 64 texels "
+                        "(images[0])"));
+  // Positions near 2^64 do not wrap around.
+  EXPECT_THAT(error(R"({"images": [{"file": "b.png", "x": 18446744073709551610, "y": 0}]})"),
+              HasSubstr("the texture would be 18446744073709551615 texels wide"));
+}
+
+TEST_F(LayoutInput, OverlapsAmongManyPlacements) {
+  // A grid of 60 x 60 placements of the same image, then one more overlapping a single one of them.
+  std::string images;
+  for (int j = 0; j < 60; ++j)
+    for (int i = 0; i < 60; ++i)
+      images += R"({"file": "b.png", "x": )" + std::to_string(i * 20) + R"(, "y": )" +
+                std::to_string(j * 10) + "},";
+  EXPECT_EQ(error(R"({"images": [)" + images.substr(0, images.size() - 1) + "]}"), "(accepted)");
+  EXPECT_THAT(
+      error(R"({"images": [)" + images + R"({"file": "a.png", "x": 1195, "y": 595, "width": 1}]})"),
+      HasSubstr("b.png and " + (dir_ / "a.png").string() + " overlap"));
+  EXPECT_EQ(error(R"({"images": [)" + images +
+                  R"({"file": "a.png", "x": 1200, "y": 0, "height": 600}]})"),
+            "(accepted)");
+}
+
 TEST_F(LayoutInput, OverlappingPlacements) {
   EXPECT_THAT(error(R"({"images": [{"file": "a.png", "x": 0, "y": 0},
                                   {"file": "b.png", "x": 39, "y": 29}]})"),

@@ -1,0 +1,105 @@
+// vt retexture SCENE -o FOLDER: give every face of a Quake 3 map or an OBJ scene its own area of
+// one virtual texture (thesis 3.3.2), write the retextured mesh, the layout for `vt build` and a
+// report comparing the thesis's layout with ours.
+
+#include <bit>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+#include "cli/commands.h"
+#include "common/error.h"
+#include "retexture/retexture_outputs.h"
+#include "scene/obj_scene.h"
+#include "scene/quake3_scene.h"
+
+namespace vt {
+namespace {
+
+void printMethod(const char* label, const MethodResult& method) {
+  std::cout << "  " << std::left << std::setw(9) << label << std::right << " side "
+            << method.layout.side << ", " << method.quality.finestPages << " finest pages ("
+            << method.quality.allPages << " all levels), " << std::fixed << std::setprecision(1)
+            << 100.0 * method.quality.referencedFraction << "% of their texels referenced";
+  if (method.coherence)
+    std::cout << ", " << std::setprecision(2) << method.coherence->pagesPer1000Pixels
+              << " pages per 1000 pixels";
+  std::cout << std::defaultfloat << '\n';
+}
+
+}  // namespace
+
+void addRetextureCommand(CLI::App& app) {
+  struct Options {
+    std::string scene, output;
+    std::vector<std::string> packages;
+    RetextureOptions retexture;
+    uint32_t border = 4;
+    int patchLevel = kPatchTessellationLevel;
+    bool noCoherence = false;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* command = app.add_subcommand(
+      "retexture", "Give every face of a Quake 3 map or an OBJ scene its own texture area");
+  command->add_option("SCENE", o->scene, "A map name (with --packages) or an .obj file")
+      ->required();
+  command->add_option("-o,--output", o->output, "Folder for the mesh, layout, report and images")
+      ->required();
+  command->add_option("--packages", o->packages,
+                      "Folder of .pk3 archives (repeatable, later folders override)");
+  command->add_option("--method", o->retexture.method, "charts (ours) or baseline (the thesis's)")
+      ->check(CLI::IsMember({"charts", "baseline"}))
+      ->capture_default_str();
+  command->add_option("--page-size", o->retexture.pageSize, "Page size P, a power of two")
+      ->check(CLI::Range(1u, 1u << 15))
+      ->capture_default_str();
+  command->add_option("--border", o->border, "Page border B of the layout")->capture_default_str();
+  command->add_option("--margin", o->retexture.charts.margin, "Texels around each chart")
+      ->check(CLI::Range(0u, 64u))
+      ->capture_default_str();
+  command
+      ->add_option("--chart-slack", o->retexture.charts.slack,
+                   "Extra area a merged chart may waste, as a fraction of its parts'")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  command->add_option("--patch-level", o->patchLevel, "Subdivisions per Bezier patch and side")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  command->add_flag("--no-coherence", o->noCoherence, "Skip the coherence figure (no rendering)");
+  command->add_option("--threads", o->retexture.coherence.threads,
+                      "Worker threads of the oracle (0: every core)");
+  command->callback([o] {
+    o->retexture.measureCoherence = !o->noCoherence;
+    if (std::popcount(o->retexture.pageSize) != 1)
+      throw CLI::ValidationError("--page-size", "must be a power of two");
+    const std::filesystem::path output = o->output, scenePath = o->scene;
+    const std::filesystem::path images = output / "images";
+    std::filesystem::create_directories(images);
+    TexturedScene scene;
+    if (scenePath.extension() == ".obj") {
+      scene = loadObjScene(scenePath, images);
+    } else {
+      if (o->packages.empty())
+        throw CLI::ValidationError("--packages", "a map needs the folder of its .pk3 archives");
+      std::vector<std::filesystem::path> folders(o->packages.begin(), o->packages.end());
+      scene = loadQuake3Map(PackageFiles::fromFolders(folders), o->scene, images,
+                            {.patchLevel = o->patchLevel});
+    }
+    for (const std::string& warning : scene.warnings)
+      std::cerr << "warning: " << scene.name << ": " << warning << '\n';
+    const RetextureResult result = retexture(scene, o->retexture);
+    const MethodResult& chosen = result.chosen(o->retexture);
+    writeRetexturedObj(output / (scene.name + ".obj"), scene, result.uvs);
+    writeRetextureLayout(output / (scene.name + ".layout.json"), scene, chosen.layout,
+                         {.border = o->border});
+    writeRetextureReport(output / (scene.name + ".report.json"), scene, result, o->retexture);
+    std::cout << "retextured " << scene.name << ": " << scene.faces.size() << " faces ("
+              << scene.patchFaces << " patches), " << scene.textures.size() << " textures, "
+              << scene.skipped.total() << " faces skipped; wrote " << o->retexture.method
+              << " layout to " << (output / (scene.name + ".layout.json")).string() << '\n';
+    printMethod("baseline", result.baseline);
+    printMethod("charts", result.charts);
+  });
+}
+
+}  // namespace vt

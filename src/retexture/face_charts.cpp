@@ -1,0 +1,157 @@
+#include "retexture/face_charts.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <set>
+
+namespace vt {
+namespace {
+
+// Positions compared by their bit patterns: faces of a map that meet repeat the same floats.
+using PositionBits = std::array<uint32_t, 3>;
+
+PositionBits positionBits(glm::vec3 p) {
+  return {std::bit_cast<uint32_t>(p.x), std::bit_cast<uint32_t>(p.y), std::bit_cast<uint32_t>(p.z)};
+}
+
+uint64_t area(const Chart& chart) { return chart.width() * chart.height(); }
+
+// The texture mapping of a face's first triangle with non-zero area, as a function of position.
+struct PlaneMapping {
+  glm::dvec3 origin{0.0}, e1{0.0}, e2{0.0}, normal{0.0};
+  glm::dvec2 uv0{0.0}, uv1{0.0}, uv2{0.0};
+  bool valid = false;
+};
+
+PlaneMapping planeMapping(const TexturedScene& scene, const TexturedFace& face) {
+  PlaneMapping m;
+  for (uint32_t t = face.firstIndex; t < face.firstIndex + face.indexCount && !m.valid; t += 3) {
+    const uint32_t a = scene.indices[t], b = scene.indices[t + 1], c = scene.indices[t + 2];
+    m.origin = scene.positions[a];
+    m.e1 = glm::dvec3(scene.positions[b]) - m.origin;
+    m.e2 = glm::dvec3(scene.positions[c]) - m.origin;
+    m.normal = glm::cross(m.e1, m.e2);
+    m.valid = glm::length(m.normal) > 0.0;
+    m.uv0 = scene.uvs[a], m.uv1 = scene.uvs[b], m.uv2 = scene.uvs[c];
+  }
+  return m;
+}
+
+// The whole repetitions (ds, dt) to add to `face`'s coordinates so that it lies in the plane of
+// `m` with the same affine texture map (to 1/100 texel): its texels then continue the other
+// face's without a seam. Map compilers keep each surface's coordinates near zero by subtracting
+// whole repetitions, so neighbours on one plane often differ by such a shift.
+std::optional<glm::i64vec2> repetitionShift(const TexturedScene& scene, const PlaneMapping& m,
+                                            const TexturedFace& face) {
+  if (!m.valid) return std::nullopt;
+  const glm::dvec2 texels(scene.textures[face.texture].width, scene.textures[face.texture].height);
+  const double normalLength = glm::length(m.normal);
+  const double size = std::sqrt(normalLength);
+  std::optional<glm::dvec2> shift;
+  for (uint32_t i = face.firstIndex; i < face.firstIndex + face.indexCount; ++i) {
+    const uint32_t v = scene.indices[i];
+    const glm::dvec3 d = glm::dvec3(scene.positions[v]) - m.origin;
+    if (std::abs(glm::dot(d, m.normal)) / normalLength > 1e-4 * size) return std::nullopt;
+    // Barycentric coordinates of d in the triangle (origin, origin + e1, origin + e2).
+    const double b1 = glm::dot(glm::cross(d, m.e2), m.normal) / (normalLength * normalLength);
+    const double b2 = glm::dot(glm::cross(m.e1, d), m.normal) / (normalLength * normalLength);
+    const glm::dvec2 predicted = m.uv0 + b1 * (m.uv1 - m.uv0) + b2 * (m.uv2 - m.uv0);
+    const glm::dvec2 difference = predicted - glm::dvec2(scene.uvs[v]);
+    if (!shift) shift = glm::round(difference);
+    const glm::dvec2 error = (difference - *shift) * texels;
+    if (!(std::abs(error.x) <= 0.01 && std::abs(error.y) <= 0.01)) return std::nullopt;
+  }
+  if (!shift || std::abs(shift->x) > 1e9 || std::abs(shift->y) > 1e9) return std::nullopt;
+  return glm::i64vec2(*shift);
+}
+
+// The rectangle of `chart` moved by `texels`.
+Chart shifted(Chart chart, glm::i64vec2 texels) {
+  chart.x0 += texels.x, chart.x1 += texels.x, chart.y0 += texels.y, chart.y1 += texels.y;
+  for (glm::i64vec2& offset : chart.offsets) offset += texels;
+  return chart;
+}
+
+}  // namespace
+
+Chart faceChart(const TexturedScene& scene, uint32_t face, uint32_t margin) {
+  const TexelBounds bounds = faceTexelBounds(scene, scene.faces[face]);
+  Chart chart{.texture = scene.faces[face].texture, .faces = {face}, .offsets = {{0, 0}}};
+  chart.x0 = static_cast<int64_t>(std::floor(bounds.u0)) - margin;
+  chart.y0 = static_cast<int64_t>(std::floor(bounds.v0)) - margin;
+  chart.x1 = std::max(static_cast<int64_t>(std::ceil(bounds.u1)) + margin, chart.x0 + 1);
+  chart.y1 = std::max(static_cast<int64_t>(std::ceil(bounds.v1)) + margin, chart.y0 + 1);
+  return chart;
+}
+
+std::vector<Chart> buildCharts(const TexturedScene& scene, const ChartOptions& options) {
+  const auto faceCount = static_cast<uint32_t>(scene.faces.size());
+  std::vector<Chart> charts;
+  charts.reserve(faceCount);
+  for (uint32_t f = 0; f < faceCount; ++f) charts.push_back(faceChart(scene, f, options.margin));
+
+  // Candidate pairs: faces of one texture that share a vertex position.
+  std::map<PositionBits, std::vector<uint32_t>> facesAt;
+  for (uint32_t f = 0; f < faceCount; ++f) {
+    const TexturedFace& face = scene.faces[f];
+    for (uint32_t i = face.firstIndex; i < face.firstIndex + face.indexCount; ++i) {
+      std::vector<uint32_t>& faces = facesAt[positionBits(scene.positions[scene.indices[i]])];
+      if (faces.empty() || faces.back() != f) faces.push_back(f);
+    }
+  }
+  std::set<std::pair<uint32_t, uint32_t>> pairs;
+  for (const auto& [position, faces] : facesAt)
+    for (size_t i = 0; i < faces.size(); ++i)
+      for (size_t j = i + 1; j < faces.size(); ++j)
+        if (faces[i] != faces[j] && scene.faces[faces[i]].texture == scene.faces[faces[j]].texture)
+          pairs.emplace(std::min(faces[i], faces[j]), std::max(faces[i], faces[j]));
+
+  std::vector<PlaneMapping> mappings;
+  mappings.reserve(faceCount);
+  for (const TexturedFace& face : scene.faces) mappings.push_back(planeMapping(scene, face));
+
+  // Each face's chart and its offset (texels) from its own unrolled space into the chart's.
+  std::vector<uint32_t> chartOf(faceCount);
+  std::iota(chartOf.begin(), chartOf.end(), 0u);
+  std::vector<glm::i64vec2> offsetOf(faceCount, glm::i64vec2(0));
+  for (const auto& [p, q] : pairs) {
+    const uint32_t a = chartOf[p], b = chartOf[q];
+    if (a == b) continue;
+    const auto shift = repetitionShift(scene, mappings[p], scene.faces[q]);
+    if (!shift) continue;
+    // q's coordinates + shift are p's; chart b's space -> chart a's space:
+    const SourceTexture& texture = scene.textures[scene.faces[p].texture];
+    const glm::i64vec2 move =
+        *shift * glm::i64vec2(texture.width, texture.height) + offsetOf[p] - offsetOf[q];
+    const Chart moved = shifted(charts[b], move);
+    Chart merged = charts[a];
+    merged.x0 = std::min(merged.x0, moved.x0);
+    merged.y0 = std::min(merged.y0, moved.y0);
+    merged.x1 = std::max(merged.x1, moved.x1);
+    merged.y1 = std::max(merged.y1, moved.y1);
+    if (merged.width() > options.maxSide || merged.height() > options.maxSide ||
+        double(area(merged)) > (1.0 + options.slack) * double(area(charts[a]) + area(charts[b])))
+      continue;
+    for (size_t k = 0; k < moved.faces.size(); ++k) {
+      chartOf[moved.faces[k]] = a;
+      offsetOf[moved.faces[k]] = moved.offsets[k];
+    }
+    merged.faces.insert(merged.faces.end(), moved.faces.begin(), moved.faces.end());
+    merged.offsets.insert(merged.offsets.end(), moved.offsets.begin(), moved.offsets.end());
+    charts[a] = std::move(merged);
+    charts[b].faces.clear();
+    charts[b].offsets.clear();
+  }
+
+  std::vector<Chart> result;
+  for (Chart& chart : charts)
+    if (!chart.faces.empty()) result.push_back(std::move(chart));
+  return result;
+}
+
+}  // namespace vt

@@ -1,0 +1,86 @@
+#include "retexture/page_coherence.h"
+
+#include <algorithm>
+#include <glm/gtc/matrix_transform.hpp>
+#include <set>
+
+#include "reference/renderer.h"
+#include "scene/camera.h"
+#include "shader/needbuffer.h"
+
+namespace vt {
+namespace {
+
+// Only the root page resident: the needbuffer does not depend on what is resident.
+reference::CacheState rootOnlyCache(const TextureDescription& description) {
+  reference::CacheState cache;
+  cache.description = description;
+  cache.framesX = cache.framesY = 1;
+  cache.widthTexels = cache.heightTexels = description.storedPageSide();
+  cache.residentPages = {0};
+  cache.texels.assign(uint64_t{cache.widthTexels} * cache.heightTexels * 4, 0);
+  for (uint32_t m = 0; m < description.levelCount; ++m)
+    cache.indirection.emplace_back(pagesPerSide(m) * pagesPerSide(m), glm::u16vec4(0));
+  return cache;
+}
+
+}  // namespace
+
+std::vector<Camera> coherenceViews(const TexturedScene& scene) {
+  std::vector<Camera> bases = scene.viewpoints;
+  if (bases.empty()) {
+    glm::vec3 low(INFINITY), high(-INFINITY);
+    for (const glm::vec3& p : scene.positions) low = glm::min(low, p), high = glm::max(high, p);
+    Camera camera;
+    camera.position = 0.5f * (low + high);
+    camera.target = camera.position + glm::vec3(0.0f, 0.0f, -1.0f);
+    bases.push_back(camera);
+  }
+  std::vector<Camera> views;
+  for (const Camera& base : bases)
+    for (int quarter = 0; quarter < 4; ++quarter) {
+      Camera view = base;
+      const glm::mat4 turn =
+          glm::rotate(glm::mat4(1.0f), glm::radians(90.0f * static_cast<float>(quarter)), base.up);
+      view.target = base.position + glm::vec3(turn * glm::vec4(base.target - base.position, 0.0f));
+      views.push_back(view);
+    }
+  return views;
+}
+
+PageCoherence measureCoherence(const TexturedScene& scene, const Retexturing& layout,
+                               const std::vector<glm::vec2>& uvs,
+                               const CoherenceSettings& settings) {
+  TextureDescription description{.pageSize = layout.pageSize, .border = 1, .channels = 4};
+  while (description.sideTexels() < layout.side) ++description.levelCount;
+  const reference::CacheState cache = rootOnlyCache(description);
+  const Mesh mesh{scene.positions, uvs, scene.indices};
+  reference::RenderSettings render{
+      .viewport = {static_cast<int>(settings.width), static_cast<int>(settings.height)},
+      .threads = settings.threads};
+  PageCoherence coherence;
+  double sumPer1000 = 0.0, sumPages = 0.0;
+  uint32_t coveredViews = 0;
+  for (const Camera& view : coherenceViews(scene)) {
+    const reference::Frame frame =
+        reference::renderFrame(toClipSpace(mesh, view, render.viewport), cache, render);
+    std::set<uint64_t> pages;
+    uint64_t covered = 0;
+    for (size_t i = 0; i < frame.need.size(); ++i) {
+      const std::optional<PageId> page = decodeNeed(frame.need[i], false);
+      if (!page) continue;
+      ++covered;
+      pages.insert(absoluteIndex(*page));
+    }
+    ++coherence.views;
+    if (covered == 0) continue;
+    ++coveredViews;
+    sumPer1000 += 1000.0 * static_cast<double>(pages.size()) / static_cast<double>(covered);
+    sumPages += static_cast<double>(pages.size());
+  }
+  coherence.pagesPer1000Pixels = sumPer1000 / std::max(1u, coveredViews);
+  coherence.meanPagesPerView = sumPages / std::max(1u, coveredViews);
+  return coherence;
+}
+
+}  // namespace vt

@@ -1,0 +1,148 @@
+#include "scene/obj_scene.h"
+
+#include <OpenImageIO/imageio.h>
+#include <tiny_obj_loader.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "common/error.h"
+#include "scene/missing_texture.h"
+
+namespace vt {
+namespace {
+
+// tinyobjloader only warns about a missing MTL file; for us it is an error.
+void requireMaterialLibraries(const std::filesystem::path& path) {
+  std::ifstream stream(path);
+  std::string line;
+  while (std::getline(stream, line)) {
+    std::istringstream words(line);
+    std::string keyword, library;
+    words >> keyword;
+    if (keyword != "mtllib") continue;
+    while (words >> library)
+      if (!std::filesystem::exists(path.parent_path() / library))
+        throw InputError(path, "material library " + library + " not found");
+  }
+}
+
+class MaterialTextures {
+ public:
+  MaterialTextures(const std::filesystem::path& objFolder, const std::filesystem::path& imageFolder,
+                   const std::vector<tinyobj::material_t>& materials, TexturedScene& scene)
+      : objFolder_(objFolder), imageFolder_(imageFolder), materials_(materials), scene_(scene) {}
+
+  uint32_t textureFor(int material) {
+    if (const auto found = byMaterial_.find(material); found != byMaterial_.end())
+      return found->second;
+    SourceTexture texture;
+    if (material >= 0 && static_cast<size_t>(material) < materials_.size()) {
+      const tinyobj::material_t& m = materials_[static_cast<size_t>(material)];
+      texture.name = m.name;
+      if (!m.diffuse_texname.empty())
+        probe(objFolder_ / m.diffuse_texname, texture);
+      else
+        scene_.warnings.push_back("material " + m.name + ": no map_Kd, drawn as a checker");
+    } else {
+      texture.name = "(no material)";
+      scene_.warnings.push_back("faces without a material are drawn as a checker");
+    }
+    if (texture.file.empty()) {
+      texture.missing = true;
+      texture.file = writeMissingTexture(imageFolder_);
+      texture.width = texture.height = kMissingTextureSide;
+    }
+    const auto index = static_cast<uint32_t>(scene_.textures.size());
+    scene_.textures.push_back(std::move(texture));
+    byMaterial_.emplace(material, index);
+    return index;
+  }
+
+ private:
+  void probe(const std::filesystem::path& image, SourceTexture& texture) {
+    auto input = OIIO::ImageInput::open(image.string());
+    if (!input || input->spec().width <= 0 || input->spec().height <= 0) {
+      (void)OIIO::geterror();
+      scene_.warnings.push_back("material " + texture.name + ": " + image.string() +
+                                " is not a readable image, drawn as a checker");
+      return;
+    }
+    texture.file = std::filesystem::absolute(image);
+    texture.width = static_cast<uint32_t>(input->spec().width);
+    texture.height = static_cast<uint32_t>(input->spec().height);
+    texture.foundAs = image.string();
+  }
+
+  std::filesystem::path objFolder_, imageFolder_;
+  const std::vector<tinyobj::material_t>& materials_;
+  TexturedScene& scene_;
+  std::map<int, uint32_t> byMaterial_;
+};
+
+}  // namespace
+
+TexturedScene loadObjScene(const std::filesystem::path& path,
+                           const std::filesystem::path& imageFolder) {
+  if (!std::filesystem::exists(path)) throw InputError(path, "mesh not found");
+  requireMaterialLibraries(path);
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;  // each polygon stays one face
+  config.mtl_search_path = path.parent_path().string();
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path.string(), config))
+    throw InputError(path, "cannot read OBJ: " + reader.Error());
+  const auto& attributes = reader.GetAttrib();
+
+  TexturedScene scene;
+  scene.name = path.stem().string();
+  MaterialTextures textures(path.parent_path(), imageFolder, reader.GetMaterials(), scene);
+  for (const auto& shape : reader.GetShapes()) {
+    size_t offset = 0;
+    for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+      const size_t corners = shape.mesh.num_face_vertices[f];
+      std::vector<glm::vec3> positions;
+      std::vector<glm::vec2> uvs;
+      for (size_t c = 0; c < corners; ++c) {
+        const tinyobj::index_t& index = shape.mesh.indices[offset + c];
+        if (index.texcoord_index < 0)
+          throw InputError(path,
+                           "shape '" + shape.name + "' has a face without texture coordinates");
+        const auto v = static_cast<size_t>(index.vertex_index),
+                   t = static_cast<size_t>(index.texcoord_index);
+        if (index.vertex_index < 0 || 3 * v + 2 >= attributes.vertices.size() ||
+            2 * t + 1 >= attributes.texcoords.size())
+          throw InputError(path, "shape '" + shape.name + "' has an index out of range");
+        positions.emplace_back(attributes.vertices[3 * v], attributes.vertices[3 * v + 1],
+                               attributes.vertices[3 * v + 2]);
+        uvs.emplace_back(attributes.texcoords[2 * t], 1.0f - attributes.texcoords[2 * t + 1]);
+      }
+      offset += corners;
+      bool finite = corners >= 3;
+      for (size_t c = 0; c < corners; ++c)
+        finite = finite && std::isfinite(positions[c].x) && std::isfinite(positions[c].y) &&
+                 std::isfinite(positions[c].z) && std::isfinite(uvs[c].x) &&
+                 std::isfinite(uvs[c].y);
+      if (!finite) {
+        ++(corners >= 3 ? scene.skipped.notFinite : scene.skipped.degenerate);
+        continue;
+      }
+      const int material = shape.mesh.material_ids.empty() ? -1 : shape.mesh.material_ids[f];
+      const auto base = static_cast<uint32_t>(scene.positions.size());
+      TexturedFace face{.texture = textures.textureFor(material),
+                        .firstIndex = static_cast<uint32_t>(scene.indices.size()),
+                        .indexCount = static_cast<uint32_t>(3 * (corners - 2))};
+      scene.positions.insert(scene.positions.end(), positions.begin(), positions.end());
+      scene.uvs.insert(scene.uvs.end(), uvs.begin(), uvs.end());
+      for (uint32_t c = 1; c + 1 < corners; ++c)
+        scene.indices.insert(scene.indices.end(), {base, base + c, base + c + 1});
+      scene.faces.push_back(face);
+    }
+  }
+  if (scene.faces.empty()) throw InputError(path, "the mesh has no faces");
+  return scene;
+}
+
+}  // namespace vt

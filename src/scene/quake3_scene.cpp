@@ -1,0 +1,248 @@
+#include "scene/quake3_scene.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "common/error.h"
+#include "common/posix_file.h"
+#include "scene/bsp_entities.h"
+#include "scene/bsp_file.h"
+#include "scene/missing_texture.h"
+#include "scene/quake_axes.h"
+#include "scene/texture_resolver.h"
+
+namespace vt {
+namespace {
+
+// One surface's triangles in Quake space, indices local to its vertices.
+struct SurfaceGeometry {
+  std::vector<glm::vec3> positions, normals;
+  std::vector<glm::vec2> st;
+  std::vector<uint32_t> indices;
+};
+
+std::string mapEntry(std::string_view map) {
+  if (map.find('/') != std::string_view::npos) return std::string(map);
+  std::string entry = "maps/";
+  entry.append(map);
+  entry.append(".bsp");
+  return entry;
+}
+
+SurfaceGeometry polygonGeometry(const BspFile& bsp, const BspSurface& surface) {
+  SurfaceGeometry geometry;
+  for (int32_t v = 0; v < surface.vertexCount; ++v) {
+    const BspVertex& vertex = bsp.vertices[static_cast<size_t>(surface.firstVertex + v)];
+    geometry.positions.push_back(vertex.position);
+    geometry.normals.push_back(vertex.normal);
+    geometry.st.push_back(vertex.st);
+  }
+  for (int32_t i = 0; i < surface.indexCount; ++i)
+    geometry.indices.push_back(
+        static_cast<uint32_t>(bsp.indices[static_cast<size_t>(surface.firstIndex + i)]));
+  return geometry;
+}
+
+// Normals are tessellated with the positions' weights, so each vertex has the surface's
+// interpolated normal for the winding decision.
+SurfaceGeometry patchGeometry(const BspFile& bsp, const BspSurface& surface, int level) {
+  std::vector<glm::vec3> positions, normals;
+  std::vector<glm::vec2> st;
+  for (int32_t v = 0; v < surface.vertexCount; ++v) {
+    const BspVertex& vertex = bsp.vertices[static_cast<size_t>(surface.firstVertex + v)];
+    positions.push_back(vertex.position);
+    normals.push_back(vertex.normal);
+    st.push_back(vertex.st);
+  }
+  TessellatedPatch patch =
+      tessellatePatch(positions, st, surface.patchWidth, surface.patchHeight, level);
+  TessellatedPatch normalPatch =
+      tessellatePatch(normals, st, surface.patchWidth, surface.patchHeight, level);
+  return {std::move(patch.positions), std::move(normalPatch.positions), std::move(patch.st),
+          std::move(patch.indices)};
+}
+
+bool isFinite(const SurfaceGeometry& geometry) {
+  for (const glm::vec3& p : geometry.positions)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
+  for (const glm::vec2& st : geometry.st)
+    if (!std::isfinite(st.x) || !std::isfinite(st.y)) return false;
+  return true;
+}
+
+// Winds every triangle counter-clockwise about its vertices' normals; reports whether any
+// triangle has a non-zero area.
+bool orientTriangles(SurfaceGeometry& geometry) {
+  bool anyArea = false;
+  for (size_t t = 0; t + 2 < geometry.indices.size(); t += 3) {
+    uint32_t* triangle = &geometry.indices[t];
+    const glm::vec3 a = geometry.positions[triangle[0]], b = geometry.positions[triangle[1]],
+                    c = geometry.positions[triangle[2]];
+    const glm::vec3 area = glm::cross(b - a, c - a);
+    if (area != glm::vec3(0.0f)) anyArea = true;
+    const glm::vec3 normal = geometry.normals[triangle[0]] + geometry.normals[triangle[1]] +
+                             geometry.normals[triangle[2]];
+    if (glm::dot(area, normal) < 0.0f) std::swap(triangle[1], triangle[2]);
+  }
+  return anyArea;
+}
+
+std::string describeVia(ResolvedTexture::Via via) {
+  switch (via) {
+    case ResolvedTexture::Via::kImage:
+      return "image";
+    case ResolvedTexture::Via::kShaderStage:
+      return "shader stage";
+    case ResolvedTexture::Via::kEditorImage:
+      return "shader editor image";
+  }
+  return "";
+}
+
+// Extracts and probes the source images of the map's shaders, once per shader used.
+class SourceImages {
+ public:
+  SourceImages(const PackageFiles& files, const std::filesystem::path& folder, TexturedScene& scene)
+      : files_(files), resolver_(files), folder_(folder), scene_(scene) {}
+
+  uint32_t textureFor(int32_t shader, const std::string& name) {
+    if (const auto found = byShader_.find(shader); found != byShader_.end()) return found->second;
+    SourceTexture texture;
+    texture.name = name;
+    if (const auto resolved = resolver_.resolve(name)) extract(*resolved, texture);
+    if (texture.file.empty()) {
+      texture.missing = true;
+      texture.file = writeMissingTexture(folder_);
+      texture.width = texture.height = kMissingTextureSide;
+      scene_.warnings.push_back("texture " + name + ": no image found, drawn as a checker");
+    }
+    const auto index = static_cast<uint32_t>(scene_.textures.size());
+    scene_.textures.push_back(std::move(texture));
+    byShader_.emplace(shader, index);
+    return index;
+  }
+
+ private:
+  void extract(const ResolvedTexture& resolved, SourceTexture& texture) {
+    const std::filesystem::path path = folder_ / resolved.file;
+    if (!std::filesystem::exists(path)) {
+      const std::vector<uint8_t> bytes = files_.read(resolved.file);
+      std::filesystem::create_directories(path.parent_path());
+      writeFileAtomically(path, std::as_bytes(std::span(bytes)));
+    }
+    auto input = OIIO::ImageInput::open(path.string());
+    if (!input || input->spec().width <= 0 || input->spec().height <= 0) {
+      scene_.warnings.push_back("texture " + texture.name + ": " + files_.describe(resolved.file) +
+                                " is not a readable image");
+      (void)OIIO::geterror();
+      return;
+    }
+    texture.file = path;
+    texture.width = static_cast<uint32_t>(input->spec().width);
+    texture.height = static_cast<uint32_t>(input->spec().height);
+    texture.foundAs = files_.describe(resolved.file) + " (" + describeVia(resolved.via) + ")";
+  }
+
+  const PackageFiles& files_;
+  TextureResolver resolver_;
+  std::filesystem::path folder_;
+  TexturedScene& scene_;
+  std::map<int32_t, uint32_t> byShader_;
+};
+
+bool skipByShader(const BspShader& shader, SkippedFaces& skipped) {
+  if (shader.surfaceFlags & kSurfaceSky) return ++skipped.sky, true;
+  if (shader.surfaceFlags & kSurfaceNoDraw) return ++skipped.noDraw, true;
+  if (shader.contentFlags & kContentsFog) return ++skipped.fog, true;
+  return false;
+}
+
+std::vector<Camera> spawnCameras(const std::vector<BspEntity>& entities) {
+  std::vector<Camera> cameras;
+  for (const char* classname : {"info_player_deathmatch", "info_player_start", "team_CTF_redplayer",
+                                "team_CTF_blueplayer", "team_CTF_redspawn", "team_CTF_bluespawn"}) {
+    for (const BspEntity& entity : entities) {
+      const auto kind = entity.find("classname");
+      const auto origin = entity.find("origin");
+      if (kind == entity.end() || kind->second != classname || origin == entity.end()) continue;
+      glm::vec3 position(NAN);
+      std::istringstream(origin->second) >> position.x >> position.y >> position.z;
+      float angle = 0.0f;
+      if (const auto found = entity.find("angle"); found != entity.end())
+        std::istringstream(found->second) >> angle;
+      if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z) ||
+          !std::isfinite(angle))
+        continue;
+      const float yaw = glm::radians(angle);
+      Camera camera;
+      camera.position = fromQuake(position + glm::vec3(0.0f, 0.0f, kQuakeViewHeight));
+      camera.target =
+          camera.position + directionFromQuake(glm::vec3(std::cos(yaw), std::sin(yaw), 0.0f));
+      camera.fovYDegrees = 73.74f;  // Quake 3's 90 degrees horizontally, at 4:3
+      cameras.push_back(camera);
+    }
+    if (!cameras.empty()) break;
+  }
+  return cameras;
+}
+
+}  // namespace
+
+TexturedScene loadQuake3Map(const PackageFiles& files, std::string_view map,
+                            const std::filesystem::path& imageFolder,
+                            const Quake3Options& options) {
+  const std::string wanted = mapEntry(map);
+  const std::optional<std::string> entry = files.find(wanted);
+  if (!entry) throw InputError(wanted, "no such map in the packages");
+  const std::vector<uint8_t> bytes = files.read(*entry);
+  const BspFile bsp = parseBsp(bytes, files.describe(*entry));
+
+  TexturedScene scene;
+  scene.name = std::filesystem::path(*entry).stem().string();
+  SourceImages images(files, imageFolder, scene);
+  for (const BspSurface& surface : bsp.surfaces) {
+    const BspShader& shader = bsp.shaders[static_cast<size_t>(surface.shader)];
+    const auto type = static_cast<BspSurfaceType>(surface.type);
+    if (type == BspSurfaceType::kFlare) {
+      ++scene.skipped.flare;
+      continue;
+    }
+    if (type != BspSurfaceType::kPolygon && type != BspSurfaceType::kMesh &&
+        type != BspSurfaceType::kPatch) {
+      ++scene.skipped.unknownType;
+      continue;
+    }
+    if (skipByShader(shader, scene.skipped)) continue;
+    SurfaceGeometry geometry = type == BspSurfaceType::kPatch
+                                   ? patchGeometry(bsp, surface, options.patchLevel)
+                                   : polygonGeometry(bsp, surface);
+    if (!isFinite(geometry)) {
+      ++scene.skipped.notFinite;
+      continue;
+    }
+    if (!orientTriangles(geometry)) {
+      ++scene.skipped.degenerate;
+      continue;
+    }
+    if (type == BspSurfaceType::kPatch) ++scene.patchFaces;
+    const auto base = static_cast<uint32_t>(scene.positions.size());
+    TexturedFace face{.texture = images.textureFor(surface.shader, shader.name),
+                      .firstIndex = static_cast<uint32_t>(scene.indices.size()),
+                      .indexCount = static_cast<uint32_t>(geometry.indices.size())};
+    for (size_t v = 0; v < geometry.positions.size(); ++v) {
+      scene.positions.push_back(fromQuake(geometry.positions[v]));
+      scene.uvs.push_back(geometry.st[v]);
+    }
+    for (const uint32_t index : geometry.indices) scene.indices.push_back(base + index);
+    scene.faces.push_back(face);
+  }
+  if (scene.faces.empty()) throw InputError(files.describe(*entry), "the map draws no faces");
+  scene.viewpoints = spawnCameras(parseEntities(bsp.entities, files.describe(*entry)));
+  if (scene.viewpoints.empty()) scene.warnings.push_back("the map has no player spawn point");
+  return scene;
+}
+
+}  // namespace vt

@@ -1,0 +1,32 @@
+#pragma once
+// A Quake 3 map as a textured scene (thesis 3.3.2: the maps vtgeo retextured), read directly from
+// the game's .pk3 archives.
+//
+// Drawn: polygon and mesh surfaces, and patches tessellated at `patchLevel` (bezier_patch.h).
+// Skipped and counted (SkippedFaces): flares and billboards, sky, nodraw and fog shaders, unknown
+// surface types, surfaces with a non-finite vertex, and surfaces without a triangle of non-zero
+// area. Every source image a drawn face uses is extracted from its archive into `imageFolder`
+// under its entry name; a texture without an image gets the checker image and a warning.
+// Positions go through quake_axes.h; triangles are wound counter-clockwise about the surface's
+// vertex normals. The viewpoints are the info_player_deathmatch spawn points (else the first
+// present of info_player_start and the CTF team spawns) at view height, looking along their angle.
+
+#include <filesystem>
+#include <string_view>
+
+#include "scene/bezier_patch.h"
+#include "scene/package_files.h"
+#include "scene/textured_scene.h"
+
+namespace vt {
+
+struct Quake3Options {
+  int patchLevel = kPatchTessellationLevel;
+};
+
+// `map` is a map name ("q3dm6ish") or an entry ("maps/q3dm6ish.bsp").
+TexturedScene loadQuake3Map(const PackageFiles& files, std::string_view map,
+                            const std::filesystem::path& imageFolder,
+                            const Quake3Options& options = {});
+
+}  // namespace vt
