@@ -44,10 +44,10 @@ void addCrosscheckCommand(CLI::App& app) {
       "crosscheck",
       "Render scenes with the oracle and with OpenGL and compare them pixel by pixel");
   command->add_option("TEXTURE", o->texture, "Virtual-texture file (.vt)")->required();
-  command
-      ->add_option("--scenes", o->scenes,
-                   "Comma-separated scene names, or all: room, grazing, "
-                   "horizon, coplanar, minified")
+  std::string names;
+  for (const std::string& name : testSceneNames())
+    names.append(names.empty() ? "" : ", ").append(name);
+  command->add_option("--scenes", o->scenes, "Comma-separated scene names, or all: " + names)
       ->capture_default_str();
   command->add_option("--size", o->size, "WIDTHxHEIGHT")
       ->check(sizeValidator())

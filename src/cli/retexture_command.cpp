@@ -62,6 +62,11 @@ void addRetextureCommand(CLI::App& app) {
                    "Extra area a merged chart may waste, as a fraction of its parts'")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
+  command
+      ->add_option("--column-pages", o->retexture.charts.columnPages,
+                   "Width of the chart layout's packing columns, in pages")
+      ->check(CLI::Range(1u, 1u << 15))
+      ->capture_default_str();
   command->add_option("--patch-level", o->patchLevel, "Subdivisions per Bezier patch and side")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
@@ -77,6 +82,9 @@ void addRetextureCommand(CLI::App& app) {
     std::filesystem::create_directories(images);
     TexturedScene scene;
     if (scenePath.extension() == ".obj") {
+      const std::filesystem::path written = output / (scenePath.stem().string() + ".obj");
+      if (std::filesystem::exists(written) && std::filesystem::equivalent(written, scenePath))
+        throw InputError(scenePath, "the retextured mesh would overwrite it: choose another -o");
       scene = loadObjScene(scenePath, images);
     } else {
       if (o->packages.empty())

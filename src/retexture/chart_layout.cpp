@@ -15,24 +15,61 @@ struct ShelfPosition {
   uint64_t x = 0, y = 0;
 };
 
-// Positions for `charts` in `order` on shelves of a side x side texture, or nothing.
-std::optional<std::vector<ShelfPosition>> packShelves(const std::vector<Chart>& charts,
-                                                      const std::vector<uint32_t>& order,
-                                                      uint64_t side) {
+// Shelves in the band of columns [left, left + width), rows [top, bottom): a chart goes onto the
+// first open shelf that is tall enough and has room left, else onto a new shelf below the last.
+class Shelves {
+ public:
+  Shelves(uint64_t left, uint64_t width, uint64_t top, uint64_t bottom)
+      : left_(left), width_(width), bottom_(bottom), next_(top) {}
+
+  std::optional<ShelfPosition> place(const Chart& chart) {
+    if (chart.width() > width_) return std::nullopt;
+    for (Shelf& shelf : shelves_)
+      if (chart.height() <= shelf.height && shelf.used + chart.width() <= width_) {
+        const ShelfPosition at{left_ + shelf.used, shelf.y};
+        shelf.used += chart.width();
+        return at;
+      }
+    if (next_ + chart.height() > bottom_) return std::nullopt;
+    shelves_.push_back({next_, chart.height(), chart.width()});
+    next_ += chart.height();
+    return ShelfPosition{left_, shelves_.back().y};
+  }
+  uint64_t end() const { return next_; }
+
+ private:
+  struct Shelf {
+    uint64_t y, height, used;
+  };
+  uint64_t left_, width_, bottom_, next_;
+  std::vector<Shelf> shelves_;
+};
+
+// Wide charts on shelves across the texture at the top, then the narrow ones on shelves within
+// columns of `column` texels below them, column after column.
+std::optional<std::vector<ShelfPosition>> pack(const std::vector<Chart>& charts,
+                                               const std::vector<uint32_t>& wide,
+                                               const std::vector<uint32_t>& narrow, uint64_t side,
+                                               uint64_t column) {
   std::vector<ShelfPosition> positions(charts.size());
-  uint64_t x = 0, y = 0, shelfHeight = 0;
-  for (const uint32_t c : order) {
-    const Chart& chart = charts[c];
-    if (chart.width() > side) return std::nullopt;
-    if (x + chart.width() > side) {
-      y += shelfHeight;
-      x = 0;
-      shelfHeight = 0;
+  Shelves top(0, side, 0, side);
+  for (const uint32_t c : wide) {
+    const auto at = top.place(charts[c]);
+    if (!at) return std::nullopt;
+    positions[c] = *at;
+  }
+  column = std::min(column, side);
+  uint64_t left = 0;
+  Shelves shelves(left, column, top.end(), side);
+  for (const uint32_t c : narrow) {
+    auto at = shelves.place(charts[c]);
+    if (!at) {
+      left += column;
+      if (left + column > side) return std::nullopt;
+      shelves = Shelves(left, column, top.end(), side);
+      if (!(at = shelves.place(charts[c]))) return std::nullopt;
     }
-    if (y + chart.height() > side) return std::nullopt;
-    positions[c] = {x, y};
-    x += chart.width();
-    shelfHeight = std::max(shelfHeight, chart.height());
+    positions[c] = *at;
   }
   return positions;
 }
@@ -69,16 +106,22 @@ Retexturing layoutCharts(const TexturedScene& scene, uint32_t pageSize,
                          const ChartOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<Chart> charts = buildCharts(scene, options);
-  std::vector<uint32_t> order(charts.size());
-  std::iota(order.begin(), order.end(), 0u);
   const std::vector<uint64_t> morton = mortonKeys(scene, charts);
-  // Shelves hold charts of one height class; inside a class, neighbours in the scene come next
-  // to each other (Z-order), so a view's faces share pages.
+  // Narrow charts in Z-order of the scene, so that faces near each other in the scene land in
+  // one column, near each other: at coarser levels, where a page spans several charts, a view's
+  // faces share pages. Wide charts by height class (16 texels) first, then Z-order.
+  const uint64_t column = uint64_t{options.columnPages} * pageSize;
+  std::vector<uint32_t> wide, narrow;
+  for (uint32_t c = 0; c < charts.size(); ++c)
+    (charts[c].width() > column ? wide : narrow).push_back(c);
   const auto heightClass = [&](uint32_t c) { return (charts[c].height() + 15) / 16; };
-  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+  std::sort(wide.begin(), wide.end(), [&](uint32_t a, uint32_t b) {
     if (heightClass(a) != heightClass(b)) return heightClass(a) > heightClass(b);
     if (morton[a] != morton[b]) return morton[a] < morton[b];
     return a < b;
+  });
+  std::sort(narrow.begin(), narrow.end(), [&](uint32_t a, uint32_t b) {
+    return morton[a] != morton[b] ? morton[a] < morton[b] : a < b;
   });
 
   uint64_t texels = 0;
@@ -87,7 +130,7 @@ Retexturing layoutCharts(const TexturedScene& scene, uint32_t pageSize,
   while (levelSide(pageSize, level) * levelSide(pageSize, level) < texels) ++level;
   std::optional<std::vector<ShelfPosition>> positions;
   for (; level <= kMaxLevel; ++level)
-    if ((positions = packShelves(charts, order, levelSide(pageSize, level)))) break;
+    if ((positions = pack(charts, wide, narrow, levelSide(pageSize, level), column))) break;
   if (!positions) throw InputError(scene.name, "the charts exceed the format's largest texture");
 
   Retexturing layout;

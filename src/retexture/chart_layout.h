@@ -2,10 +2,12 @@
 // Our layout, fixing the two problems the thesis names (3.3.2.2): each chart (face_charts.h) gets
 // only the texels its faces use plus a margin, not whole copies of the texture, and faces that
 // touch in the mesh stay together in one area. Charts are packed on shelves without the page
-// grid, in classes of 16 texels of height (tallest first) and, within a class, in Z-order of
-// the charts' centroids in the scene (coherence between charts), each shelf filled left to right
-// and closed when the next chart does not fit; the texture starts at the smallest side
-// whose area holds all charts and doubles until they fit.
+// grid. Coherence between charts comes from the scene's Z-order (of chart centroids): charts
+// narrower than a column (ChartOptions::columnPages pages) fill columns of the texture one after
+// the other on shelves, so charts that are near in the scene are near in the texture in both
+// directions, and at coarser levels a view's faces share pages. Wider charts go first, on shelves
+// across the whole texture, by height class of 16 texels (tallest first) and Z-order. The texture
+// starts at the smallest side whose area holds all charts and doubles until they fit.
 
 #include "retexture/face_charts.h"
 #include "retexture/texture_area.h"

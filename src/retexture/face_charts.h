@@ -4,8 +4,10 @@
 // coherence", 3.3.2.2). Two faces are continuous when they have the same source texture, share a
 // vertex position, and lie in one plane with one affine texture map (to 1/100 texel: brush faces
 // that the map compiler split, T-junctions included) up to whole repetitions of the texture (a
-// face joins with its coordinates shifted by them). Faces that only meet at a corner are never
-// merged: their texels could overlap in the unrolled space, and each face keeps texels of its own.
+// face joins with its coordinates shifted by them). Faces on different planes (two walls meeting
+// at a corner) are never merged, even where their coordinates agree along the shared edge: their
+// texels could overlap in the unrolled space, and each face keeps texels of its own. On one plane
+// one affine map is one-to-one, so joined faces never share texels.
 // Pairs are merged greedily in order of their face numbers, as long as the merged
 // chart's texel rectangle stays within `slack` of the sum of the two charts' rectangles (an
 // L-shaped union would otherwise waste the corner) and within `maxSide` texels per side.
@@ -18,9 +20,10 @@
 namespace vt {
 
 struct ChartOptions {
-  double slack = 0.10;      // merged area <= (1 + slack) * (area(a) + area(b))
-  uint32_t maxSide = 4096;  // texels
-  uint32_t margin = 1;      // source texels around what a chart's faces span (bilinear footprint)
+  double slack = 0.10;       // merged area <= (1 + slack) * (area(a) + area(b))
+  uint32_t maxSide = 4096;   // texels
+  uint32_t margin = 1;       // source texels around what a chart's faces span (bilinear footprint)
+  uint32_t columnPages = 4;  // width of the packing columns of chart_layout.h, in pages
 };
 
 struct Chart {

@@ -25,11 +25,12 @@ std::vector<uint64_t> touchedPages(const Retexturing& layout) {
   return {pages.begin(), pages.end()};
 }
 
-uint64_t pagesWithAncestors(std::vector<uint64_t> pages) {
+// The pages and all their ancestors, level by level up to the root.
+uint64_t pagesWithAncestors(std::vector<uint64_t> pages, uint64_t pagesPerSide) {
   uint64_t total = 0;
-  while (!pages.empty()) {
+  for (uint64_t n = pagesPerSide;; n /= 2) {
     total += pages.size();
-    if (pages.size() == 1 && pages[0] == 0) break;
+    if (n <= 1) break;
     for (uint64_t& page : pages) page = ((page >> 32) / 2) << 32 | (page & 0xffffffffu) / 2;
     std::sort(pages.begin(), pages.end());
     pages.erase(std::unique(pages.begin(), pages.end()), pages.end());
@@ -88,7 +89,8 @@ LayoutQuality measureLayout(const TexturedScene& scene, const Retexturing& layou
   std::vector<std::vector<uint32_t>> facesOfArea(layout.areas.size());
   for (uint32_t f = 0; f < scene.faces.size(); ++f) facesOfArea[layout.faceArea[f]].push_back(f);
   const std::vector<uint64_t> pages = touchedPages(layout);
-  LayoutQuality quality{.finestPages = pages.size(), .allPages = pagesWithAncestors(pages)};
+  LayoutQuality quality{.finestPages = pages.size(),
+                        .allPages = pagesWithAncestors(pages, layout.side / layout.pageSize)};
   quality.referencedTexels = tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, layout.areas.size()), uint64_t{0},
       [&](const tbb::blocked_range<size_t>& range, uint64_t sum) {

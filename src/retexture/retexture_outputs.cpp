@@ -37,10 +37,9 @@ ordered_json methodJson(const MethodResult& method) {
 void writeRetexturedObj(const std::filesystem::path& path, const TexturedScene& scene,
                         const std::vector<glm::vec2>& uvs) {
   std::ostringstream out;
-  out.precision(9);
+  out.precision(17);  // round trips the double 1 - t', and so t' (a float)
   out << "# " << scene.name << ": " << scene.faces.size() << " faces, retextured\n";
   for (const glm::vec3& p : scene.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
-  // t' is stored as 1 - v; 9 significant digits give back the float exactly.
   for (const glm::vec2& uv : uvs) out << "vt " << uv.x << ' ' << 1.0 - double{uv.y} << '\n';
   for (size_t f = 0; f < scene.faces.size(); ++f) {
     out << "g face_" << f << '\n';
@@ -107,6 +106,7 @@ void writeRetextureReport(const std::filesystem::path& path, const TexturedScene
       {"scene", scene.name},
       {"faces", scene.faces.size()},
       {"patch_faces", scene.patchFaces},
+      {"surfaces_split_into_pieces", scene.splitSurfaces},
       {"triangles", triangles},
       {"textures", scene.textures.size()},
       {"missing_textures", missing},

@@ -14,8 +14,10 @@
 namespace vt {
 namespace {
 
-// tinyobjloader only warns about a missing MTL file; for us it is an error.
-void requireMaterialLibraries(const std::filesystem::path& path) {
+// The folder of the MTL file defining each material (map_Kd names are relative to it). A missing
+// MTL file is an error (tinyobjloader only warns).
+std::map<std::string, std::filesystem::path> materialFolders(const std::filesystem::path& path) {
+  std::map<std::string, std::filesystem::path> folders;
   std::ifstream stream(path);
   std::string line;
   while (std::getline(stream, line)) {
@@ -23,17 +25,32 @@ void requireMaterialLibraries(const std::filesystem::path& path) {
     std::string keyword, library;
     words >> keyword;
     if (keyword != "mtllib") continue;
-    while (words >> library)
-      if (!std::filesystem::exists(path.parent_path() / library))
+    while (words >> library) {
+      const std::filesystem::path file = path.parent_path() / library;
+      if (!std::filesystem::exists(file))
         throw InputError(path, "material library " + library + " not found");
+      std::ifstream mtl(file);
+      std::string definition;
+      while (std::getline(mtl, definition)) {
+        std::istringstream parts(definition);
+        std::string word, name;
+        if (parts >> word >> name && word == "newmtl")
+          folders.try_emplace(name, file.parent_path());
+      }
+    }
   }
+  return folders;
 }
 
 class MaterialTextures {
  public:
-  MaterialTextures(const std::filesystem::path& objFolder, const std::filesystem::path& imageFolder,
+  MaterialTextures(std::map<std::string, std::filesystem::path> folders,
+                   const std::filesystem::path& imageFolder,
                    const std::vector<tinyobj::material_t>& materials, TexturedScene& scene)
-      : objFolder_(objFolder), imageFolder_(imageFolder), materials_(materials), scene_(scene) {}
+      : folders_(std::move(folders)),
+        imageFolder_(imageFolder),
+        materials_(materials),
+        scene_(scene) {}
 
   uint32_t textureFor(int material) {
     if (const auto found = byMaterial_.find(material); found != byMaterial_.end())
@@ -43,7 +60,7 @@ class MaterialTextures {
       const tinyobj::material_t& m = materials_[static_cast<size_t>(material)];
       texture.name = m.name;
       if (!m.diffuse_texname.empty())
-        probe(objFolder_ / m.diffuse_texname, texture);
+        probe(folders_[m.name] / m.diffuse_texname, texture);
       else
         scene_.warnings.push_back("material " + m.name + ": no map_Kd, drawn as a checker");
     } else {
@@ -76,7 +93,8 @@ class MaterialTextures {
     texture.foundAs = image.string();
   }
 
-  std::filesystem::path objFolder_, imageFolder_;
+  std::map<std::string, std::filesystem::path> folders_;  // material name -> its MTL's folder
+  std::filesystem::path imageFolder_;
   const std::vector<tinyobj::material_t>& materials_;
   TexturedScene& scene_;
   std::map<int, uint32_t> byMaterial_;
@@ -87,7 +105,7 @@ class MaterialTextures {
 TexturedScene loadObjScene(const std::filesystem::path& path,
                            const std::filesystem::path& imageFolder) {
   if (!std::filesystem::exists(path)) throw InputError(path, "mesh not found");
-  requireMaterialLibraries(path);
+  std::map<std::string, std::filesystem::path> folders = materialFolders(path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // each polygon stays one face
   config.mtl_search_path = path.parent_path().string();
@@ -98,7 +116,7 @@ TexturedScene loadObjScene(const std::filesystem::path& path,
 
   TexturedScene scene;
   scene.name = path.stem().string();
-  MaterialTextures textures(path.parent_path(), imageFolder, reader.GetMaterials(), scene);
+  MaterialTextures textures(std::move(folders), imageFolder, reader.GetMaterials(), scene);
   for (const auto& shape : reader.GetShapes()) {
     size_t offset = 0;
     for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {

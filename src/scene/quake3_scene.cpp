@@ -153,6 +153,49 @@ class SourceImages {
   std::map<int32_t, uint32_t> byShader_;
 };
 
+// The triangles of `indices` grouped by connection (sharing a vertex), each group in its order.
+std::vector<std::vector<uint32_t>> connectedPieces(const std::vector<uint32_t>& indices) {
+  std::map<uint32_t, uint32_t> parent;
+  const auto root = [&](uint32_t v) {
+    parent.try_emplace(v, v);
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (size_t t = 0; t + 2 < indices.size(); t += 3)
+    for (size_t k = 1; k < 3; ++k) {
+      const uint32_t a = root(indices[t]), b = root(indices[t + k]);
+      parent[std::max(a, b)] = std::min(a, b);
+    }
+  std::map<uint32_t, size_t> pieceOf;  // root -> piece, in order of first triangle
+  std::vector<std::vector<uint32_t>> pieces;
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    const auto [found, inserted] = pieceOf.try_emplace(root(indices[t]), pieces.size());
+    if (inserted) pieces.emplace_back();
+    pieces[found->second].insert(pieces[found->second].end(), indices.begin() + t,
+                                 indices.begin() + t + 3);
+  }
+  return pieces;
+}
+
+// Appends the triangles `indices` of `geometry` as one face with vertices of its own.
+void addFace(TexturedScene& scene, const SurfaceGeometry& geometry,
+             std::span<const uint32_t> indices, uint32_t texture) {
+  TexturedFace face{.texture = texture,
+                    .firstIndex = static_cast<uint32_t>(scene.indices.size()),
+                    .indexCount = static_cast<uint32_t>(indices.size())};
+  std::map<uint32_t, uint32_t> vertexOf;  // geometry's vertex -> the scene's
+  for (const uint32_t index : indices) {
+    auto [found, inserted] =
+        vertexOf.try_emplace(index, static_cast<uint32_t>(scene.positions.size()));
+    if (inserted) {
+      scene.positions.push_back(fromQuake(geometry.positions[index]));
+      scene.uvs.push_back(geometry.st[index]);
+    }
+    scene.indices.push_back(found->second);
+  }
+  scene.faces.push_back(face);
+}
+
 bool skipByShader(const BspShader& shader, SkippedFaces& skipped) {
   if (shader.surfaceFlags & kSurfaceSky) return ++skipped.sky, true;
   if (shader.surfaceFlags & kSurfaceNoDraw) return ++skipped.noDraw, true;
@@ -228,16 +271,16 @@ TexturedScene loadQuake3Map(const PackageFiles& files, std::string_view map,
       continue;
     }
     if (type == BspSurfaceType::kPatch) ++scene.patchFaces;
-    const auto base = static_cast<uint32_t>(scene.positions.size());
-    TexturedFace face{.texture = images.textureFor(surface.shader, shader.name),
-                      .firstIndex = static_cast<uint32_t>(scene.indices.size()),
-                      .indexCount = static_cast<uint32_t>(geometry.indices.size())};
-    for (size_t v = 0; v < geometry.positions.size(); ++v) {
-      scene.positions.push_back(fromQuake(geometry.positions[v]));
-      scene.uvs.push_back(geometry.st[v]);
+    const uint32_t texture = images.textureFor(surface.shader, shader.name);
+    if (type == BspSurfaceType::kPatch) {
+      addFace(scene, geometry, geometry.indices, texture);
+      continue;
     }
-    for (const uint32_t index : geometry.indices) scene.indices.push_back(base + index);
-    scene.faces.push_back(face);
+    // The map compiler gathers triangles of one plane or shader from many brushes into one
+    // surface: each connected piece is a face of its own.
+    const std::vector<std::vector<uint32_t>> pieces = connectedPieces(geometry.indices);
+    if (pieces.size() > 1) ++scene.splitSurfaces;
+    for (const std::vector<uint32_t>& piece : pieces) addFace(scene, geometry, piece, texture);
   }
   if (scene.faces.empty()) throw InputError(files.describe(*entry), "the map draws no faces");
   scene.viewpoints = spawnCameras(parseEntities(bsp.entities, files.describe(*entry)));

@@ -2,7 +2,9 @@
 // A Quake 3 map as a textured scene (thesis 3.3.2: the maps vtgeo retextured), read directly from
 // the game's .pk3 archives.
 //
-// Drawn: polygon and mesh surfaces, and patches tessellated at `patchLevel` (bezier_patch.h).
+// Drawn: polygon and mesh surfaces, one face per connected piece (the map compiler gathers
+// triangles of one plane or shader from many brushes into one surface), and patches tessellated
+// at `patchLevel` (bezier_patch.h), one face each.
 // Skipped and counted (SkippedFaces): flares and billboards, sky, nodraw and fog shaders, unknown
 // surface types, surfaces with a non-finite vertex, and surfaces without a triangle of non-zero
 // area. Every source image a drawn face uses is extracted from its archive into `imageFolder`

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "scene/box_room.h"
+#include "scene/terrain.h"
 
 namespace vt {
 namespace {
@@ -63,7 +64,7 @@ NamedScene minified() {
 }  // namespace
 
 std::vector<std::string> testSceneNames() {
-  return {"room", "grazing", "horizon", "coplanar", "minified"};
+  return {"room", "grazing", "horizon", "coplanar", "minified", "terrain"};
 }
 
 NamedScene testScene(const std::string& name) {
@@ -74,6 +75,7 @@ NamedScene testScene(const std::string& name) {
   if (name == "horizon") return horizon();
   if (name == "coplanar") return coplanar();
   if (name == "minified") return minified();
+  if (name == "terrain") return {"terrain", heightmapTerrain({}), terrainCamera({})};
   throw std::invalid_argument("scene '" + name +
                               "' is not one of room, grazing, horizon, coplanar, minified");
 }

@@ -8,6 +8,7 @@
 //   horizon    a ground plane reaching the horizon (helper pixels beyond w = 0)
 //   coplanar   two coplanar overlapping quads with different texture areas (decals)
 //   minified   a whole texture on a few hundred pixels, and a magnified corner
+//   terrain    hills from a heightmap under one continuous texture area (terrain.h)
 
 #include <string>
 #include <vector>

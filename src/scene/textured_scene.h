@@ -51,6 +51,7 @@ struct TexturedScene {
   std::vector<SourceTexture> textures;
   SkippedFaces skipped;
   uint32_t patchFaces = 0;            // faces tessellated from curved patches
+  uint32_t splitSurfaces = 0;         // surfaces of several unconnected pieces, one face per piece
   std::vector<Camera> viewpoints;     // where players start (Quake 3 spawn points), in entity order
   std::vector<std::string> warnings;  // one line each, e.g. a texture that was not found
 };

@@ -14,6 +14,7 @@
 #include "common/error.h"
 #include "scene/bezier_patch.h"
 #include "scene/bsp_entities.h"
+#include "scene/quake3_fixtures.h"
 
 namespace vt {
 namespace {
@@ -23,78 +24,16 @@ using ::testing::HasSubstr;
 using ::testing::StartsWith;
 using ::testing::ThrowsMessage;
 
-// ---------------------------------------------------------------------------------------------
-// A writer for synthetic IBSP 46 files: the header, then the 17 lumps in order, each at whatever
-// offset the previous ones leave (so most lumps after the entity text sit unaligned).
-
-constexpr int kLumps = 17;
-constexpr int kShadersLump = 1, kVerticesLump = 10, kIndicesLump = 11, kSurfacesLump = 13;
-
-void appendI32(std::vector<uint8_t>& out, int32_t v) {
-  const auto u = static_cast<uint32_t>(v);
-  for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(u >> (8 * i)));
-}
-void appendF32(std::vector<uint8_t>& out, float v) { appendI32(out, std::bit_cast<int32_t>(v)); }
-void putI32(std::vector<uint8_t>& bytes, size_t at, int32_t v) {
-  const auto u = static_cast<uint32_t>(v);
-  for (int i = 0; i < 4; ++i) bytes[at + i] = static_cast<uint8_t>(u >> (8 * i));
-}
-// Byte positions of a lump's directory entry.
-size_t lumpOffsetAt(int lump) { return 8 + 8 * static_cast<size_t>(lump); }
-size_t lumpLengthAt(int lump) { return lumpOffsetAt(lump) + 4; }
-
-struct BspBuilder {
-  std::string entities;
-  std::vector<BspShader> shaders;
-  std::vector<BspVertex> vertices;
-  std::vector<int32_t> indices;
-  std::vector<BspSurface> surfaces;
-
-  std::vector<uint8_t> build() const {
-    std::vector<uint8_t> lumps[kLumps];
-    lumps[0].assign(entities.begin(), entities.end());
-    lumps[0].push_back(0);  // q3map2 writes the text's terminating NUL
-    for (const BspShader& shader : shaders) {
-      std::string name = shader.name;
-      name.resize(64, '\0');
-      lumps[kShadersLump].insert(lumps[kShadersLump].end(), name.begin(), name.end());
-      appendI32(lumps[kShadersLump], shader.surfaceFlags);
-      appendI32(lumps[kShadersLump], shader.contentFlags);
-    }
-    for (const BspVertex& v : vertices) {
-      std::vector<uint8_t>& out = lumps[kVerticesLump];
-      for (int i = 0; i < 3; ++i) appendF32(out, v.position[i]);
-      for (int i = 0; i < 2; ++i) appendF32(out, v.st[i]);
-      appendF32(out, 0.25f);  // lightmap coordinates, not read
-      appendF32(out, 0.75f);
-      for (int i = 0; i < 3; ++i) appendF32(out, v.normal[i]);
-      for (uint8_t c : {uint8_t{255}, uint8_t{128}, uint8_t{0}, uint8_t{255}}) out.push_back(c);
-    }
-    for (const int32_t index : indices) appendI32(lumps[kIndicesLump], index);
-    for (const BspSurface& s : surfaces) {
-      std::vector<uint8_t>& out = lumps[kSurfacesLump];
-      for (const int32_t field : {s.shader, s.fog, s.type, s.firstVertex, s.vertexCount,
-                                  s.firstIndex, s.indexCount, 3, 16, 32, 8, 8})
-        appendI32(out, field);
-      for (int i = 0; i < 3; ++i) appendF32(out, 100.0f + i);  // lightmap origin
-      for (int i = 0; i < 6; ++i) appendF32(out, -7.0f);       // lightmap s and t vectors
-      for (int i = 0; i < 3; ++i) appendF32(out, s.normal[i]);
-      appendI32(out, s.patchWidth);
-      appendI32(out, s.patchHeight);
-    }
-    for (int lump : {2, 3, 4}) lumps[lump].assign(12, 0xcd);  // unused lumps, not read
-
-    std::vector<uint8_t> bytes = {'I', 'B', 'S', 'P'};
-    appendI32(bytes, 46);
-    bytes.resize(8 + 8 * kLumps);
-    for (int lump = 0; lump < kLumps; ++lump) {
-      putI32(bytes, lumpOffsetAt(lump), static_cast<int32_t>(bytes.size()));
-      putI32(bytes, lumpLengthAt(lump), static_cast<int32_t>(lumps[lump].size()));
-      bytes.insert(bytes.end(), lumps[lump].begin(), lumps[lump].end());
-    }
-    return bytes;
-  }
-};
+using test::appendI32;
+using test::BspBuilder;
+using test::kIndicesLump;
+using test::kLumps;
+using test::kShadersLump;
+using test::kSurfacesLump;
+using test::kVerticesLump;
+using test::lumpLengthAt;
+using test::lumpOffsetAt;
+using test::putI32;
 
 BspVertex vertex(glm::vec3 position, glm::vec2 st) { return {position, st, {0.0f, 0.0f, 1.0f}}; }
 

@@ -75,7 +75,8 @@ TEST_F(ObjScene, PolygonsBecomeFanTriangulatedFacesWithTheirMaterialsTextures) {
   EXPECT_EQ(scene.skipped.total(), 0u);
 
   ASSERT_EQ(scene.faces.size(), 4u);
-  const uint32_t firstIndex[] = {0, 6, 9, 18}, indexCount[] = {6, 3, 9, 3}, texture[] = {0, 1, 1, 0};
+  const uint32_t firstIndex[] = {0, 6, 9, 18}, indexCount[] = {6, 3, 9, 3},
+                 texture[] = {0, 1, 1, 0};
   for (size_t f = 0; f < 4; ++f) {
     EXPECT_EQ(scene.faces[f].firstIndex, firstIndex[f]) << f;
     EXPECT_EQ(scene.faces[f].indexCount, indexCount[f]) << f;
@@ -84,9 +85,9 @@ TEST_F(ObjScene, PolygonsBecomeFanTriangulatedFacesWithTheirMaterialsTextures) {
   // Each face owns its corners; fans from the first corner.
   ASSERT_EQ(scene.positions.size(), 4u + 3 + 5 + 3);
   ASSERT_EQ(scene.uvs.size(), scene.positions.size());
-  EXPECT_EQ(scene.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3,          // quad
-                                                  4, 5, 6,                   // triangle
-                                                  7, 8, 9, 7, 9, 10, 7, 10, 11,  // pentagon
+  EXPECT_EQ(scene.indices, (std::vector<uint32_t>{0,  1,  2, 0, 2, 3,              // quad
+                                                  4,  5,  6,                       // triangle
+                                                  7,  8,  9, 7, 9, 10, 7, 10, 11,  // pentagon
                                                   12, 13, 14}));
   EXPECT_EQ(scene.positions[9], glm::vec3(2.0f, 2.0f, 0.0f));
   // t = 1 - v, s unchanged (repetitions kept).
@@ -128,8 +129,7 @@ TEST_F(ObjScene, IndexOutOfRangeIsAnError) {
   writeText("far.obj", std::string(kSquareVertices) + "f 1/1 2/2 9/3\n");
   EXPECT_THAT(loadError("far.obj"), AllOf(HasSubstr("far.obj"), HasSubstr("index out of range")));
   writeText("fart.obj", std::string(kSquareVertices) + "f 1/1 2/2 3/5\n");
-  EXPECT_THAT(loadError("fart.obj"),
-              AllOf(HasSubstr("fart.obj"), HasSubstr("index out of range")));
+  EXPECT_THAT(loadError("fart.obj"), AllOf(HasSubstr("fart.obj"), HasSubstr("index out of range")));
 }
 
 TEST_F(ObjScene, MaterialsWithoutAReadableMapAreDrawnAsTheCheckerWithAWarning) {
@@ -166,10 +166,25 @@ TEST_F(ObjScene, MaterialsWithoutAReadableMapAreDrawnAsTheCheckerWithAWarning) {
   EXPECT_THAT(scene.warnings[1], AllOf(HasSubstr("lost"), HasSubstr("lost.png")));
 }
 
+TEST_F(ObjScene, DiffuseMapIsRelativeToTheMaterialFile) {
+  // obj_scene.h: "map_Kd, relative to the MTL file", here in a folder of its own.
+  writeImage("materials/wall.png", 16, 8);
+  writeText("materials/scene.mtl", "newmtl wall\nmap_Kd wall.png\n");
+  writeText("scene.obj", std::string("mtllib materials/scene.mtl\n") + kSquareVertices +
+                             "usemtl wall\nf 1/1 2/2 3/3\n");
+  const TexturedScene scene = load("scene.obj");
+  ASSERT_EQ(scene.textures.size(), 1u);
+  EXPECT_FALSE(scene.textures[0].missing);
+  EXPECT_EQ(scene.textures[0].width, 16u);
+  EXPECT_EQ(scene.textures[0].height, 8u);
+  EXPECT_TRUE(scene.warnings.empty());
+}
+
 TEST_F(ObjScene, NonFiniteVertexSkipsItsFace) {
-  // tinyobjloader reads 0e400 as 0 * 5^400 * 2^400 = 0 * inf: NaN; 1e400 as infinity.
+  // tinyobjloader reads m e x as ldexp(m * 5^x, x): 0e500 is 0 * inf, NaN; 1e400 overflows to
+  // infinity.
   writeText("nan.obj",
-            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0e400 1 0\n"
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0e500 1 0\n"
             "vt 0 0\nvt 1 0\nvt 1 1\nvt 1e400 0\n"
             "f 1/1 2/2 3/3\n"
             "f 1/1 3/3 4/1\n"  // NaN position

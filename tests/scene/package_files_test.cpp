@@ -4,13 +4,13 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <zip.h>
 
 #include <cstring>
 #include <random>
 #include <utility>
 
 #include "common/error.h"
+#include "scene/quake3_fixtures.h"
 #include "scene/texture_resolver.h"
 #include "test_support.h"
 
@@ -21,28 +21,7 @@ using ::testing::AllOf;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 
-// Writes a zip archive holding `entries` (name, contents), deflated; a name ending in '/' is a
-// folder entry.
-void writeZip(const std::filesystem::path& path,
-              const std::vector<std::pair<std::string, std::string>>& entries) {
-  int code = 0;
-  zip_t* zip = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &code);
-  ASSERT_NE(zip, nullptr) << path;
-  for (const auto& [name, contents] : entries) {
-    if (name.ends_with('/')) {
-      ASSERT_GE(zip_dir_add(zip, name.c_str(), ZIP_FL_ENC_UTF_8), 0) << name;
-      continue;
-    }
-    // The source borrows `contents`, which outlives zip_close below.
-    zip_source_t* source = zip_source_buffer(zip, contents.data(), contents.size(), 0);
-    ASSERT_NE(source, nullptr);
-    const zip_int64_t index = zip_file_add(zip, name.c_str(), source, ZIP_FL_ENC_UTF_8);
-    ASSERT_GE(index, 0) << name;
-    ASSERT_EQ(zip_set_file_compression(zip, static_cast<zip_uint64_t>(index), ZIP_CM_DEFLATE, 9),
-              0);
-  }
-  ASSERT_EQ(zip_close(zip), 0) << zip_strerror(zip);
-}
+using test::writeZip;
 
 std::string text(const std::vector<uint8_t>& bytes) {
   return std::string(bytes.begin(), bytes.end());
