@@ -12,6 +12,8 @@ packages=(
   libzip-dev
   # headless OpenGL through EGL (Mesa llvmpipe) with libepoxy
   libegl-dev libegl1-mesa-dev libgl1-mesa-dri libopengl-dev libgl-dev libepoxy-dev
+  # report scripts
+  python3
   # tests, benchmarks, command line, JSON, checksums
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libxxhash-dev
   # parallel loops

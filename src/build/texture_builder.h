@@ -9,8 +9,9 @@
 //
 // Memory bound: sum over levels of (P + 2 B' + 2 + 2 r) rows of side_m * c bytes, where
 // B' = max(B, 2 + r) and r is the filter's reach (0 box, 1 tent): below
-// 2 (P + 2 B' + 2 + 2 r) * side_L * c bytes, plus one page per thread and one scanline per open
-// image. For 16384^2 RGB texels, P = 128, B = 4, box: under 14 MB.
+// 2 (P + 2 B' + 2 + 2 r) * side_L * c bytes, plus one page per thread, one scanline per open
+// image, and each image of region placements whole while rows pass its placements
+// (build/image_rows.h). For 16384^2 RGB texels, P = 128, B = 4, box: under 14 MB.
 
 #include <cstdint>
 #include <filesystem>
@@ -30,7 +31,7 @@ struct BuildReport {
   uint64_t totalPages = 0;
   uint64_t fileBytes = 0;
   uint64_t ringBytes = 0;      // rows held by all levels, the bulk of the builder's memory
-  uint64_t scanlineBytes = 0;  // most scanline bytes held at once
+  uint64_t scanlineBytes = 0;  // most image bytes held at once (scanlines and decoded images)
   double seconds = 0.0;
 };
 
