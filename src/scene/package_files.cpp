@@ -11,16 +11,6 @@
 namespace vt {
 namespace {
 
-// The key a name is compared by: ASCII lower case, '/' as the separator.
-std::string nameKey(std::string_view name) {
-  std::string key(name);
-  for (char& c : key) {
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-    if (c == '\\') c = '/';
-  }
-  return key;
-}
-
 std::string libzipMessage(int code) {
   zip_error_t error;
   zip_error_init_with_code(&error, code);
@@ -59,6 +49,15 @@ class ZipArchive {
 
 }  // namespace
 
+std::string packageNameKey(std::string_view name) {
+  std::string key(name);
+  for (char& c : key) {
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    if (c == '\\') c = '/';
+  }
+  return key;
+}
+
 struct PackageFiles::Archives {
   struct Entry {
     size_t archive;      // index into `archives`
@@ -66,10 +65,10 @@ struct PackageFiles::Archives {
     std::string name;    // as stored
   };
   std::vector<ZipArchive> archives;
-  std::map<std::string, Entry> entries;  // by nameKey; the last archive to add a name wins
+  std::map<std::string, Entry> entries;  // by packageNameKey; the last archive to add a name wins
 
   const Entry* lookup(std::string_view name) const {
-    const auto it = entries.find(nameKey(name));
+    const auto it = entries.find(packageNameKey(name));
     return it == entries.end() ? nullptr : &it->second;
   }
 
@@ -95,7 +94,7 @@ PackageFiles::PackageFiles(const std::vector<std::filesystem::path>& archives)
         throw InputError(path, "entry " + std::to_string(i) + " has an unreadable name");
       const std::string name = stored;
       if (name.empty() || name.back() == '/' || name.back() == '\\') continue;  // a folder
-      archives_->entries.insert_or_assign(nameKey(name),
+      archives_->entries.insert_or_assign(packageNameKey(name),
                                           Archives::Entry{archives_->archives.size() - 1, i, name});
     }
   }
@@ -109,12 +108,12 @@ PackageFiles PackageFiles::fromFolders(const std::vector<std::filesystem::path>&
       throw InputError(folder, "not a folder of .pk3 archives");
     std::vector<std::filesystem::path> found;
     for (const auto& item : std::filesystem::directory_iterator(folder)) {
-      if (!item.is_directory() && nameKey(item.path().extension().string()) == ".pk3")
+      if (!item.is_directory() && packageNameKey(item.path().extension().string()) == ".pk3")
         found.push_back(item.path());
     }
     // The game sorts without regard to case (ioquake3's FS_SortFileList).
     std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) {
-      return nameKey(a.filename().string()) < nameKey(b.filename().string());
+      return packageNameKey(a.filename().string()) < packageNameKey(b.filename().string());
     });
     archives.insert(archives.end(), found.begin(), found.end());
   }
@@ -170,7 +169,7 @@ std::vector<uint8_t> PackageFiles::read(std::string_view name) const {
 
 std::vector<std::string> PackageFiles::list(std::string_view prefix,
                                             std::string_view suffix) const {
-  const std::string prefixKey = nameKey(prefix), suffixKey = nameKey(suffix);
+  const std::string prefixKey = packageNameKey(prefix), suffixKey = packageNameKey(suffix);
   std::vector<std::string> names;
   // The map is ordered by key, so the names with the prefix form one run from its lower bound.
   for (auto it = archives_->entries.lower_bound(prefixKey);

@@ -19,6 +19,10 @@
 
 namespace vt {
 
+// The key a name is compared by: ASCII lower case, '/' as the separator (file names, and shader
+// names, which the game compares the same way).
+std::string packageNameKey(std::string_view name);
+
 class PackageFiles {
  public:
   // Opens the archives in load order (the last one wins). A file that is not a readable zip

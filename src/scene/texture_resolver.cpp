@@ -7,16 +7,6 @@
 namespace vt {
 namespace {
 
-// The key a shader name is compared by, as PackageFiles compares file names.
-std::string nameKey(std::string_view name) {
-  std::string key(name);
-  for (char& c : key) {
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-    if (c == '\\') c = '/';
-  }
-  return key;
-}
-
 // "textures/x/y.tga" -> "textures/x/y"; a dot in a folder's name is not an extension.
 std::string_view withoutExtension(std::string_view name) {
   const size_t dot = name.rfind('.'), slash = name.find_last_of("/\\");
@@ -44,7 +34,7 @@ TextureResolver::TextureResolver(const PackageFiles& files) : files_(files) {
     const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     for (ShaderDefinition& definition : parseShaderScript(text, files.describe(script))) {
       shaders_.insert_or_assign(
-          nameKey(definition.name),
+          packageNameKey(definition.name),
           ScriptImages{std::move(definition.firstMapImage), std::move(definition.editorImage)});
     }
   }
@@ -54,7 +44,7 @@ std::optional<ResolvedTexture> TextureResolver::resolve(std::string_view shaderN
   using Via = ResolvedTexture::Via;
   if (auto file = findImage(files_, shaderName)) return ResolvedTexture{*file, Via::kImage};
   // The game looks shaders up by the name without its extension too (R_FindShader).
-  const auto shader = shaders_.find(nameKey(withoutExtension(shaderName)));
+  const auto shader = shaders_.find(packageNameKey(withoutExtension(shaderName)));
   if (shader == shaders_.end()) return std::nullopt;
   const ScriptImages& images = shader->second;
   if (images.firstMapImage) {
