@@ -1,6 +1,7 @@
-// vt crosscheck TEXTURE: renders named scenes with the CPU oracle and with OpenGL from the same
-// cache state and compares them pixel by pixel (reference/frame_comparison.h). Writes difference
-// images and summary.json; exits 1 when any pixel is mismatched without the oracle's flag.
+// vt crosscheck TEXTURE: renders named scenes, or frames of a flythrough of an OBJ scene, with the
+// CPU oracle and with OpenGL from the same cache state and compares them pixel by pixel
+// (reference/frame_comparison.h). Writes difference images and summary.json; exits 1 when any pixel
+// is mismatched without the oracle's flag.
 
 #include <chrono>
 #include <cmath>
@@ -18,6 +19,8 @@
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
 #include "reference/frame_comparison.h"
+#include "scene/camera_path.h"
+#include "scene/obj_mesh.h"
 #include "scene/test_scenes.h"
 
 namespace vt {
@@ -38,6 +41,8 @@ struct Mode {
 void addCrosscheckCommand(CLI::App& app) {
   struct Options {
     std::string texture, scenes = "all", size = "320x200", profile = "auto", output = "crosscheck";
+    std::string mesh, path;
+    int every = 8;
   };
   auto o = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand(
@@ -48,6 +53,13 @@ void addCrosscheckCommand(CLI::App& app) {
   for (const std::string& name : testSceneNames())
     names.append(names.empty() ? "" : ", ").append(name);
   command->add_option("--scenes", o->scenes, "Comma-separated scene names, or all: " + names)
+      ->capture_default_str();
+  command->add_option("--mesh", o->mesh, "An OBJ scene flown through along --path instead")
+      ->check(CLI::ExistingFile);
+  command->add_option("--path", o->path, "Camera path (.json) for --mesh")
+      ->check(CLI::ExistingFile);
+  command->add_option("--every", o->every, "With --path: every n-th frame")
+      ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   command->add_option("--size", o->size, "WIDTHxHEIGHT")
       ->check(sizeValidator())
@@ -60,14 +72,25 @@ void addCrosscheckCommand(CLI::App& app) {
   command->callback([o] {
     reference::RenderSettings settings;
     settings.viewport = parseSize(o->size);
-    std::vector<std::string> scenes;
-    if (o->scenes == "all") {
-      scenes = testSceneNames();
+    // The views: frames of a path through a mesh, or the named scenes. Bad input fails here,
+    // before any work.
+    std::vector<NamedScene> views;
+    if (!o->mesh.empty() || !o->path.empty()) {
+      if (o->mesh.empty() || o->path.empty())
+        throw CLI::ValidationError("--mesh/--path", "a flythrough needs both");
+      const Mesh mesh = loadObjMesh(o->mesh);
+      const CameraPath path = CameraPath::load(o->path);
+      for (int frame = 0; frame < path.frameCount(); frame += o->every) {
+        char name[32];
+        std::snprintf(name, sizeof name, "frame%04d", frame);
+        views.push_back({name, mesh, path.at(frame)});
+      }
+    } else if (o->scenes == "all") {
+      for (const std::string& name : testSceneNames()) views.push_back(testScene(name));
     } else {
       std::stringstream list(o->scenes);
-      for (std::string name; std::getline(list, name, ',');) scenes.push_back(name);
+      for (std::string name; std::getline(list, name, ',');) views.push_back(testScene(name));
     }
-    for (const std::string& name : scenes) testScene(name);  // unknown names fail before any work
 
     // llvmpipe's results depend on these; pin the thread count, record all three.
     ::setenv("LP_NUM_THREADS",
@@ -107,8 +130,8 @@ void addCrosscheckCommand(CLI::App& app) {
                height = static_cast<uint32_t>(settings.viewport.height);
     std::cout << "crosscheck on " << renderer << ", profile "
               << reference::toString(settings.profile) << ", " << width << " x " << height << "\n";
-    for (const std::string& name : scenes) {
-      const NamedScene scene = testScene(name);
+    for (const NamedScene& scene : views) {
+      const std::string& name = scene.name;
       const ClipSpaceMesh mesh = toClipSpace(scene.mesh, scene.camera, settings.viewport);
       for (const Mode& mode : modes) {
         settings.exactFilter = mode.exactFilter;

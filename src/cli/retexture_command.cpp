@@ -101,6 +101,7 @@ void addRetextureCommand(CLI::App& app) {
     writeRetextureLayout(output / (scene.name + ".layout.json"), scene, chosen.layout,
                          {.border = o->border});
     writeRetextureReport(output / (scene.name + ".report.json"), scene, result, o->retexture);
+    writeViewpointTour(output / (scene.name + ".path.json"), scene);
     std::cout << "retextured " << scene.name << ": " << scene.faces.size() << " faces ("
               << scene.patchFaces << " patches), " << scene.textures.size() << " textures, "
               << scene.skipped.total() << " faces skipped; wrote " << o->retexture.method

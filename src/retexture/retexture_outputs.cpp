@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "common/posix_file.h"
+#include "retexture/page_coherence.h"
 
 namespace vt {
 namespace {
@@ -76,6 +77,20 @@ void writeRetextureLayout(const std::filesystem::path& path, const TexturedScene
                              {"side", layout.side},
                              {"images", images}};
   writeText(path, json.dump(1) + "\n");
+}
+
+void writeViewpointTour(const std::filesystem::path& path, const TexturedScene& scene) {
+  constexpr int kFramesPerKeyframe = 24;
+  ordered_json keyframes = ordered_json::array();
+  const std::vector<Camera> views = coherenceViews(scene);
+  for (size_t k = 0; k < views.size(); ++k) {
+    const Camera& view = views[k];
+    keyframes.push_back({{"frame", static_cast<int>(k) * kFramesPerKeyframe},
+                         {"position", {view.position.x, view.position.y, view.position.z}},
+                         {"target", {view.target.x, view.target.y, view.target.z}},
+                         {"fov", view.fovYDegrees}});
+  }
+  writeText(path, ordered_json{{"keyframes", keyframes}}.dump(1) + "\n");
 }
 
 void writeRetextureReport(const std::filesystem::path& path, const TexturedScene& scene,

@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -29,7 +30,7 @@ TEST(CrosscheckCommand, EveryScenePassesAndTheSummaryRecordsTheSettings) {
   std::ifstream in(dir / "out" / "summary.json");
   const auto summary = nlohmann::json::parse(in);
   EXPECT_EQ(summary["passed"], true);
-  EXPECT_EQ(summary["frames"].size(), 10u);  // five scenes, two modes
+  EXPECT_EQ(summary["frames"].size(), 12u);  // six scenes, two modes
   EXPECT_EQ(summary["settings"]["LP_NUM_THREADS"], "2");
   EXPECT_TRUE(summary["settings"].contains("GALLIVM_PERF"));
   EXPECT_TRUE(summary["settings"].contains("GALLIUM_OVERRIDE_CPU_CAPS"));
@@ -39,6 +40,37 @@ TEST(CrosscheckCommand, EveryScenePassesAndTheSummaryRecordsTheSettings) {
   }
   EXPECT_TRUE(
       std::filesystem::exists(dir / "out" / "horizon-texelfetch-trilinear-need32-classes.png"));
+}
+
+// A flythrough of the real map q3dm6ish (retextured and built here; OpenArena fetched by
+// scripts/fetch-openarena.sh, VT_OPENARENA_DIR): on llvmpipe every pixel identical.
+TEST(CrosscheckCommand, Q3dm6ishFlythroughPasses) {
+  const char* packages = std::getenv("VT_OPENARENA_DIR");
+  if (!packages || !std::filesystem::is_directory(packages)) {
+    const char* ci = std::getenv("CI");
+    if (ci && std::string(ci) == "true") FAIL() << "VT_OPENARENA_DIR is not set in CI";
+    GTEST_SKIP() << "VT_OPENARENA_DIR not set: run scripts/fetch-openarena.sh and export it";
+  }
+  test::ScratchDirectory dir;
+  const auto run = [&](const std::vector<std::string>& args) {
+    const auto result = test::runCommand(VT_EXECUTABLE, args, dir.path());
+    EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
+    return result;
+  };
+  const std::string out = (dir / "q3").string();
+  run({"retexture", "q3dm6ish", "--packages", packages, "-o", out, "--no-coherence"});
+  run({"build", out + "/q3dm6ish.layout.json", "-o", (dir / "q3.vt").string(), "-q"});
+  const auto result =
+      run({"crosscheck", (dir / "q3.vt").string(), "--mesh", out + "/q3dm6ish.obj", "--path",
+           out + "/q3dm6ish.path.json", "--every", "48", "-o", (dir / "cc").string()});
+  EXPECT_THAT(result.out, HasSubstr("0 mismatched: passed"));
+  std::ifstream in(dir / "cc" / "summary.json");
+  const auto summary = nlohmann::json::parse(in);
+  EXPECT_EQ(summary["frames"].size(), 40u);  // 40 keyframes 24 apart: 20 frames, two modes
+  if (summary["gl_renderer"].get<std::string>().find("llvmpipe") != std::string::npos &&
+      summary["profile"] == "llvmpipe") {
+    EXPECT_EQ(summary["totals"]["identical"], summary["totals"]["pixels"]);
+  }
 }
 
 TEST(CrosscheckCommand, UnknownSceneIsAnError) {
