@@ -33,6 +33,8 @@ void addFlyCommand(CLI::App& app) {
   struct Options {
     std::string texture, path, mesh, size = "320x200", heuristic = "pixelsum", ancestors = "none";
     std::string output = "fly", backend = "oracle", lookAhead = "none", hotSpot = "shifted";
+    std::string streaming = "budget";
+    double linkLatency = 0.0, linkMegabytes = 0.0;
     uint32_t budget = 10, latency = 0, lockedLevels = 0, initialLevels = 3, frames = 16;
     float noiseThreshold = -1.0f;
     bool noiseSkipping = false, preloadVisible = false;
@@ -53,6 +55,20 @@ void addFlyCommand(CLI::App& app) {
   command->add_option("--budget", o->budget, "Pages streamed per frame (thesis 4.1.1)")
       ->capture_default_str();
   command->add_option("--latency", o->latency, "Frames between a request and its page's arrival")
+      ->capture_default_str();
+  command
+      ->add_option("--streaming", o->streaming,
+                   "budget (deterministic, pages per frame) or thread (a streaming thread in real "
+                   "time, over the link below)")
+      ->check(CLI::IsMember({"budget", "thread"}))
+      ->capture_default_str();
+  command->add_option("--link-latency", o->linkLatency, "With thread: seconds each page travels")
+      ->check(CLI::Range(0.0, 3600.0))
+      ->capture_default_str();
+  command
+      ->add_option("--link-bandwidth", o->linkMegabytes,
+                   "With thread: link bandwidth in MB/s (10^6 bytes; 0 unlimited)")
+      ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();
   command
       ->add_option("--heuristic", o->heuristic,
@@ -129,7 +145,14 @@ void addFlyCommand(CLI::App& app) {
       initial.insert(initial.end(), visible.begin(), visible.end());
     }
     runtime.preload(initial);
-    BudgetStreamer streamer(reader, o->budget, o->latency);
+    // Deterministic budget mode for evaluations, or a thread over a link in real time.
+    std::unique_ptr<BudgetStreamer> budget;
+    std::unique_ptr<ThreadedStreamer> thread;
+    if (o->streaming == "budget")
+      budget = std::make_unique<BudgetStreamer>(reader, o->budget, o->latency);
+    else
+      thread = std::make_unique<ThreadedStreamer>(
+          reader, LinkModel{o->linkLatency, o->linkMegabytes * 1e6});
     const LookAhead lookAhead = parseLookAhead(o->lookAhead);
     const HotSpotMode hotSpotMode = parseHotSpotMode(o->hotSpot);
 
@@ -207,8 +230,15 @@ void addFlyCommand(CLI::App& app) {
                     static_cast<uint32_t>(settings.viewport.height), 4,
                     std::as_bytes(std::span(rows)));
       }
-      // Streaming for the next frame (budget mode), applied by the management step.
-      const auto [applied, evicted] = runtime.apply(streamer.frame(requests));
+      // Streaming for the next frame, applied by the management step.
+      std::vector<StreamedPage> arrived;
+      if (budget) {
+        arrived = budget->frame(requests);
+      } else {
+        thread->request(requests);
+        arrived = thread->takeStreamed();
+      }
+      const auto [applied, evicted] = runtime.apply(std::move(arrived));
       streamedBefore = applied;
       evictedBefore = evicted;
     }
@@ -220,8 +250,11 @@ void addFlyCommand(CLI::App& app) {
                               {"heuristic", o->heuristic},
                               {"ancestors", o->ancestors},
                               {"noise_skipping", o->noiseSkipping},
+                              {"streaming", o->streaming},
                               {"budget", o->budget},
                               {"latency", o->latency},
+                              {"link_latency_seconds", o->linkLatency},
+                              {"link_megabytes_per_second", o->linkMegabytes},
                               {"cache_frames", o->frames},
                               {"locked_levels", o->lockedLevels},
                               {"initial_levels", o->initialLevels},

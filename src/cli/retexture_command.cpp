@@ -79,7 +79,7 @@ void addRetextureCommand(CLI::App& app) {
       throw CLI::ValidationError("--page-size", "must be a power of two");
     const std::filesystem::path output = o->output, scenePath = o->scene;
     const std::filesystem::path images = output / "images";
-    std::filesystem::create_directories(images);
+    // Folders are made when the first file goes into them: bad input leaves nothing behind.
     TexturedScene scene;
     if (scenePath.extension() == ".obj") {
       const std::filesystem::path written = output / (scenePath.stem().string() + ".obj");
@@ -96,6 +96,7 @@ void addRetextureCommand(CLI::App& app) {
     for (const std::string& warning : scene.warnings)
       std::cerr << "warning: " << scene.name << ": " << warning << '\n';
     const RetextureResult result = retexture(scene, o->retexture);
+    std::filesystem::create_directories(output);
     const MethodResult& chosen = result.chosen(o->retexture);
     writeRetexturedObj(output / (scene.name + ".obj"), scene, result.uvs);
     writeRetextureLayout(output / (scene.name + ".layout.json"), scene, chosen.layout,

@@ -26,8 +26,8 @@ std::vector<StreamedPage> BudgetStreamer::frame(const std::vector<StreamRequest>
   return arrived;
 }
 
-ThreadedStreamer::ThreadedStreamer(const VirtualTextureReader& reader)
-    : reader_(reader), thread_([this] { run(); }) {}
+ThreadedStreamer::ThreadedStreamer(const VirtualTextureReader& reader, LinkModel link)
+    : reader_(reader), link_(link), thread_([this] { run(); }) {}
 
 ThreadedStreamer::~ThreadedStreamer() {
   {
@@ -51,13 +51,22 @@ void ThreadedStreamer::request(const std::vector<StreamRequest>& requests) {
 std::vector<StreamedPage> ThreadedStreamer::takeStreamed() {
   const std::lock_guard lock(mutex_);
   std::vector<StreamedPage> pages;
-  pages.swap(streamed_);
+  const Clock::time_point now = Clock::now();
+  while (!inTransit_.empty() && inTransit_.front().arrival <= now) {
+    pages.push_back(std::move(inTransit_.front().page));
+    inTransit_.pop_front();
+  }
   return pages;
 }
 
 void ThreadedStreamer::drain() {
   std::unique_lock lock(mutex_);
   idle_.wait(lock, [this] { return pending_.empty() && !busy_; });
+  if (!inTransit_.empty()) {
+    const Clock::time_point last = inTransit_.back().arrival;
+    lock.unlock();
+    std::this_thread::sleep_until(last);
+  }
 }
 
 uint64_t ThreadedStreamer::failures() const {
@@ -83,10 +92,22 @@ void ThreadedStreamer::run() {
       ok = false;
     }
     lock.lock();
-    if (ok)
-      streamed_.push_back({page, std::move(texels)});
-    else
+    if (ok) {
+      // The page occupies the link after the previous one, then travels for the latency.
+      Clock::time_point sent = std::max(Clock::now(), linkFree_);
+      if (link_.bytesPerSecond > 0.0)
+        sent += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+            static_cast<double>(texels.size()) / link_.bytesPerSecond));
+      linkFree_ = sent;
+      wake_.wait_until(lock, sent, [this] { return stop_; });
+      if (stop_) return;
+      const Clock::time_point arrival =
+          sent + std::chrono::duration_cast<Clock::duration>(
+                     std::chrono::duration<double>(link_.latencySeconds));
+      inTransit_.push_back({arrival, {page, std::move(texels)}});
+    } else {
       ++failures_;
+    }
     reading_ = ~uint64_t{0};
     busy_ = false;
     if (pending_.empty()) idle_.notify_all();

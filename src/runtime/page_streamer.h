@@ -6,8 +6,10 @@
 // `pagesPerFrame` of the frame's requests, in order, optionally arriving `latencyFrames` frames
 // later (a link with latency and bandwidth measured in pages per frame). ThreadedStreamer is the
 // interactive mode: a thread pops the most important request, reads it and hands it over; every
-// frame's requests replace the previous ones, so requests no longer needed are dropped.
+// frame's requests replace the previous ones, so requests no longer needed are dropped. Its link
+// model makes it a slow network in real time (internet-like streaming, thesis chapter 4).
 
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
@@ -40,18 +42,26 @@ class BudgetStreamer {
   std::deque<std::vector<StreamedPage>> inFlight_;  // front arrives next
 };
 
+// A link between the file and the cache: pages cross it one after another, each occupying it for
+// (its bytes) / bytesPerSecond, and arrive latencySeconds after they left. Zero bandwidth means
+// unlimited.
+struct LinkModel {
+  double latencySeconds = 0.0;
+  double bytesPerSecond = 0.0;
+};
+
 class ThreadedStreamer {
  public:
-  explicit ThreadedStreamer(const VirtualTextureReader& reader);
+  explicit ThreadedStreamer(const VirtualTextureReader& reader, LinkModel link = {});
   ~ThreadedStreamer();
   ThreadedStreamer(const ThreadedStreamer&) = delete;
   ThreadedStreamer& operator=(const ThreadedStreamer&) = delete;
 
   // Replaces the pending requests with this frame's (pages already in flight are not repeated).
   void request(const std::vector<StreamRequest>& requests);
-  // The pages read since the last call.
+  // The pages that arrived since the last call, in the order they were sent.
   std::vector<StreamedPage> takeStreamed();
-  // Waits until no request is pending (for tests and orderly shutdown).
+  // Waits until no request is pending and every page sent has arrived (tests, shutdown).
   void drain();
   // Pages that could not be read (a corrupt page, say); they are dropped, the thread goes on.
   uint64_t failures() const;
@@ -59,11 +69,19 @@ class ThreadedStreamer {
  private:
   void run();
 
+  using Clock = std::chrono::steady_clock;
+  struct InTransit {
+    Clock::time_point arrival;
+    StreamedPage page;
+  };
+
   const VirtualTextureReader& reader_;
+  const LinkModel link_;
   mutable std::mutex mutex_;
   std::condition_variable wake_, idle_;
   std::deque<uint64_t> pending_;
-  std::vector<StreamedPage> streamed_;
+  std::deque<InTransit> inTransit_;  // arrival times rise
+  Clock::time_point linkFree_{};     // when the link has sent its last page
   uint64_t reading_ = ~uint64_t{0};
   bool busy_ = false, stop_ = false;
   uint64_t failures_ = 0;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <set>
 
 #include "build/synthetic_texture.h"
@@ -117,6 +118,38 @@ TEST_F(Runtime, ThreadedStreamerTakesRequestsReplacedWhileItReads) {
   for (const StreamedPage& page : streamer.takeStreamed()) received.insert(page.page);
   EXPECT_FALSE(received.empty());
   EXPECT_EQ(streamer.failures(), 0u);
+}
+
+// The link model gives lower bounds on arrival times, so the properties below hold however slowly
+// the machine runs: no page before the latency, and no faster than the bandwidth.
+TEST_F(Runtime, ThreadedStreamerLinkDelaysEveryPageByItsLatency) {
+  using Clock = std::chrono::steady_clock;
+  const double latency = 0.15;
+  ThreadedStreamer streamer(*reader_, {.latencySeconds = latency, .bytesPerSecond = 0.0});
+  const Clock::time_point start = Clock::now();
+  streamer.request({{3, 1.0}, {4, 1.0}, {5, 1.0}});
+  std::vector<uint64_t> order;
+  while (order.size() < 3) {
+    const std::vector<StreamedPage> pages = streamer.takeStreamed();
+    if (!pages.empty()) {
+      ASSERT_GE(std::chrono::duration<double>(Clock::now() - start).count(), latency);
+    }
+    for (const StreamedPage& page : pages) order.push_back(page.page);
+    ASSERT_LT(std::chrono::duration<double>(Clock::now() - start).count(), 60.0);
+  }
+  EXPECT_EQ(order, (std::vector<uint64_t>{3, 4, 5}));  // in the order they were sent
+}
+
+TEST_F(Runtime, ThreadedStreamerLinkSendsNoFasterThanItsBandwidth) {
+  using Clock = std::chrono::steady_clock;
+  const double perPage = 0.04;  // seconds on the link per page
+  const auto bandwidth = static_cast<double>(reader_->description().pageBytes()) / perPage;
+  ThreadedStreamer streamer(*reader_, {.latencySeconds = 0.0, .bytesPerSecond = bandwidth});
+  const Clock::time_point start = Clock::now();
+  streamer.request({{1, 1.0}, {2, 1.0}, {3, 1.0}, {4, 1.0}, {5, 1.0}});
+  streamer.drain();
+  EXPECT_GE(std::chrono::duration<double>(Clock::now() - start).count(), 5 * perPage);
+  EXPECT_EQ(streamer.takeStreamed().size(), 5u);
 }
 
 }  // namespace
