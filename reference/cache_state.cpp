@@ -100,4 +100,16 @@ CacheState cacheOfLevels(const VirtualTextureReader& reader, int maxLevel, uint3
   return makeCacheState(reader, pages, frames, frames);
 }
 
+CacheState rootOnlyCache(const TextureDescription& description) {
+  CacheState cache;
+  cache.description = description;
+  cache.framesX = cache.framesY = 1;
+  cache.widthTexels = cache.heightTexels = description.storedPageSide();
+  cache.residentPages = {0};
+  cache.texels.assign(uint64_t{cache.widthTexels} * cache.heightTexels * 4, 0);
+  for (uint32_t m = 0; m < description.levelCount; ++m)
+    cache.indirection.emplace_back(pagesPerSide(m) * pagesPerSide(m), glm::u16vec4(0));
+  return cache;
+}
+
 }  // namespace vt::reference

@@ -43,6 +43,10 @@ CacheState makeCacheState(const VirtualTextureReader& reader, std::span<const ui
 // `maxSideTexels` texels per side; frames are laid out in a square grid.
 CacheState cacheOfLevels(const VirtualTextureReader& reader, int maxLevel, uint32_t maxSideTexels);
 
+// A cache state of `description` with only the root page resident (its texels zero): enough to
+// draw needbuffers, which do not depend on what is resident.
+CacheState rootOnlyCache(const TextureDescription& description);
+
 // Copies a stored page's texels (borders included) into frame `frameX, frameY` of the cache.
 void storePage(CacheState& cache, uint32_t frameX, uint32_t frameY,
                std::span<const std::byte> texels);

@@ -196,6 +196,7 @@ Frame render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDesc
   parameters.trilinear = settings.trilinear ? 1 : 0;
   parameters.exactFilter = settings.exactFilter ? 1 : 0;
   parameters.need8 = settings.need8 ? 1 : 0;
+  parameters.needScaleLog2 = settings.needScaleLog2;
   parameters.cacheSize = cacheSize;
 
   Frame frame;

@@ -28,6 +28,9 @@ struct RenderSettings {
   bool trilinear = true;
   bool exactFilter = true;     // texel fetches and float filtering; false: the sampler's GL_LINEAR
   bool need8 = false;          // 8-bit needbuffer (textures up to 4096 pages per side)
+  // A reduced needbuffer: the viewport is 1/2^k of the screen per axis, and the LOD compensates
+  // (virtual_texture_types.glsl). 0: full resolution.
+  int needScaleLog2 = 0;
   bool debugChannels = false;  // also fill Frame's uv, derivatives, lod and residentLevel
   unsigned threads = 0;        // 0: every core
 };

@@ -21,6 +21,7 @@
 #include "gl/headless_context.h"
 #include "reference/frame_images.h"
 #include "reference/renderer.h"
+#include "runtime/needbuffer_scale.h"
 #include "runtime/virtual_texture_runtime.h"
 #include "scene/box_room.h"
 #include "scene/camera_motion.h"
@@ -33,7 +34,7 @@ void addFlyCommand(CLI::App& app) {
   struct Options {
     std::string texture, path, mesh, size = "320x200", heuristic = "pixelsum", ancestors = "none";
     std::string output = "fly", backend = "oracle", lookAhead = "none", hotSpot = "shifted";
-    std::string streaming = "budget";
+    std::string streaming = "budget", needScale = "1";
     double linkLatency = 0.0, linkMegabytes = 0.0;
     uint32_t budget = 10, latency = 0, lockedLevels = 0, initialLevels = 3, frames = 16;
     float noiseThreshold = -1.0f;
@@ -55,6 +56,11 @@ void addFlyCommand(CLI::App& app) {
   command->add_option("--budget", o->budget, "Pages streamed per frame (thesis 4.1.1)")
       ->capture_default_str();
   command->add_option("--latency", o->latency, "Frames between a request and its page's arrival")
+      ->capture_default_str();
+  command
+      ->add_option("--need-scale", o->needScale,
+                   "Needbuffer at 1/N of the resolution per axis, jittered per frame: 1, 2, 4, 8")
+      ->check(CLI::IsMember({"1", "2", "4", "8"}))
       ->capture_default_str();
   command
       ->add_option("--streaming", o->streaming,
@@ -171,46 +177,67 @@ void addFlyCommand(CLI::App& app) {
     FrameStatistics totals;
     const auto start = std::chrono::steady_clock::now();
     uint64_t streamedBefore = 0, evictedBefore = 0;
-    // Draws a camera's view from the current cache state: colour, needbuffer, depth if asked.
-    const auto draw = [&](const Camera& camera, std::vector<uint8_t>* color,
+    // The needbuffer's resolution: the screen's, or 1/2^k of it, jittered from frame to frame
+    // (runtime/needbuffer_scale.h).
+    const int needScaleLog2 = parseNeedScale(o->needScale);
+    const Viewport screen = settings.viewport;
+    // Draws a camera's view from the current cache state into `need` (and `depth` if asked), at
+    // the needbuffer's resolution; the colour at the screen's when asked (with a full-resolution
+    // needbuffer in the same pass).
+    const auto draw = [&](const Camera& camera, uint64_t frame, std::vector<uint8_t>* color,
                           std::vector<glm::uvec4>& need, std::vector<float>* depth) {
-      const ClipSpaceMesh clip = toClipSpace(mesh, camera, settings.viewport);
-      if (gl) {
-        gl->uploadCache();  // the management step changed it since the last draw
-        GlFrame frame = gl->render(clip, settings);
-        if (color) *color = std::move(frame.color);
-        need = std::move(frame.need);
-        if (depth)
-          throw InputError(
-              o->texture,
-              "the GL backend does not read back depth yet: use --backend oracle for distance");
-        return;
-      }
-      reference::Frame frame = reference::renderFrame(clip, runtime.cacheState(), settings);
-      if (color) *color = std::move(frame.color);
-      need = std::move(frame.need);
-      if (depth) *depth = std::move(frame.depth);
+      const auto pass = [&](Viewport viewport, int scaleLog2, glm::vec2 jitter,
+                            std::vector<uint8_t>* passColor, std::vector<glm::uvec4>* passNeed,
+                            std::vector<float>* passDepth) {
+        reference::RenderSettings passSettings = settings;
+        passSettings.viewport = viewport;
+        passSettings.needScaleLog2 = scaleLog2;
+        const ClipSpaceMesh clip = toClipSpace(mesh, camera, viewport, jitter);
+        if (gl) {
+          gl->uploadCache();  // the management step changed it since the last draw
+          GlFrame frame = gl->render(clip, passSettings);
+          if (passColor) *passColor = std::move(frame.color);
+          if (passNeed) *passNeed = std::move(frame.need);
+          if (passDepth)
+            throw InputError(
+                o->texture,
+                "the GL backend does not read back depth yet: use --backend oracle for distance");
+          return;
+        }
+        reference::Frame frame = reference::renderFrame(clip, runtime.cacheState(), passSettings);
+        if (passColor) *passColor = std::move(frame.color);
+        if (passNeed) *passNeed = std::move(frame.need);
+        if (passDepth) *passDepth = std::move(frame.depth);
+      };
+      if (needScaleLog2 == 0) return pass(screen, 0, glm::vec2(0.0f), color, &need, depth);
+      pass(reducedViewport(screen, needScaleLog2), needScaleLog2, needJitter(frame, needScaleLog2),
+           nullptr, &need, depth);
+      if (color) pass(screen, 0, glm::vec2(0.0f), color, nullptr, nullptr);
     };
+    const Viewport needViewport = reducedViewport(screen, needScaleLog2);
     for (int frameNumber = 0; frameNumber < path.frameCount(); ++frameNumber) {
       const Camera current = path.at(frameNumber), previous = path.at(std::max(0, frameNumber - 1)),
                    beforePrevious = path.at(std::max(0, frameNumber - 2));
       std::vector<uint8_t> color;
       std::vector<glm::uvec4> need, lookAheadNeed;
       std::vector<float> depth;
-      draw(current, &color, need, runtime.needsDepth() ? &depth : nullptr);
+      const bool writeImage = o->imagesEvery > 0 && frameNumber % o->imagesEvery == 0;
+      const auto frameIndex = static_cast<uint64_t>(frameNumber);
+      draw(current, frameIndex, writeImage ? &color : nullptr, need,
+           runtime.needsDepth() ? &depth : nullptr);
       VirtualTextureRuntime::Prediction prediction;
-      prediction.hotSpot = vt::hotSpot(previous, current, settings.viewport, hotSpotMode);
+      prediction.hotSpot = vt::hotSpot(previous, current, needViewport, hotSpotMode);
       if (lookAhead != LookAhead::kNone) {
-        draw(lookAheadCamera(beforePrevious, previous, current, lookAhead), nullptr, lookAheadNeed,
-             nullptr);
+        draw(lookAheadCamera(beforePrevious, previous, current, lookAhead), frameIndex, nullptr,
+             lookAheadNeed, nullptr);
         prediction.lookAheadNeed = lookAheadNeed;
       }
       FrameStatistics statistics;
       statistics.streamed = streamedBefore;
       statistics.evicted = evictedBefore;
-      const std::vector<StreamRequest> requests = runtime.analyze(
-          need, depth, settings.viewport.width, settings.viewport.height, settings.need8,
-          static_cast<uint64_t>(frameNumber), statistics, prediction);
+      const std::vector<StreamRequest> requests =
+          runtime.analyze(need, depth, needViewport.width, needViewport.height, settings.need8,
+                          frameIndex, statistics, prediction);
       csv << frameNumber << ',' << statistics.coveredPixels << ',' << statistics.neededPages << ','
           << statistics.hits << ',' << statistics.misses << ',' << statistics.hitPixels << ','
           << statistics.requested << ',' << statistics.streamed << ',' << statistics.evicted << ','
@@ -219,7 +246,7 @@ void addFlyCommand(CLI::App& app) {
       totals.misses += statistics.misses;
       totals.streamed += statistics.streamed;
       totals.evicted += statistics.evicted;
-      if (o->imagesEvery > 0 && frameNumber % o->imagesEvery == 0) {
+      if (writeImage) {
         reference::Frame image;
         image.viewport = settings.viewport;
         image.color = color;
@@ -251,6 +278,7 @@ void addFlyCommand(CLI::App& app) {
                               {"ancestors", o->ancestors},
                               {"noise_skipping", o->noiseSkipping},
                               {"streaming", o->streaming},
+                              {"need_scale", std::stoi(o->needScale)},
                               {"budget", o->budget},
                               {"latency", o->latency},
                               {"link_latency_seconds", o->linkLatency},

@@ -105,6 +105,7 @@ void GlFrameRenderer::draw(const ClipSpaceMesh& mesh, const reference::RenderSet
   glUniform1i(program_.uniform("uVt.trilinear"), settings.trilinear ? 1 : 0);
   glUniform1i(program_.uniform("uVt.exactFilter"), settings.exactFilter ? 1 : 0);
   glUniform1i(program_.uniform("uVt.need8"), settings.need8 ? 1 : 0);
+  glUniform1i(program_.uniform("uVt.needScaleLog2"), settings.needScaleLog2);
   glUniform2f(program_.uniform("uVt.cacheSize"), static_cast<float>(cache_.widthTexels),
               static_cast<float>(cache_.heightTexels));
   glUniform1i(program_.uniform("uFinestLevel"), static_cast<GLint>(d.finestLevel()));

@@ -9,23 +9,6 @@
 #include "shader/needbuffer.h"
 
 namespace vt {
-namespace {
-
-// Only the root page resident: the needbuffer does not depend on what is resident.
-reference::CacheState rootOnlyCache(const TextureDescription& description) {
-  reference::CacheState cache;
-  cache.description = description;
-  cache.framesX = cache.framesY = 1;
-  cache.widthTexels = cache.heightTexels = description.storedPageSide();
-  cache.residentPages = {0};
-  cache.texels.assign(uint64_t{cache.widthTexels} * cache.heightTexels * 4, 0);
-  for (uint32_t m = 0; m < description.levelCount; ++m)
-    cache.indirection.emplace_back(pagesPerSide(m) * pagesPerSide(m), glm::u16vec4(0));
-  return cache;
-}
-
-}  // namespace
-
 std::vector<Camera> coherenceViews(const TexturedScene& scene) {
   std::vector<Camera> bases = scene.viewpoints;
   if (bases.empty()) {
@@ -53,7 +36,7 @@ PageCoherence measureCoherence(const TexturedScene& scene, const Retexturing& la
                                const CoherenceSettings& settings) {
   TextureDescription description{.pageSize = layout.pageSize, .border = 1, .channels = 4};
   while (description.sideTexels() < layout.side) ++description.levelCount;
-  const reference::CacheState cache = rootOnlyCache(description);
+  const reference::CacheState cache = reference::rootOnlyCache(description);
   const Mesh mesh{scene.positions, uvs, scene.indices};
   reference::RenderSettings render{
       .viewport = {static_cast<int>(settings.width), static_cast<int>(settings.height)},

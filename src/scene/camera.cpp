@@ -15,9 +15,15 @@ glm::mat4 viewProjection(const Camera& camera, float aspect) {
   return projection * view;
 }
 
-ClipSpaceMesh toClipSpace(const Mesh& mesh, const Camera& camera, Viewport viewport) {
-  const glm::mat4 matrix = viewProjection(
+ClipSpaceMesh toClipSpace(const Mesh& mesh, const Camera& camera, Viewport viewport,
+                          glm::vec2 jitter) {
+  glm::mat4 matrix = viewProjection(
       camera, static_cast<float>(viewport.width) / static_cast<float>(viewport.height));
+  if (jitter != glm::vec2(0.0f)) {
+    // x_clip += (2 jx / W) w_clip: the window position moves by jx pixels.
+    const glm::vec2 ndc = 2.0f * jitter / glm::vec2(viewport.width, viewport.height);
+    matrix = glm::translate(glm::mat4(1.0f), glm::vec3(ndc, 0.0f)) * matrix;
+  }
   ClipSpaceMesh clip;
   clip.vertices.reserve(mesh.positions.size());
   for (size_t v = 0; v < mesh.positions.size(); ++v)

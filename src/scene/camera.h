@@ -24,7 +24,10 @@ struct Camera {
 glm::mat4 viewProjection(const Camera& camera, float aspect);
 
 // Every vertex of `mesh` transformed to clip space (float, GLM's matrix product), uv copied.
-ClipSpaceMesh toClipSpace(const Mesh& mesh, const Camera& camera, Viewport viewport);
+// `jitter` moves the image by that many pixels of the viewport (x right, y up), as engines jitter
+// a reduced needbuffer from frame to frame; zero leaves the matrix as it is.
+ClipSpaceMesh toClipSpace(const Mesh& mesh, const Camera& camera, Viewport viewport,
+                          glm::vec2 jitter = glm::vec2(0.0f));
 
 // "x,y,z:tx,ty,tz[:fov]" -> Camera; throws std::invalid_argument naming what is wrong (NaN and
 // infinities included, and a target equal to the position).

@@ -26,6 +26,7 @@ using glm::vec4;
 using uint = uint32_t;
 using glm::ceil;
 using glm::floor;
+using glm::ldexp;
 using glm::sqrt;
 
 #define precise

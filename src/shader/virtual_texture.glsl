@@ -33,14 +33,16 @@ float vtClampOrZero(float x, float hi) {
 }
 
 // Heckbert's edge-compression LOD (appendix B): e_max = sqrt(max(|dUV/dx|^2, |dUV/dy|^2)),
-// d = log2(e_max * P * 2^L) clamped to [0, L], lod = L - d.
+// d = log2(e_max * P * 2^L) clamped to [0, L], lod = L - d. A reduced needbuffer (1/2^k of the
+// resolution) sees derivatives 2^k times larger: P * 2^L is scaled by 2^-k with ldexp, exactly,
+// so k = 0 gives the same bits as the plain formula.
 float vtLevelOfDetail(vec2 dUVdx, vec2 dUVdy, VtParameters p) {
   precise float ex = dUVdx.x * dUVdx.x + dUVdx.y * dUVdx.y;
   precise float ey = dUVdy.x * dUVdy.x + dUVdy.y * dUVdy.y;
   // max(ex, ey), but NaN when either is NaN (both comparisons fail, and ex + ey is NaN).
   precise float larger = (ex >= ey) ? ex : ((ey >= ex) ? ey : ex + ey);
   precise float eMax = sqrt(larger);
-  precise float finestSide = float(p.pageSize) * float(1 << p.finestLevel);
+  precise float finestSide = ldexp(float(p.pageSize) * float(1 << p.finestLevel), -p.needScaleLog2);
   precise float d = log2(eMax * finestSide);
   float L = float(p.finestLevel);
   // NaN (from NaN derivatives) compares false both times and ends at L: the coarsest level.

@@ -10,6 +10,8 @@ struct VtParameters {
   int trilinear;    // 1: blend two levels by the fractional lod; 0: bilinear at the needed level
   int exactFilter;  // 1: bilinear from four texel fetches in float; 0: the sampler's GL_LINEAR
   int need8;        // 1: 8-bit needbuffer encoding (thesis 3.2.3.2); 0: 32-bit
+  int needScaleLog2;  // k: the frame is drawn at 1/2^k of the screen's resolution per axis (a
+                      // reduced needbuffer); the LOD divides its derivatives by 2^k, exactly
   vec2 cacheSize;   // the page cache texture, in texels
 };
 

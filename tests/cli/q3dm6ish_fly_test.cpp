@@ -71,7 +71,8 @@ TEST(Q3dm6ishFly, StreamsTheTourWithEveryStrategyByNameWithinItsBudget) {
       {"--heuristic", "hotspot*noisevalue", "--lookahead", "stopfix", "--ancestors", "extern",
        "--noise-skipping"},
       {"--heuristic", "weightedpixel*mipgap", "--ancestors", "intern", "--locked-levels", "4"},
-      {"--heuristic", "distance", "--hotspot", "sliding", "--preload-visible"}};
+      {"--heuristic", "distance", "--hotspot", "sliding", "--preload-visible"},
+      {"--heuristic", "pixelsum*mipgap", "--need-scale", "4", "--lookahead", "plain"}};
   for (size_t s = 0; s < strategies.size(); ++s) {
     SCOPED_TRACE(strategies[s][1]);
     std::vector<std::string> args = common;

@@ -49,6 +49,7 @@ reference::ClipSpaceMesh texturedScene(unsigned seed) {
 
 struct Mode {
   bool exactFilter, trilinear, need8;
+  int needScaleLog2 = 0;  // a reduced needbuffer's LOD compensation (runtime/needbuffer_scale.h)
 };
 
 class LlvmpipeShading : public ::testing::TestWithParam<Mode> {};
@@ -76,6 +77,7 @@ TEST_P(LlvmpipeShading, OracleMatchesColourAndNeedbufferBitForBit) {
   settings.exactFilter = GetParam().exactFilter;
   settings.trilinear = GetParam().trilinear;
   settings.need8 = GetParam().need8;
+  settings.needScaleLog2 = GetParam().needScaleLog2;
   GlFrameRenderer renderer(cache);
   for (const unsigned seed : {11u, 12u}) {
     const reference::ClipSpaceMesh mesh = texturedScene(seed);
@@ -99,12 +101,16 @@ TEST_P(LlvmpipeShading, OracleMatchesColourAndNeedbufferBitForBit) {
 
 INSTANTIATE_TEST_SUITE_P(Modes, LlvmpipeShading,
                          ::testing::Values(Mode{true, true, false}, Mode{true, false, true},
-                                           Mode{false, true, false}, Mode{false, false, true}),
+                                           Mode{false, true, false}, Mode{false, false, true},
+                                           Mode{true, true, false, 2}, Mode{false, false, true, 3}),
                          [](const auto& info) {
                            return std::string(info.param.exactFilter ? "TexelFetch"
                                                                      : "HardwareLinear") +
                                   (info.param.trilinear ? "Trilinear" : "Bilinear") +
-                                  (info.param.need8 ? "Need8" : "Need32");
+                                  (info.param.need8 ? "Need8" : "Need32") +
+                                  (info.param.needScaleLog2
+                                       ? "Reduced" + std::to_string(1 << info.param.needScaleLog2)
+                                       : "");
                          });
 
 }  // namespace

@@ -55,6 +55,21 @@ TEST(VirtualTextureShader, HeckbertLodFollowsAppendixB) {
   EXPECT_EQ(logic.vtLevelOfDetail(vec2(0.9f, 0), vec2(0, 0.9f), p), 0.0f);
 }
 
+TEST(VirtualTextureShader, AReducedNeedbufferCompensatesItsLargerDerivativesExactly) {
+  // At 1/2^k of the resolution the derivatives are 2^k times larger; the LOD divides them back.
+  Logic logic;
+  VtParameters full = parameters(128, 4, 5), reduced = full;
+  for (int k = 1; k <= 3; ++k) {
+    reduced.needScaleLog2 = k;
+    const float scale = static_cast<float>(1 << k);
+    for (const vec2 dx : {vec2(1.0f / 4096, 0), vec2(3e-4f, 1.7e-5f), vec2(0.013f, 0.002f)})
+      for (const vec2 dy : {vec2(0, 1.0f / 4096), vec2(2.9e-5f, 4e-4f), vec2(0, 0)})
+        EXPECT_EQ(logic.vtLevelOfDetail(dx * scale, dy * scale, reduced),
+                  logic.vtLevelOfDetail(dx, dy, full))
+            << "k " << k;
+  }
+}
+
 TEST(VirtualTextureShader, DegenerateDerivativesHaveDefinedLevels) {
   Logic logic;
   const VtParameters p = parameters(128, 4, 5);
