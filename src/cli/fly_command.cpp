@@ -34,7 +34,7 @@ void addFlyCommand(CLI::App& app) {
   struct Options {
     std::string texture, path, mesh, size = "320x200", heuristic = "pixelsum", ancestors = "none";
     std::string output = "fly", backend = "oracle", lookAhead = "none", hotSpot = "shifted";
-    std::string streaming = "budget", needScale = "1";
+    std::string streaming = "budget", needScale = "1", profile = "auto";
     double linkLatency = 0.0, linkMegabytes = 0.0;
     uint32_t budget = 10, latency = 0, lockedLevels = 0, initialLevels = 3, frames = 16;
     float noiseThreshold = -1.0f;
@@ -105,6 +105,12 @@ void addFlyCommand(CLI::App& app) {
                     "Also load the pages the first frame needs before it (4.2.1)");
   command->add_option("--cache-frames", o->frames, "The cache holds N x N frames")
       ->capture_default_str();
+  command
+      ->add_option("--profile", o->profile,
+                   "Precision profile of the oracle: auto (exact; with gl, GL_RENDERER's), exact, "
+                   "llvmpipe, nvidia")
+      ->check(CLI::IsMember({"auto", "exact", "llvmpipe", "nvidia"}))
+      ->capture_default_str();
   command->add_option("--backend", o->backend, "oracle or gl")
       ->check(CLI::IsMember({"oracle", "gl"}))
       ->capture_default_str();
@@ -164,7 +170,10 @@ void addFlyCommand(CLI::App& app) {
 
     std::unique_ptr<HeadlessContext> context;
     if (o->backend == "gl") context = std::make_unique<HeadlessContext>();
-    if (context) settings.profile = reference::profileForRenderer(context->renderer());
+    if (o->profile != "auto")
+      settings.profile = reference::parsePrecisionProfile(o->profile);
+    else if (context)
+      settings.profile = reference::profileForRenderer(context->renderer());
     // One program and one set of textures for the whole flight (the cache keeps its layout).
     std::unique_ptr<GlFrameRenderer> gl;
     if (context) gl = std::make_unique<GlFrameRenderer>(runtime.cacheState());
@@ -195,13 +204,10 @@ void addFlyCommand(CLI::App& app) {
         const ClipSpaceMesh clip = toClipSpace(mesh, camera, viewport, jitter);
         if (gl) {
           gl->uploadCache();  // the management step changed it since the last draw
-          GlFrame frame = gl->render(clip, passSettings);
+          GlFrame frame = gl->render(clip, passSettings, passDepth != nullptr);
           if (passColor) *passColor = std::move(frame.color);
           if (passNeed) *passNeed = std::move(frame.need);
-          if (passDepth)
-            throw InputError(
-                o->texture,
-                "the GL backend does not read back depth yet: use --backend oracle for distance");
+          if (passDepth) *passDepth = std::move(frame.depth);
           return;
         }
         reference::Frame frame = reference::renderFrame(clip, runtime.cacheState(), passSettings);
@@ -291,7 +297,8 @@ void addFlyCommand(CLI::App& app) {
                               {"misses", totals.misses},
                               {"streamed", totals.streamed},
                               {"evicted", totals.evicted},
-                              {"backend", o->backend}};
+                              {"backend", o->backend},
+                              {"profile", reference::toString(settings.profile)}};
     std::ofstream(folder / "summary.json") << summary.dump(2) << '\n';
     std::ofstream(folder / "timing.json")
         << nlohmann::json{{"seconds", seconds}, {"frames", path.frameCount()}}.dump(2) << '\n';

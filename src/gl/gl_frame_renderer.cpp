@@ -124,11 +124,11 @@ void GlFrameRenderer::draw(const ClipSpaceMesh& mesh, const reference::RenderSet
 }
 
 GlFrame GlFrameRenderer::render(const ClipSpaceMesh& mesh,
-                                const reference::RenderSettings& settings) {
+                                const reference::RenderSettings& settings, bool readDepth) {
   draw(mesh, settings);
   const size_t pixels =
       static_cast<size_t>(settings.viewport.width) * static_cast<size_t>(settings.viewport.height);
-  GlFrame frame{std::vector<uint8_t>(pixels * 4), std::vector<glm::uvec4>(pixels)};
+  GlFrame frame{std::vector<uint8_t>(pixels * 4), std::vector<glm::uvec4>(pixels), {}};
   glGetTextureImage(targets_[0], 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(pixels * 4),
                     frame.color.data());
   if (settings.need8) {
@@ -139,6 +139,11 @@ GlFrame GlFrameRenderer::render(const ClipSpaceMesh& mesh,
   } else {
     glGetTextureImage(targets_[1], 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
                       static_cast<GLsizei>(pixels * 16), frame.need.data());
+  }
+  if (readDepth) {  // only for the Distance heuristic: a scene pays only for what it uses
+    frame.depth.resize(pixels);
+    glGetTextureImage(targets_[2], 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                      static_cast<GLsizei>(pixels * sizeof(float)), frame.depth.data());
   }
   return frame;
 }

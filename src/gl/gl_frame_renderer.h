@@ -21,6 +21,8 @@ namespace vt {
 struct GlFrame {
   std::vector<uint8_t> color;    // RGBA8
   std::vector<glm::uvec4> need;  // widened to 32 bits per channel
+  std::vector<float> depth;      // window depth (32-bit float target), 1.0 where no geometry;
+                                 // read back only when asked
 };
 
 class GlFrameRenderer {
@@ -39,7 +41,8 @@ class GlFrameRenderer {
   // Uploads the mesh, draws and waits for the GPU (glFinish) without reading back: for timing.
   void draw(const ClipSpaceMesh& mesh, const reference::RenderSettings& settings);
   // Draws and reads back colour and needbuffer.
-  GlFrame render(const ClipSpaceMesh& mesh, const reference::RenderSettings& settings);
+  GlFrame render(const ClipSpaceMesh& mesh, const reference::RenderSettings& settings,
+                 bool readDepth = false);
 
  private:
   void prepareTargets(Viewport viewport, bool need8);

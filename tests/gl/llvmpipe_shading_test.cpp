@@ -7,6 +7,7 @@
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cstdlib>
 #include <fstream>
 #include <random>
@@ -81,11 +82,13 @@ TEST_P(LlvmpipeShading, OracleMatchesColourAndNeedbufferBitForBit) {
   GlFrameRenderer renderer(cache);
   for (const unsigned seed : {11u, 12u}) {
     const reference::ClipSpaceMesh mesh = texturedScene(seed);
-    const GlFrame gl = renderer.render(mesh, settings);
+    const GlFrame gl = renderer.render(mesh, settings, /*readDepth=*/true);
     const reference::Frame oracle = reference::renderFrame(mesh, cache, settings);
-    size_t colour = 0, need = 0, maxDifference = 0, covered = 0;
+    size_t colour = 0, need = 0, maxDifference = 0, covered = 0, depth = 0;
+    ASSERT_EQ(gl.depth.size(), oracle.depth.size());
     for (size_t i = 0; i < oracle.need.size(); ++i) {
       covered += oracle.triangle[i] >= 0;
+      depth += std::bit_cast<uint32_t>(gl.depth[i]) != std::bit_cast<uint32_t>(oracle.depth[i]);
       need += gl.need[i] != oracle.need[i];
       for (size_t c = 0; c < 4; ++c) {
         const int difference = std::abs(int{gl.color[i * 4 + c]} - int{oracle.color[i * 4 + c]});
@@ -95,6 +98,7 @@ TEST_P(LlvmpipeShading, OracleMatchesColourAndNeedbufferBitForBit) {
     }
     EXPECT_EQ(covered, oracle.need.size()) << "the background quad covers every pixel";
     EXPECT_EQ(need, 0u) << "seed " << seed;
+    EXPECT_EQ(depth, 0u) << "seed " << seed << ": the depth the Distance heuristic reads back";
     EXPECT_EQ(colour, 0u) << "seed " << seed << ", largest difference " << maxDifference;
   }
 }
