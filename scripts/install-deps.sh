@@ -12,6 +12,8 @@ packages=(
   libzip-dev
   # headless OpenGL through EGL (Mesa llvmpipe) with libepoxy
   libegl-dev libegl1-mesa-dev libgl1-mesa-dri libopengl-dev libgl-dev libepoxy-dev
+  # the interactive viewer (GLFW), tested under a virtual X server
+  libglfw3-dev xvfb xauth
   # report scripts
   python3
   # tests, benchmarks, command line, JSON, checksums

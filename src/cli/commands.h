@@ -14,5 +14,6 @@ void addExportLevelCommand(CLI::App& app);
 void addFlyCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
 void addRetextureCommand(CLI::App& app);
+void addViewCommand(CLI::App& app);
 
 }  // namespace vt

@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
   vt::addFlyCommand(app);
   vt::addRenderCommand(app);
   vt::addRetextureCommand(app);
+  vt::addViewCommand(app);
 
   try {
     app.parse(argc, argv);

@@ -148,4 +148,10 @@ GlFrame GlFrameRenderer::render(const ClipSpaceMesh& mesh,
   return frame;
 }
 
+void GlFrameRenderer::present(glm::ivec2 window) const {
+  glNamedFramebufferReadBuffer(framebuffer_, GL_COLOR_ATTACHMENT0);
+  glBlitNamedFramebuffer(framebuffer_, 0, 0, 0, viewport_.width, viewport_.height, 0, 0, window.x,
+                         window.y, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
 }  // namespace vt

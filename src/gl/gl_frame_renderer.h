@@ -43,6 +43,9 @@ class GlFrameRenderer {
   // Draws and reads back colour and needbuffer.
   GlFrame render(const ClipSpaceMesh& mesh, const reference::RenderSettings& settings,
                  bool readDepth = false);
+  // Copies the last frame's colour to the current context's window (framebuffer 0), scaled to
+  // `window` pixels.
+  void present(glm::ivec2 window) const;
 
  private:
   void prepareTargets(Viewport viewport, bool need8);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "common/error.h"
+#include "common/posix_file.h"
 
 namespace vt {
 namespace {
@@ -91,6 +92,17 @@ CameraPath boxRoomPath() {
                      key(30, {6.0f, 1.6f, 4.5f}, {0.5f, 1.2f, 4.0f}),    // stop
                      key(32, {6.0f, 1.6f, 4.5f}, {7.5f, 1.0f, 0.2f}),    // fast turn right
                      key(50, {2.0f, 1.5f, 3.0f}, {7.5f, 1.0f, 0.2f})});  // walk across
+}
+
+void saveCameraPath(const std::filesystem::path& file, const std::vector<Keyframe>& keyframes) {
+  nlohmann::json frames = nlohmann::json::array();
+  for (const Keyframe& k : keyframes)
+    frames.push_back({{"frame", k.frame},
+                      {"position", {k.camera.position.x, k.camera.position.y, k.camera.position.z}},
+                      {"target", {k.camera.target.x, k.camera.target.y, k.camera.target.z}},
+                      {"fov", k.camera.fovYDegrees}});
+  const std::string text = nlohmann::json{{"keyframes", frames}}.dump(1) + "\n";
+  writeFileAtomically(file, std::as_bytes(std::span(text.data(), text.size())));
 }
 
 }  // namespace vt

@@ -30,6 +30,9 @@ class CameraPath {
   std::vector<Keyframe> keyframes_;
 };
 
+// Writes keyframes in the JSON form above (through a temporary file renamed at the end).
+void saveCameraPath(const std::filesystem::path& file, const std::vector<Keyframe>& keyframes);
+
 // A slow turn around the box room with a stop and a fast turn (the default path of `vt fly`).
 CameraPath boxRoomPath();
 
