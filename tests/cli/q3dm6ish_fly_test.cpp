@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli/run_command.h"
+#include "openarena_data.h"
 #include "test_support.h"
 
 namespace vt {
@@ -40,21 +41,15 @@ CsvTotals readFrames(const std::filesystem::path& file) {
 }
 
 TEST(Q3dm6ishFly, StreamsTheTourWithEveryStrategyByNameWithinItsBudget) {
-  const char* packages = std::getenv("VT_OPENARENA_DIR");
-  if (!packages || !std::filesystem::is_directory(packages)) {
-    const char* ci = std::getenv("CI");
-    if (ci && std::string(ci) == "true") FAIL() << "VT_OPENARENA_DIR is not set in CI";
-    GTEST_SKIP() << "VT_OPENARENA_DIR not set: run scripts/fetch-openarena.sh and export it";
-  }
+  VT_REQUIRE_OPENARENA(packages);
   test::ScratchDirectory dir;
+  ASSERT_NO_FATAL_FAILURE(test::retextureAndBuildQ3dm6ish(*packages, dir.path()));
   const auto run = [&](const std::vector<std::string>& args) {
     const auto result = test::runCommand(VT_EXECUTABLE, args, dir.path());
     EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
     return result;
   };
   const std::string out = (dir / "q3").string();
-  run({"retexture", "q3dm6ish", "--packages", packages, "-o", out, "--no-coherence"});
-  run({"build", out + "/q3dm6ish.layout.json", "-o", (dir / "q3.vt").string(), "-q"});
   // The first five keyframes of the tour: a turn at the first spawn point, 97 frames.
   std::ifstream tour(out + "/q3dm6ish.path.json");
   nlohmann::json path = nlohmann::json::parse(tour);

@@ -10,6 +10,7 @@
 
 #include "build/synthetic_texture.h"
 #include "cli/run_command.h"
+#include "openarena_data.h"
 #include "test_support.h"
 
 namespace vt {
@@ -45,24 +46,16 @@ TEST(CrosscheckCommand, EveryScenePassesAndTheSummaryRecordsTheSettings) {
 // A flythrough of the real map q3dm6ish (retextured and built here; OpenArena fetched by
 // scripts/fetch-openarena.sh, VT_OPENARENA_DIR): on llvmpipe every pixel identical.
 TEST(CrosscheckCommand, Q3dm6ishFlythroughPasses) {
-  const char* packages = std::getenv("VT_OPENARENA_DIR");
-  if (!packages || !std::filesystem::is_directory(packages)) {
-    const char* ci = std::getenv("CI");
-    if (ci && std::string(ci) == "true") FAIL() << "VT_OPENARENA_DIR is not set in CI";
-    GTEST_SKIP() << "VT_OPENARENA_DIR not set: run scripts/fetch-openarena.sh and export it";
-  }
+  VT_REQUIRE_OPENARENA(packages);
   test::ScratchDirectory dir;
-  const auto run = [&](const std::vector<std::string>& args) {
-    const auto result = test::runCommand(VT_EXECUTABLE, args, dir.path());
-    EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
-    return result;
-  };
+  ASSERT_NO_FATAL_FAILURE(test::retextureAndBuildQ3dm6ish(*packages, dir.path()));
   const std::string out = (dir / "q3").string();
-  run({"retexture", "q3dm6ish", "--packages", packages, "-o", out, "--no-coherence"});
-  run({"build", out + "/q3dm6ish.layout.json", "-o", (dir / "q3.vt").string(), "-q"});
-  const auto result =
-      run({"crosscheck", (dir / "q3.vt").string(), "--mesh", out + "/q3dm6ish.obj", "--path",
-           out + "/q3dm6ish.path.json", "--every", "48", "-o", (dir / "cc").string()});
+  const auto result = test::runCommand(
+      VT_EXECUTABLE,
+      {"crosscheck", (dir / "q3.vt").string(), "--mesh", out + "/q3dm6ish.obj", "--path",
+       out + "/q3dm6ish.path.json", "--every", "48", "-o", (dir / "cc").string()},
+      dir.path());
+  ASSERT_EQ(result.exitCode, 0) << result.out << result.err;
   EXPECT_THAT(result.out, HasSubstr("0 mismatched: passed"));
   std::ifstream in(dir / "cc" / "summary.json");
   const auto summary = nlohmann::json::parse(in);

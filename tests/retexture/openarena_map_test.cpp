@@ -12,6 +12,7 @@
 #include "build/layout.h"
 #include "build/texture_builder.h"
 #include "format/virtual_texture_reader.h"
+#include "openarena_data.h"
 #include "retexture/retexture.h"
 #include "retexture/retexture_outputs.h"
 #include "scene/quake3_scene.h"
@@ -19,20 +20,6 @@
 
 namespace vt {
 namespace {
-
-std::optional<std::filesystem::path> openArenaFolder() {
-  const char* folder = std::getenv("VT_OPENARENA_DIR");
-  if (folder && std::filesystem::is_directory(folder)) return std::filesystem::path(folder);
-  return std::nullopt;
-}
-
-#define REQUIRE_OPENARENA(folder)                                                             \
-  const auto folder = openArenaFolder();                                                      \
-  if (!folder) {                                                                              \
-    const char* ci = std::getenv("CI");                                                       \
-    if (ci && std::string(ci) == "true") FAIL() << "VT_OPENARENA_DIR is not set in CI";       \
-    GTEST_SKIP() << "VT_OPENARENA_DIR not set: run scripts/fetch-openarena.sh and export it"; \
-  }
 
 // An image decoded to 8-bit RGB, as `vt build` stores it at the finest level.
 struct SourceImage {
@@ -74,7 +61,7 @@ class OpenArenaMap : public ::testing::Test {
 };
 
 TEST_F(OpenArenaMap, Q3dm6ishLoadsEveryFaceWithItsTextures) {
-  REQUIRE_OPENARENA(folder);
+  VT_REQUIRE_OPENARENA(folder);
   const TexturedScene scene = load(*folder, scratch_ / "images");
   EXPECT_EQ(scene.faces.size(), 907u);
   EXPECT_EQ(scene.textures.size(), 7u);
@@ -90,7 +77,7 @@ TEST_F(OpenArenaMap, Q3dm6ishLoadsEveryFaceWithItsTextures) {
 // its face's area, and the built texture holds, at a face's new coordinates, the source texel of
 // its old ones (finest level, texel-exact), for the thesis's layout and ours.
 TEST_F(OpenArenaMap, Q3dm6ishRetexturedTextureHoldsEveryFacesSourceTexels) {
-  REQUIRE_OPENARENA(folder);
+  VT_REQUIRE_OPENARENA(folder);
   const TexturedScene scene = load(*folder, scratch_ / "images");
   RetextureOptions options;
   options.measureCoherence = false;
@@ -181,7 +168,7 @@ TEST_F(OpenArenaMap, Q3dm6ishRetexturedTextureHoldsEveryFacesSourceTexels) {
 }
 
 TEST_F(OpenArenaMap, OursWastesLessThanTheThesisLayout) {
-  REQUIRE_OPENARENA(folder);
+  VT_REQUIRE_OPENARENA(folder);
   const TexturedScene scene = load(*folder, scratch_ / "images");
   RetextureOptions options;
   options.coherence.width = 320;
