@@ -34,7 +34,7 @@ void addFlyCommand(CLI::App& app) {
   struct Options {
     std::string texture, path, mesh, size = "320x200", heuristic = "pixelsum", ancestors = "none";
     std::string output = "fly", backend = "oracle", lookAhead = "none", hotSpot = "shifted";
-    std::string streaming = "budget", needScale = "1", profile = "auto";
+    std::string streaming = "budget", needScale = "1", profile = "auto", readback = "sync";
     double linkLatency = 0.0, linkMegabytes = 0.0;
     uint32_t budget = 10, latency = 0, lockedLevels = 0, initialLevels = 3, frames = 16;
     float noiseThreshold = -1.0f;
@@ -104,6 +104,12 @@ void addFlyCommand(CLI::App& app) {
   command->add_flag("--preload-visible", o->preloadVisible,
                     "Also load the pages the first frame needs before it (4.2.1)");
   command->add_option("--cache-frames", o->frames, "The cache holds N x N frames")
+      ->capture_default_str();
+  command
+      ->add_option("--readback", o->readback,
+                   "sync, or async: the analysis sees the previous frame's needbuffer (GL: "
+                   "pixel-buffer objects and a fence)")
+      ->check(CLI::IsMember({"sync", "async"}))
       ->capture_default_str();
   command
       ->add_option("--profile", o->profile,
@@ -190,21 +196,35 @@ void addFlyCommand(CLI::App& app) {
     // (runtime/needbuffer_scale.h).
     const int needScaleLog2 = parseNeedScale(o->needScale);
     const Viewport screen = settings.viewport;
+    // With asynchronous readback the analysis sees the previous frame's needbuffer (and depth):
+    // the GL path copies it through pixel-buffer objects behind a fence, the oracle keeps it.
+    const bool async = o->readback == "async";
+    std::vector<glm::uvec4> delayedNeed;
+    std::vector<float> delayedDepth;
     // Draws a camera's view from the current cache state into `need` (and `depth` if asked), at
     // the needbuffer's resolution; the colour at the screen's when asked (with a full-resolution
-    // needbuffer in the same pass).
+    // needbuffer in the same pass). `delayed`: the main pass under asynchronous readback.
     const auto draw = [&](const Camera& camera, uint64_t frame, std::vector<uint8_t>* color,
-                          std::vector<glm::uvec4>& need, std::vector<float>* depth) {
+                          std::vector<glm::uvec4>& need, std::vector<float>* depth, bool delayed) {
       const auto pass = [&](Viewport viewport, int scaleLog2, glm::vec2 jitter,
                             std::vector<uint8_t>* passColor, std::vector<glm::uvec4>* passNeed,
                             std::vector<float>* passDepth) {
         reference::RenderSettings passSettings = settings;
         passSettings.viewport = viewport;
         passSettings.needScaleLog2 = scaleLog2;
+        const bool readDepth = passDepth != nullptr;
         const ClipSpaceMesh clip = toClipSpace(mesh, camera, viewport, jitter);
         if (gl) {
           gl->uploadCache();  // the management step changed it since the last draw
-          GlFrame frame = gl->render(clip, passSettings, passDepth != nullptr);
+          if (delayed && passNeed) {
+            std::optional<GlFrame> previous = gl->renderAsync(clip, passSettings, readDepth);
+            if (passColor) *passColor = gl->readColor();
+            *passNeed = previous ? std::move(previous->need) : std::vector<glm::uvec4>{};
+            if (passDepth)
+              *passDepth = previous ? std::move(previous->depth) : std::vector<float>{};
+            return;
+          }
+          GlFrame frame = gl->render(clip, passSettings, readDepth);
           if (passColor) *passColor = std::move(frame.color);
           if (passNeed) *passNeed = std::move(frame.need);
           if (passDepth) *passDepth = std::move(frame.depth);
@@ -212,6 +232,10 @@ void addFlyCommand(CLI::App& app) {
         }
         reference::Frame frame = reference::renderFrame(clip, runtime.cacheState(), passSettings);
         if (passColor) *passColor = std::move(frame.color);
+        if (delayed && passNeed) {
+          std::swap(frame.need, delayedNeed);
+          if (readDepth) std::swap(frame.depth, delayedDepth);
+        }
         if (passNeed) *passNeed = std::move(frame.need);
         if (passDepth) *passDepth = std::move(frame.depth);
       };
@@ -230,20 +254,22 @@ void addFlyCommand(CLI::App& app) {
       const bool writeImage = o->imagesEvery > 0 && frameNumber % o->imagesEvery == 0;
       const auto frameIndex = static_cast<uint64_t>(frameNumber);
       draw(current, frameIndex, writeImage ? &color : nullptr, need,
-           runtime.needsDepth() ? &depth : nullptr);
+           runtime.needsDepth() ? &depth : nullptr, async);
       VirtualTextureRuntime::Prediction prediction;
       prediction.hotSpot = vt::hotSpot(previous, current, needViewport, hotSpotMode);
       if (lookAhead != LookAhead::kNone) {
         draw(lookAheadCamera(beforePrevious, previous, current, lookAhead), frameIndex, nullptr,
-             lookAheadNeed, nullptr);
+             lookAheadNeed, nullptr, false);
         prediction.lookAheadNeed = lookAheadNeed;
       }
       FrameStatistics statistics;
       statistics.streamed = streamedBefore;
       statistics.evicted = evictedBefore;
+      // The first frame under asynchronous readback has no needbuffer yet: nothing to ask for.
       const std::vector<StreamRequest> requests =
-          runtime.analyze(need, depth, needViewport.width, needViewport.height, settings.need8,
-                          frameIndex, statistics, prediction);
+          need.empty() ? std::vector<StreamRequest>{}
+                       : runtime.analyze(need, depth, needViewport.width, needViewport.height,
+                                         settings.need8, frameIndex, statistics, prediction);
       csv << frameNumber << ',' << statistics.coveredPixels << ',' << statistics.neededPages << ','
           << statistics.hits << ',' << statistics.misses << ',' << statistics.hitPixels << ','
           << statistics.requested << ',' << statistics.streamed << ',' << statistics.evicted << ','
@@ -285,6 +311,7 @@ void addFlyCommand(CLI::App& app) {
                               {"noise_skipping", o->noiseSkipping},
                               {"streaming", o->streaming},
                               {"need_scale", std::stoi(o->needScale)},
+                              {"readback", o->readback},
                               {"budget", o->budget},
                               {"latency", o->latency},
                               {"link_latency_seconds", o->linkLatency},

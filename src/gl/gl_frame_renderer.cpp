@@ -51,6 +51,8 @@ void GlFrameRenderer::uploadCache() {
 }
 
 GlFrameRenderer::~GlFrameRenderer() {
+  if (readbackFence_) glDeleteSync(readbackFence_);
+  glDeleteBuffers(2, readbackBuffers_);
   glDeleteBuffers(1, &vertices_);
   glDeleteBuffers(1, &indices_);
   glDeleteVertexArrays(1, &vertexArray_);
@@ -89,6 +91,11 @@ void GlFrameRenderer::uploadMesh(const ClipSpaceMesh& mesh) {
 }
 
 void GlFrameRenderer::draw(const ClipSpaceMesh& mesh, const reference::RenderSettings& settings) {
+  submit(mesh, settings);
+  glFinish();
+}
+
+void GlFrameRenderer::submit(const ClipSpaceMesh& mesh, const reference::RenderSettings& settings) {
   const TextureDescription& d = cache_.description;
   prepareTargets(settings.viewport, settings.need8);
   uploadMesh(mesh);
@@ -120,7 +127,6 @@ void GlFrameRenderer::draw(const ClipSpaceMesh& mesh, const reference::RenderSet
   glDepthFunc(GL_LESS);
   glBindVertexArray(vertexArray_);
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.indices.size()), GL_UNSIGNED_INT, nullptr);
-  glFinish();
 }
 
 GlFrame GlFrameRenderer::render(const ClipSpaceMesh& mesh,
@@ -152,6 +158,73 @@ void GlFrameRenderer::present(glm::ivec2 window) const {
   glNamedFramebufferReadBuffer(framebuffer_, GL_COLOR_ATTACHMENT0);
   glBlitNamedFramebuffer(framebuffer_, 0, 0, 0, viewport_.width, viewport_.height, 0, 0, window.x,
                          window.y, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
+std::optional<GlFrame> GlFrameRenderer::renderAsync(const ClipSpaceMesh& mesh,
+                                                    const reference::RenderSettings& settings,
+                                                    bool readDepth) {
+  submit(mesh, settings);
+  std::optional<GlFrame> previous = collectReadback();  // the GPU works on this frame meanwhile
+  const size_t pixels =
+      static_cast<size_t>(settings.viewport.width) * static_cast<size_t>(settings.viewport.height);
+  const size_t needBytes = pixels * (settings.need8 ? 4 : 16);
+  if (!readbackBuffers_[0]) glCreateBuffers(2, readbackBuffers_);
+  glNamedBufferData(readbackBuffers_[0], static_cast<GLsizeiptr>(needBytes), nullptr,
+                    GL_STREAM_READ);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, readbackBuffers_[0]);
+  glGetTextureImage(targets_[1], 0, GL_RGBA_INTEGER,
+                    settings.need8 ? GL_UNSIGNED_BYTE : GL_UNSIGNED_INT,
+                    static_cast<GLsizei>(needBytes), nullptr);
+  if (readDepth) {
+    glNamedBufferData(readbackBuffers_[1], static_cast<GLsizeiptr>(pixels * sizeof(float)), nullptr,
+                      GL_STREAM_READ);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, readbackBuffers_[1]);
+    glGetTextureImage(targets_[2], 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                      static_cast<GLsizei>(pixels * sizeof(float)), nullptr);
+  }
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  readbackFence_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  glFlush();
+  readbackViewport_ = settings.viewport;
+  readbackNeed8_ = settings.need8;
+  readbackDepth_ = readDepth;
+  return previous;
+}
+
+std::optional<GlFrame> GlFrameRenderer::collectReadback() {
+  if (!readbackFence_) return std::nullopt;
+  while (glClientWaitSync(readbackFence_, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000) ==
+         GL_TIMEOUT_EXPIRED) {
+  }
+  glDeleteSync(readbackFence_);
+  readbackFence_ = nullptr;
+  const size_t pixels =
+      static_cast<size_t>(readbackViewport_.width) * static_cast<size_t>(readbackViewport_.height);
+  GlFrame frame{{}, std::vector<glm::uvec4>(pixels), {}};
+  if (readbackNeed8_) {
+    std::vector<glm::u8vec4> need(pixels);
+    glGetNamedBufferSubData(readbackBuffers_[0], 0, static_cast<GLsizeiptr>(pixels * 4),
+                            need.data());
+    for (size_t i = 0; i < pixels; ++i) frame.need[i] = glm::uvec4(need[i]);
+  } else {
+    glGetNamedBufferSubData(readbackBuffers_[0], 0, static_cast<GLsizeiptr>(pixels * 16),
+                            frame.need.data());
+  }
+  if (readbackDepth_) {
+    frame.depth.resize(pixels);
+    glGetNamedBufferSubData(readbackBuffers_[1], 0, static_cast<GLsizeiptr>(pixels * sizeof(float)),
+                            frame.depth.data());
+  }
+  return frame;
+}
+
+std::vector<uint8_t> GlFrameRenderer::readColor() const {
+  const size_t pixels =
+      static_cast<size_t>(viewport_.width) * static_cast<size_t>(viewport_.height);
+  std::vector<uint8_t> color(pixels * 4);
+  glGetTextureImage(targets_[0], 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(pixels * 4),
+                    color.data());
+  return color;
 }
 
 }  // namespace vt

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "gl/gl_program.h"
@@ -43,12 +44,24 @@ class GlFrameRenderer {
   // Draws and reads back colour and needbuffer.
   GlFrame render(const ClipSpaceMesh& mesh, const reference::RenderSettings& settings,
                  bool readDepth = false);
+  // Asynchronous readback (thesis 3.2.4: the needbuffer's transfer need not stall the frame):
+  // draws without waiting, then returns the needbuffer (and depth, if it was asked for) of the
+  // frame drawn by the previous call, whose copy into pixel-buffer objects was fenced when it was
+  // drawn, and starts this frame's copy. The first call returns nothing. Colour stays in the
+  // target (present(), readColor()).
+  std::optional<GlFrame> renderAsync(const ClipSpaceMesh& mesh,
+                                     const reference::RenderSettings& settings,
+                                     bool readDepth = false);
+  // The colour of the frame drawn last (a synchronous read).
+  std::vector<uint8_t> readColor() const;
   // Copies the last frame's colour to the current context's window (framebuffer 0), scaled to
   // `window` pixels.
   void present(glm::ivec2 window) const;
 
  private:
   void prepareTargets(Viewport viewport, bool need8);
+  void submit(const ClipSpaceMesh& mesh, const reference::RenderSettings& settings);
+  std::optional<GlFrame> collectReadback();
   void uploadMesh(const ClipSpaceMesh& mesh);
 
   const reference::CacheState& cache_;
@@ -58,6 +71,11 @@ class GlFrameRenderer {
   GLuint framebuffer_ = 0, vertexArray_ = 0, vertices_ = 0, indices_ = 0;
   Viewport viewport_{0, 0};
   bool need8_ = false;
+  // The readback in flight: its buffers, fence and what they hold.
+  GLuint readbackBuffers_[2] = {0, 0};  // needbuffer, depth
+  GLsync readbackFence_ = nullptr;
+  Viewport readbackViewport_{0, 0};
+  bool readbackNeed8_ = false, readbackDepth_ = false;
 };
 
 }  // namespace vt
