@@ -4,7 +4,9 @@
 #include <epoxy/gl.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace vt {
@@ -16,31 +18,55 @@ namespace {
   throw std::runtime_error("headless OpenGL: " + step + " failed (EGL error " + code + ")");
 }
 
-// The first display we can initialise: Mesa's surfaceless platform, then the first EGL device.
+EGLDisplay surfacelessDisplay() {
+  if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless"))
+    return EGL_NO_DISPLAY;
+  EGLDisplay display =
+      eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+  return display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr) ? display
+                                                                               : EGL_NO_DISPLAY;
+}
+
+// The first EGL device that initialises; a hardware device (not Mesa's software one) first.
+EGLDisplay deviceDisplay() {
+  if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device")) return EGL_NO_DISPLAY;
+  EGLint count = 0;
+  eglQueryDevicesEXT(0, nullptr, &count);
+  std::vector<EGLDeviceEXT> devices(static_cast<size_t>(count));
+  if (count <= 0 || !eglQueryDevicesEXT(count, devices.data(), &count)) return EGL_NO_DISPLAY;
+  for (const bool software : {false, true})
+    for (EGLDeviceEXT device : devices) {
+      const char* extensions = eglQueryDeviceStringEXT(device, EGL_EXTENSIONS);
+      const bool isSoftware =
+          extensions &&
+          std::string(extensions).find("EGL_MESA_device_software") != std::string::npos;
+      if (isSoftware != software) continue;
+      EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
+      if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr)) return display;
+    }
+  return EGL_NO_DISPLAY;
+}
+
+// VT_EGL_PLATFORM=device picks the EGL device platform (a GPU's driver, e.g. NVIDIA's, where
+// Mesa is installed too), =surfaceless Mesa's surfaceless platform; unset: surfaceless, then
+// device.
 EGLDisplay openDisplay(std::string& platform) {
-  if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless")) {
-    EGLDisplay display =
-        eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-    if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr)) {
+  const char* wanted = std::getenv("VT_EGL_PLATFORM");
+  const std::string choice = wanted ? wanted : "";
+  if (choice != "device") {
+    if (EGLDisplay display = surfacelessDisplay(); display != EGL_NO_DISPLAY) {
       platform = "surfaceless";
       return display;
     }
   }
-  if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device")) {
-    EGLint count = 0;
-    eglQueryDevicesEXT(0, nullptr, &count);
-    std::vector<EGLDeviceEXT> devices(static_cast<size_t>(count));
-    if (count > 0 && eglQueryDevicesEXT(count, devices.data(), &count)) {
-      for (EGLDeviceEXT device : devices) {
-        EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
-        if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr)) {
-          platform = "device";
-          return display;
-        }
-      }
+  if (choice != "surfaceless") {
+    if (EGLDisplay display = deviceDisplay(); display != EGL_NO_DISPLAY) {
+      platform = "device";
+      return display;
     }
   }
-  fail("opening a surfaceless or device EGL display");
+  fail("opening a " + (choice.empty() ? std::string("surfaceless or device") : choice) +
+       " EGL display");
 }
 
 }  // namespace

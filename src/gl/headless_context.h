@@ -1,7 +1,8 @@
 #pragma once
 // A headless OpenGL 4.5 core context through EGL, with no window system: Mesa's surfaceless
-// platform (llvmpipe in CI) or, where that is missing, the EGL device platform (the NVIDIA
-// driver). The context renders into framebuffer objects only. It is made current on the creating
+// platform (llvmpipe in CI) or, where that is missing or VT_EGL_PLATFORM=device asks for it, the
+// EGL device platform (a GPU's driver such as NVIDIA's, hardware devices before Mesa's software
+// one). The context renders into framebuffer objects only. It is made current on the creating
 // thread for its whole life.
 
 #include <string>
