@@ -14,8 +14,8 @@ packages=(
   libegl-dev libegl1-mesa-dev libgl1-mesa-dri libopengl-dev libgl-dev libepoxy-dev
   # the interactive viewer (GLFW), tested under a virtual X server
   libglfw3-dev xvfb xauth
-  # report scripts
-  python3
+  # report scripts, and scikit-image: the independent SSIM the metrics are checked against
+  python3 python3-skimage
   # tests, benchmarks, command line, JSON, checksums
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libxxhash-dev
   # parallel loops

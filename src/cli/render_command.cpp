@@ -166,8 +166,11 @@ void addRenderCommand(CLI::App& app) {
       const std::vector<uint8_t> expected = readReference(o->reference, settings.viewport);
       const ImageView a{settings.viewport.width, settings.viewport.height, color};
       const ImageView b{settings.viewport.width, settings.viewport.height, expected};
+      const SsimOptions gaussian{.window = SsimWindow::kGaussian};
       std::cout << "against " << o->reference << ": RMSE " << rmse(a, b) << " (8-bit units), SSIM "
-                << ssim(a, b) << ", in " << milliseconds << " ms\n";
+                << ssim(a, b) << " (8 x 8), " << ssim(a, b, gaussian)
+                << " (Gaussian 11 x 11), WSSIM " << wssim(a, b) << ", in " << milliseconds
+                << " ms\n";
     }
   });
 }

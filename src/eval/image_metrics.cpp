@@ -1,6 +1,6 @@
 #include "eval/image_metrics.h"
 
-#include <array>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -15,6 +15,8 @@ void requireSameSize(const ImageView& a, const ImageView& b) {
     throw std::invalid_argument("images differ in size");
 }
 
+}  // namespace
+
 std::vector<double> luminance(const ImageView& image) {
   std::vector<double> y(static_cast<size_t>(image.width) * image.height);
   for (size_t i = 0; i < y.size(); ++i)
@@ -22,8 +24,6 @@ std::vector<double> luminance(const ImageView& image) {
            0.0722 * image.rgba[4 * i + 2];
   return y;
 }
-
-}  // namespace
 
 double rmse(const ImageView& a, const ImageView& b) {
   requireSameSize(a, b);
@@ -37,41 +37,81 @@ double rmse(const ImageView& a, const ImageView& b) {
   return count > 0 ? std::sqrt(sum / count) : 0.0;
 }
 
-double ssim(const ImageView& a, const ImageView& b) {
+namespace {
+
+// Separable window weights, summing to 1: `first` is the offset of the window's first tap from
+// its centre pixel.
+struct Window {
+  std::vector<double> taps;
+  int first = 0;
+};
+
+Window window(const SsimOptions& options) {
+  Window w;
+  if (options.window == SsimWindow::kGaussian) {
+    constexpr int kRadius = 5;  // 11 taps: scipy's truncate = 3.5 at sigma 1.5
+    constexpr double kSigma = 1.5;
+    double total = 0.0;
+    for (int k = -kRadius; k <= kRadius; ++k)
+      total += w.taps.emplace_back(std::exp(-k * k / (2 * kSigma * kSigma)));
+    for (double& t : w.taps) t /= total;
+    w.first = -kRadius;
+  } else {
+    if (options.uniformSize < 1) throw std::invalid_argument("SSIM window of no pixels");
+    w.taps.assign(static_cast<size_t>(options.uniformSize), 1.0 / options.uniformSize);
+    w.first = -(options.uniformSize / 2);
+  }
+  return w;
+}
+
+// Mean of SSIM over the windows, each weighted by weight(centre x, centre y).
+template <class Weight>
+double meanSsim(const ImageView& a, const ImageView& b, const SsimOptions& options, Weight weight) {
   requireSameSize(a, b);
-  constexpr int kRadius = 5;
-  constexpr double kSigma = 1.5, kC1 = (0.01 * 255) * (0.01 * 255),
-                   kC2 = (0.03 * 255) * (0.03 * 255);
-  std::array<double, 2 * kRadius + 1> weight{};
-  double total = 0.0;
-  for (int k = -kRadius; k <= kRadius; ++k)
-    total += weight[k + kRadius] = std::exp(-k * k / (2 * kSigma * kSigma));
-  for (double& w : weight) w /= total;
+  constexpr double kC1 = (0.01 * 255) * (0.01 * 255), kC2 = (0.03 * 255) * (0.03 * 255);
+  const Window w = window(options);
+  const int taps = static_cast<int>(w.taps.size()), W = a.width, H = a.height;
+  if (W < taps || H < taps) throw std::invalid_argument("images smaller than the SSIM window");
   const std::vector<double> x = luminance(a), y = luminance(b);
-  const int W = a.width, H = a.height;
-  if (W < 2 * kRadius + 1 || H < 2 * kRadius + 1)
-    throw std::invalid_argument("images smaller than the SSIM window");
-  double sum = 0.0;
-  long windows = 0;
-  for (int cy = kRadius; cy < H - kRadius; ++cy)
-    for (int cx = kRadius; cx < W - kRadius; ++cx) {
+  double sum = 0.0, weights = 0.0;
+  for (int cy = -w.first; cy + w.first + taps <= H; ++cy)
+    for (int cx = -w.first; cx + w.first + taps <= W; ++cx) {
       double mx = 0, my = 0, xx = 0, yy = 0, xy = 0;
-      for (int j = -kRadius; j <= kRadius; ++j)
-        for (int i = -kRadius; i <= kRadius; ++i) {
-          const double w = weight[i + kRadius] * weight[j + kRadius];
-          const size_t p = static_cast<size_t>(cy + j) * W + static_cast<size_t>(cx + i);
-          mx += w * x[p];
-          my += w * y[p];
-          xx += w * x[p] * x[p];
-          yy += w * y[p] * y[p];
-          xy += w * x[p] * y[p];
+      for (int j = 0; j < taps; ++j)
+        for (int i = 0; i < taps; ++i) {
+          const double k = w.taps[static_cast<size_t>(i)] * w.taps[static_cast<size_t>(j)];
+          const size_t p =
+              static_cast<size_t>(cy + w.first + j) * W + static_cast<size_t>(cx + w.first + i);
+          mx += k * x[p];
+          my += k * y[p];
+          xx += k * x[p] * x[p];
+          yy += k * y[p] * y[p];
+          xy += k * x[p] * y[p];
         }
       const double vx = xx - mx * mx, vy = yy - my * my, cxy = xy - mx * my;
-      sum +=
+      const double q =
           ((2 * mx * my + kC1) * (2 * cxy + kC2)) / ((mx * mx + my * my + kC1) * (vx + vy + kC2));
-      ++windows;
+      const double k = weight(cx, cy);
+      sum += k * q;
+      weights += k;
     }
-  return sum / static_cast<double>(windows);
+  return weights > 0.0 ? sum / weights : 1.0;
+}
+
+}  // namespace
+
+double ssim(const ImageView& a, const ImageView& b, const SsimOptions& options) {
+  return meanSsim(a, b, options, [](int, int) { return 1.0; });
+}
+
+double wssim(const ImageView& a, const ImageView& b, const SsimOptions& options) {
+  // Pixel centres at +0.5, as the WeightedPixel heuristic weighs pixels.
+  const double centreX = 0.5 * a.width, centreY = 0.5 * a.height;
+  const double radius = std::hypot(centreX, centreY);
+  return meanSsim(a, b, options, [&](int x, int y) {
+    const double r = std::hypot(x + 0.5 - centreX, y + 0.5 - centreY);
+    return std::max(0.0, 1.0 - r / radius);
+  });
 }
 
 }  // namespace vt

@@ -2,13 +2,22 @@
 // Full-reference quality metrics (thesis appendix A) between two RGBA8 images of equal size.
 //
 // RMSE: over the R, G and B channels, in 8-bit units (appendix A.1).
-// SSIM (Wang et al. 2004, appendix A.2): on Rec. 709 luminance in [0, 255], local means,
-// variances and covariance under an 11 x 11 Gaussian window of sigma 1.5 (normalized, population
-// statistics), C1 = (0.01 * 255)^2, C2 = (0.03 * 255)^2, averaged over the windows that lie
-// wholly inside the image.
+// SSIM (Wang et al. 2004, appendix A.2) on Rec. 709 luminance in [0, 255] (L = 255):
+//   Q = ((2 mu_x mu_y + C1)(2 sigma_xy + C2)) / ((mu_x^2 + mu_y^2 + C1)(sigma_x^2 + sigma_y^2 +
+//   C2)), C1 = (0.01 L)^2, C2 = (0.03 L)^2, with local means, variances and covariance under a
+//   window (population statistics: weights summing to 1), at every position where the window lies
+//   wholly inside the image, averaged. Windows: the thesis's 8 x 8 uniform block (the default; an
+//   even window's centre is the pixel right and below the middle) or any odd or even uniform size,
+//   or the usual 11 x 11 Gaussian of sigma 1.5. With the Gaussian, or a uniform odd size, this is
+//   scikit-image's structural_similarity(data_range=255, use_sample_covariance=False) on the
+//   same luminance (a test checks it to 1e-4 on rendered frames).
+// WSSIM (thesis 4.2.3.1): each window's Q weighted by its centre's distance r from the screen's
+//   centre, w = max(0, 1 - r / R), R the distance from the centre to a corner (the WeightedPixel
+//   weight of runtime/needbuffer_analysis.h); the weighted mean sum(w Q) / sum(w).
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace vt {
 
@@ -17,7 +26,19 @@ struct ImageView {
   std::span<const uint8_t> rgba;  // width * height * 4
 };
 
+enum class SsimWindow { kUniform, kGaussian };
+
+struct SsimOptions {
+  SsimWindow window = SsimWindow::kUniform;
+  int uniformSize = 8;  // side of the uniform window, pixels
+};
+
+// Rec. 709 luminance 0.2126 R + 0.7152 G + 0.0722 B of each pixel, in [0, 255], as SSIM uses it.
+std::vector<double> luminance(const ImageView& image);
+
 double rmse(const ImageView& a, const ImageView& b);
-double ssim(const ImageView& a, const ImageView& b);
+// Throws std::invalid_argument for images of different sizes or smaller than the window.
+double ssim(const ImageView& a, const ImageView& b, const SsimOptions& options = {});
+double wssim(const ImageView& a, const ImageView& b, const SsimOptions& options = {});
 
 }  // namespace vt

@@ -240,7 +240,8 @@ TEST_F(VtCommand, RenderDrawsTheBoxRoomAndMeasuresAgainstAReference) {
   const auto again = vt({"render", texture, "--size", "96x64", "-o", (dir_ / "again.png").string(),
                          "--reference", frame});
   ASSERT_EQ(again.exitCode, 0) << again.err;
-  EXPECT_THAT(again.out, HasSubstr("RMSE 0 (8-bit units), SSIM 1,"));
+  EXPECT_THAT(again.out,
+              HasSubstr("RMSE 0 (8-bit units), SSIM 1 (8 x 8), 1 (Gaussian 11 x 11), WSSIM 1,"));
   // A cache state of levels 0..1 only: coarser, so the error against the full frame is positive.
   const auto coarse =
       vt({"render", texture, "--size", "96x64", "-o", (dir_ / "coarse.png").string(),
