@@ -17,6 +17,7 @@
 #include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/image_file.h"
+#include "eval/image_metrics.h"
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
 #include "reference/frame_images.h"
@@ -38,7 +39,7 @@ void addFlyCommand(CLI::App& app) {
     double linkLatency = 0.0, linkMegabytes = 0.0;
     uint32_t budget = 10, latency = 0, lockedLevels = 0, initialLevels = 3, frames = 16;
     float noiseThreshold = -1.0f;
-    bool noiseSkipping = false, preloadVisible = false;
+    bool noiseSkipping = false, preloadVisible = false, quality = false;
     unsigned threads = 0;
     int imagesEvery = 0;
   };
@@ -121,6 +122,9 @@ void addFlyCommand(CLI::App& app) {
       ->check(CLI::IsMember({"oracle", "gl"}))
       ->capture_default_str();
   command->add_option("--threads", o->threads, "Worker threads of the oracle (0: every core)");
+  command->add_flag("--quality", o->quality,
+                    "Per frame RMSE, SSIM (8 x 8) and WSSIM against the frame with every page "
+                    "resident (the oracle's reference image); the flight's run time excludes it");
   command->add_option("--images-every", o->imagesEvery,
                       "Write every n-th frame as an image (0: none)");
   command->add_option("-o,--output", o->output, "Output folder")->capture_default_str();
@@ -188,7 +192,13 @@ void addFlyCommand(CLI::App& app) {
     std::filesystem::create_directories(folder);
     std::ostringstream csv;
     csv << "frame,covered_pixels,needed_pages,hits,misses,hit_pixels,requested,streamed,evicted,"
-           "resident\n";
+           "resident"
+        << (o->quality ? ",rmse,ssim,wssim\n" : "\n");
+    // Quality against reference images: every page resident, drawn by the oracle at the screen's
+    // resolution (DESIGN section 5); its time is kept apart from the flight's.
+    std::unique_ptr<reference::ResidentTexture> everything;
+    if (o->quality) everything = std::make_unique<reference::ResidentTexture>(reader);
+    double qualitySeconds = 0.0, rmseSum = 0.0, ssimSum = 0.0, wssimSum = 0.0, ssimMin = 1.0;
     FrameStatistics totals;
     const auto start = std::chrono::steady_clock::now();
     uint64_t streamedBefore = 0, evictedBefore = 0;
@@ -253,7 +263,7 @@ void addFlyCommand(CLI::App& app) {
       std::vector<float> depth;
       const bool writeImage = o->imagesEvery > 0 && frameNumber % o->imagesEvery == 0;
       const auto frameIndex = static_cast<uint64_t>(frameNumber);
-      draw(current, frameIndex, writeImage ? &color : nullptr, need,
+      draw(current, frameIndex, (writeImage || o->quality) ? &color : nullptr, need,
            runtime.needsDepth() ? &depth : nullptr, async);
       VirtualTextureRuntime::Prediction prediction;
       prediction.hotSpot = vt::hotSpot(previous, current, needViewport, hotSpotMode);
@@ -273,7 +283,24 @@ void addFlyCommand(CLI::App& app) {
       csv << frameNumber << ',' << statistics.coveredPixels << ',' << statistics.neededPages << ','
           << statistics.hits << ',' << statistics.misses << ',' << statistics.hitPixels << ','
           << statistics.requested << ',' << statistics.streamed << ',' << statistics.evicted << ','
-          << statistics.resident << '\n';
+          << statistics.resident;
+      if (o->quality) {
+        const auto qualityStart = std::chrono::steady_clock::now();
+        reference::RenderSettings full = settings;
+        full.viewport = screen;
+        const reference::Frame expected =
+            reference::renderFrame(toClipSpace(mesh, current, screen), *everything, full);
+        const ImageView got{screen.width, screen.height, color},
+            want{screen.width, screen.height, expected.color};
+        const double frameRmse = rmse(got, want), frameSsim = ssim(got, want),
+                     frameWssim = wssim(got, want);
+        csv << ',' << frameRmse << ',' << frameSsim << ',' << frameWssim;
+        rmseSum += frameRmse, ssimSum += frameSsim, wssimSum += frameWssim;
+        ssimMin = std::min(ssimMin, frameSsim);
+        qualitySeconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - qualityStart).count();
+      }
+      csv << '\n';
       totals.hits += statistics.hits;
       totals.misses += statistics.misses;
       totals.streamed += statistics.streamed;
@@ -302,7 +329,8 @@ void addFlyCommand(CLI::App& app) {
       evictedBefore = evicted;
     }
     const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
+        qualitySeconds;
     std::ofstream(folder / "frames.csv") << csv.str();
     nlohmann::json summary = {{"texture", o->texture},
                               {"frames", path.frameCount()},
@@ -326,13 +354,28 @@ void addFlyCommand(CLI::App& app) {
                               {"evicted", totals.evicted},
                               {"backend", o->backend},
                               {"profile", reference::toString(settings.profile)}};
+    if (o->quality) {
+      const double frames = path.frameCount();
+      summary["mean_rmse"] = rmseSum / frames;
+      summary["mean_ssim"] = ssimSum / frames;
+      summary["min_ssim"] = ssimMin;
+      summary["mean_wssim"] = wssimSum / frames;
+    }
     std::ofstream(folder / "summary.json") << summary.dump(2) << '\n';
-    std::ofstream(folder / "timing.json")
-        << nlohmann::json{{"seconds", seconds}, {"frames", path.frameCount()}}.dump(2) << '\n';
+    std::ofstream(folder / "timing.json") << nlohmann::json{{"seconds", seconds},
+                                                            {"frames", path.frameCount()},
+                                                            {"quality_seconds", qualitySeconds}}
+                                                 .dump(2)
+                                          << '\n';
     std::cout << "flew " << path.frameCount() << " frames in " << seconds << " s (" << o->backend
               << "): " << totals.hits << " needed-page hits, " << totals.misses << " misses, "
               << totals.streamed << " pages streamed, " << totals.evicted << " evicted; wrote "
               << (folder / "frames.csv").string() << "\n";
+    if (o->quality)
+      std::cout << "quality against every page resident: mean SSIM " << ssimSum / path.frameCount()
+                << ", min SSIM " << ssimMin << ", mean WSSIM " << wssimSum / path.frameCount()
+                << ", mean RMSE " << rmseSum / path.frameCount() << " (8-bit units), for "
+                << seconds << " s of flight\n";
   });
 }
 

@@ -210,6 +210,34 @@ TEST_F(VtCommand, FlyStreamsTheDefaultPathWithTheSameBytesForAnyThreadCount) {
   EXPECT_THAT(bad.err, HasSubstr("'speed' is not one of"));
 }
 
+// Quality against the reference images (every page resident): streaming from the coarsest level
+// with a small budget loses quality; with every page resident from the start it is the reference
+// up to the cache texture's coordinate rounding.
+TEST_F(VtCommand, FlyMeasuresQualityAgainstEveryPageResident) {
+  const auto texture = sparseTexture();
+  const auto fly = [&](const std::vector<std::string>& extra, const std::string& out) {
+    std::vector<std::string> args = {
+        "fly", texture, "--size", "96x64", "--quality", "-o", (dir_ / out).string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto result = vt(args);
+    EXPECT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_THAT(result.out, HasSubstr("quality against every page resident: mean SSIM"));
+    std::ifstream in(dir_ / out / "summary.json");
+    return nlohmann::json::parse(in);
+  };
+  const auto starved = fly({"--budget", "1", "--initial-levels", "1", "--cache-frames", "3"}, "a");
+  const auto full = fly({"--initial-levels", "4", "--cache-frames", "12"}, "b");
+  EXPECT_LT(starved["min_ssim"].get<double>(), 0.99);
+  EXPECT_GT(starved["mean_rmse"].get<double>(), 1.0);
+  EXPECT_GT(full["min_ssim"].get<double>(), 0.9999);
+  EXPECT_LT(full["mean_rmse"].get<double>(), 0.1);
+  EXPECT_LE(full["mean_wssim"].get<double>(), 1.0);
+  std::ifstream csv(dir_ / "a" / "frames.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_THAT(header, testing::EndsWith(",rmse,ssim,wssim"));
+}
+
 TEST_F(VtCommand, BuildErrorsNameTheFile) {
   std::ofstream(dir_ / "layout.json") << R"({"images": [{"file": "gone.png", "x": 0, "y": 0}]})";
   const auto output = (dir_ / "out.vt").string();
