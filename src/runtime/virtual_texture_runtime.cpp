@@ -8,7 +8,8 @@ VirtualTextureRuntime::VirtualTextureRuntime(const VirtualTextureReader& reader,
                                              const RuntimeOptions& options)
     : reader_(reader),
       options_(options),
-      pageCache_(options.framesX, options.framesY, options.lockedLevels),
+      // The root is always locked: every lookup falls back to it, so it must never leave.
+      pageCache_(options.framesX, options.framesY, std::max(1u, options.lockedLevels)),
       table_(reader.description().levelCount) {
   validateHeuristic(options.priority.heuristic);
   const TextureDescription& d = reader.description();

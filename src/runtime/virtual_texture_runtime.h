@@ -21,7 +21,8 @@ namespace vt {
 
 struct RuntimeOptions {
   uint32_t framesX = 16, framesY = 16;  // the cache: framesX x framesY frames of (P + 2B)^2
-  uint32_t lockedLevels = 0;            // levels 0 .. lockedLevels - 1 never leave the cache
+  uint32_t lockedLevels = 0;  // levels 0 .. lockedLevels - 1 never leave the cache; the root
+                              // (level 0) never does in any case: every lookup falls back to it
   PriorityOptions priority;
 };
 

@@ -120,6 +120,27 @@ TEST_F(Runtime, ThreadedStreamerTakesRequestsReplacedWhileItReads) {
   EXPECT_EQ(streamer.failures(), 0u);
 }
 
+// A cache far smaller than the stream keeps the root whatever it evicts: every indirection entry
+// always names a resident page (an entry without one would send the shader to a garbage level).
+TEST_F(Runtime, TheRootNeverLeavesATinyCache) {
+  RuntimeOptions options;
+  options.framesX = 2;
+  options.framesY = 1;
+  VirtualTextureRuntime runtime(*reader_, options);
+  for (uint64_t round = 0; round < 40; ++round) {
+    std::vector<StreamedPage> pages;
+    for (uint64_t k = 0; k < 3; ++k) {
+      const uint64_t page = 1 + (round * 3 + k) % 84;
+      pages.push_back({page, reader_->readPage(fromAbsoluteIndex(page))});
+    }
+    runtime.apply(std::move(pages));
+    ASSERT_TRUE(runtime.pageCache().contains(0)) << "round " << round;
+    for (const auto& level : runtime.cacheState().indirection)
+      for (const glm::u16vec4& entry : level) ASSERT_LE(entry.z, 3) << "round " << round;
+    expectConsistent(runtime);
+  }
+}
+
 // The link model gives lower bounds on arrival times, so the properties below hold however slowly
 // the machine runs: no page before the latency, and no faster than the bandwidth.
 TEST_F(Runtime, ThreadedStreamerLinkDelaysEveryPageByItsLatency) {
