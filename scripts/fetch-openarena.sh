@@ -5,7 +5,7 @@
 # Idempotent: a complete earlier fetch is reused. Needs apt-get (Debian 12); about 290 MB.
 set -euo pipefail
 
-cache="${1:-${VT_DATA_CACHE:-$HOME/.cache/vt}}/openarena"
+cache="${1:-${VT_DATA_CACHE:-${HOME:-/tmp}/.cache/vt}}/openarena"
 packages=(openarena-081-maps openarena-081-textures openarena-data openarena-085-data
           openarena-088-data)
 baseoa="$cache/baseoa"
