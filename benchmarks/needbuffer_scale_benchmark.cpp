@@ -25,10 +25,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 std::vector<uint64_t> neededPages(const std::vector<glm::uvec4>& need) {
-  std::set<uint64_t> pages;
-  for (const glm::uvec4& value : need)
-    if (const auto page = vt::decodeNeed(value, false)) pages.insert(vt::absoluteIndex(*page));
-  return {pages.begin(), pages.end()};
+  return vt::neededPages(need, false).pages;
 }
 
 }  // namespace

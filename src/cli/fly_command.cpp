@@ -10,7 +10,6 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <set>
 #include <sstream>
 
 #include "cli/commands.h"
@@ -28,6 +27,7 @@
 #include "scene/camera_motion.h"
 #include "scene/camera_path.h"
 #include "scene/obj_mesh.h"
+#include "shader/needbuffer.h"
 
 namespace vt {
 
@@ -156,14 +156,14 @@ void addFlyCommand(CLI::App& app) {
     const uint32_t initialLevels = std::min(o->initialLevels, reader.description().levelCount);
     for (uint64_t p = 0; initialLevels > 0 && p < pageCount(initialLevels - 1); ++p)
       initial.push_back(p);
+    // Every page resident: for the pages visible from the start and for the reference images.
+    std::unique_ptr<reference::ResidentTexture> everything;
+    if (o->preloadVisible || o->quality)
+      everything = std::make_unique<reference::ResidentTexture>(reader);
     if (o->preloadVisible) {
-      const reference::ResidentTexture everything(reader);
       const reference::Frame first = reference::renderFrame(
-          toClipSpace(mesh, path.at(0), settings.viewport), everything, settings);
-      std::set<uint64_t> visible;
-      for (const glm::uvec4& value : first.need)
-        if (const auto page = decodeNeed(value, settings.need8))
-          visible.insert(absoluteIndex(*page));
+          toClipSpace(mesh, path.at(0), settings.viewport), *everything, settings);
+      const std::vector<uint64_t> visible = neededPages(first.need, settings.need8).pages;
       initial.insert(initial.end(), visible.begin(), visible.end());
     }
     runtime.preload(initial);
@@ -196,8 +196,6 @@ void addFlyCommand(CLI::App& app) {
         << (o->quality ? ",rmse,ssim,wssim\n" : "\n");
     // Quality against reference images: every page resident, drawn by the oracle at the screen's
     // resolution (DESIGN section 5); its time is kept apart from the flight's.
-    std::unique_ptr<reference::ResidentTexture> everything;
-    if (o->quality) everything = std::make_unique<reference::ResidentTexture>(reader);
     double qualitySeconds = 0.0, rmseSum = 0.0, ssimSum = 0.0, wssimSum = 0.0, ssimMin = 1.0;
     FrameStatistics totals;
     const auto start = std::chrono::steady_clock::now();

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <iostream>
 #include <memory>
-#include <set>
 
 #include "cli/commands.h"
 #include "cli/size_argument.h"
@@ -19,6 +18,7 @@
 #include "reference/renderer.h"
 #include "scene/box_room.h"
 #include "scene/obj_mesh.h"
+#include "shader/needbuffer.h"
 
 namespace vt {
 namespace {
@@ -144,13 +144,7 @@ void addRenderCommand(CLI::App& app) {
       std::cout << "cache state: " << cache.residentPages.size() << " of "
                 << reader.storedPageCount() << " pages resident\n";
 
-    std::set<uint64_t> pages;
-    size_t covered = 0;
-    for (const glm::uvec4& value : frame.need)
-      if (const auto page = reference::decodeNeed(value, settings.need8)) {
-        ++covered;
-        pages.insert(absoluteIndex(*page));
-      }
+    const NeededPages needed = neededPages(frame.need, settings.need8);
     const std::vector<uint8_t> color = reference::colorImage(frame);
     const auto width = static_cast<uint32_t>(settings.viewport.width),
                height = static_cast<uint32_t>(settings.viewport.height);
@@ -160,8 +154,8 @@ void addRenderCommand(CLI::App& app) {
       writeImage8(o->needbuffer, width, height, 4, std::as_bytes(std::span(need)));
     }
     std::cout << "rendered " << o->output << ": " << width << " x " << height << " in "
-              << milliseconds << " ms (" << backendName << "), " << covered << " pixels covered, "
-              << pages.size() << " distinct pages needed\n";
+              << milliseconds << " ms (" << backendName << "), " << needed.coveredPixels
+              << " pixels covered, " << needed.pages.size() << " distinct pages needed\n";
     if (!o->reference.empty()) {
       const std::vector<uint8_t> expected = readReference(o->reference, settings.viewport);
       const ImageView a{settings.viewport.width, settings.viewport.height, color};

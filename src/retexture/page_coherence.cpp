@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <glm/gtc/matrix_transform.hpp>
-#include <set>
 
 #include "reference/renderer.h"
 #include "scene/camera.h"
@@ -47,19 +46,13 @@ PageCoherence measureCoherence(const TexturedScene& scene, const Retexturing& la
   for (const Camera& view : coherenceViews(scene)) {
     const reference::Frame frame =
         reference::renderFrame(toClipSpace(mesh, view, render.viewport), cache, render);
-    std::set<uint64_t> pages;
-    uint64_t covered = 0;
-    for (size_t i = 0; i < frame.need.size(); ++i) {
-      const std::optional<PageId> page = decodeNeed(frame.need[i], false);
-      if (!page) continue;
-      ++covered;
-      pages.insert(absoluteIndex(*page));
-    }
+    const NeededPages needed = neededPages(frame.need, false);
     ++coherence.views;
-    if (covered == 0) continue;
+    if (needed.coveredPixels == 0) continue;
     ++coveredViews;
-    sumPer1000 += 1000.0 * static_cast<double>(pages.size()) / static_cast<double>(covered);
-    sumPages += static_cast<double>(pages.size());
+    const auto pages = static_cast<double>(needed.pages.size());
+    sumPer1000 += 1000.0 * pages / static_cast<double>(needed.coveredPixels);
+    sumPages += pages;
   }
   coherence.pagesPer1000Pixels = sumPer1000 / std::max(1u, coveredViews);
   coherence.meanPagesPerView = sumPages / std::max(1u, coveredViews);

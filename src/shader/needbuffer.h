@@ -1,12 +1,17 @@
 #pragma once
 // The needbuffer encodings of the shader (virtual_texture.glsl, thesis 3.2.3.2), read back on the
-// CPU: what a pixel without geometry holds, and the page a value names.
+// CPU: what a pixel without geometry holds, the page a value names, and the pages a whole
+// needbuffer names.
 //   32-bit: r = px, g = py, b = m, a = 1; no geometry (0, 0, 0, 0).
 //   8-bit:  r = px mod 256, g = py mod 256, b = m, a = px / 256 + (py / 256) * 16;
 //           no geometry b = 255.
 
+#include <algorithm>
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <optional>
+#include <span>
+#include <vector>
 
 #include "format/page_address.h"
 
@@ -23,6 +28,26 @@ inline std::optional<PageId> decodeNeed(glm::uvec4 v, bool need8) {
   }
   if (v.w == 0) return std::nullopt;
   return PageId{v.x, v.y, v.z};
+}
+
+// The distinct pages a needbuffer names (absolute indices, ascending) and its pixels with geometry.
+struct NeededPages {
+  std::vector<uint64_t> pages;
+  uint64_t coveredPixels = 0;
+};
+
+inline NeededPages neededPages(std::span<const glm::uvec4> need, bool need8) {
+  NeededPages result;
+  for (const glm::uvec4& value : need)
+    if (const std::optional<PageId> page = decodeNeed(value, need8)) {
+      ++result.coveredPixels;
+      // Neighbouring pixels mostly name the same page: keep runs once before sorting.
+      const uint64_t index = absoluteIndex(*page);
+      if (result.pages.empty() || result.pages.back() != index) result.pages.push_back(index);
+    }
+  std::sort(result.pages.begin(), result.pages.end());
+  result.pages.erase(std::unique(result.pages.begin(), result.pages.end()), result.pages.end());
+  return result;
 }
 
 }  // namespace vt
