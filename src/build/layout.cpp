@@ -1,7 +1,5 @@
 #include "build/layout.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <bit>
 #include <fstream>
@@ -12,6 +10,7 @@
 #include <queue>
 
 #include "common/error.h"
+#include "common/image_file.h"
 
 namespace vt {
 namespace {
@@ -26,14 +25,13 @@ struct ImageInfo {
 ImageInfo probeImage(const std::filesystem::path& file, const std::string& namedBy) {
   if (!std::filesystem::exists(file))
     throw InputError(file, "image not found (named by " + namedBy + ")");
-  auto input = OIIO::ImageInput::open(file.string());
-  if (!input)
-    throw InputError(file, "cannot read image (named by " + namedBy + "): " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = input->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+  std::string error;
+  const std::optional<ImageHeader> header = readImageHeader(file, &error);
+  if (!header) throw InputError(file, "cannot read image (named by " + namedBy + "): " + error);
+  if (header->width <= 0 || header->height <= 0 || header->channels <= 0)
     throw InputError(file, "image has no texels");
-  return {static_cast<uint32_t>(spec.width), static_cast<uint32_t>(spec.height),
-          static_cast<uint32_t>(spec.nchannels)};
+  return {static_cast<uint32_t>(header->width), static_cast<uint32_t>(header->height),
+          static_cast<uint32_t>(header->channels)};
 }
 
 // Fills the image's own size and channels and, where no region gave them, the placed size.

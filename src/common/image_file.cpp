@@ -31,4 +31,15 @@ void writeImage8(const std::filesystem::path& path, uint32_t width, uint32_t hei
   output.commit();
 }
 
+std::optional<ImageHeader> readImageHeader(const std::filesystem::path& path, std::string* error) {
+  auto input = OIIO::ImageInput::open(path.string());
+  if (!input) {
+    const std::string reason = OIIO::geterror();  // read, so it does not linger for the next call
+    if (error) *error = reason;
+    return std::nullopt;
+  }
+  const OIIO::ImageSpec& spec = input->spec();
+  return ImageHeader{spec.width, spec.height, spec.nchannels};
+}
+
 }  // namespace vt

@@ -1,16 +1,28 @@
 #pragma once
 // Writing 8-bit images through OpenImageIO (format from the extension: .png, .tif, .exr, ...),
-// into a temporary file renamed at the end, so a failed write leaves no partial image.
+// into a temporary file renamed at the end, so a failed write leaves no partial image; and
+// reading an image's header.
 
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <span>
+#include <string>
 
 namespace vt {
 
 // Rows of `width` texels of `channels` bytes each, top row first.
 void writeImage8(const std::filesystem::path& path, uint32_t width, uint32_t height,
                  uint32_t channels, std::span<const std::byte> texels);
+
+// The size and channels an image file's header states (nothing is decoded).
+struct ImageHeader {
+  int width = 0, height = 0, channels = 0;
+};
+
+// Nothing when OpenImageIO cannot open the file; `error`, if given, then holds its reason.
+std::optional<ImageHeader> readImageHeader(const std::filesystem::path& path,
+                                           std::string* error = nullptr);
 
 }  // namespace vt

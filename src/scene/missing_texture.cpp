@@ -25,4 +25,10 @@ std::filesystem::path writeMissingTexture(const std::filesystem::path& folder) {
   return path;
 }
 
+void useMissingTexture(SourceTexture& texture, const std::filesystem::path& folder) {
+  texture.missing = true;
+  texture.file = writeMissingTexture(folder);
+  texture.width = texture.height = kMissingTextureSide;
+}
+
 }  // namespace vt

@@ -1,6 +1,5 @@
 #include "scene/obj_scene.h"
 
-#include <OpenImageIO/imageio.h>
 #include <tiny_obj_loader.h>
 
 #include <cmath>
@@ -9,6 +8,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/image_file.h"
 #include "scene/missing_texture.h"
 
 namespace vt {
@@ -67,11 +67,7 @@ class MaterialTextures {
       texture.name = "(no material)";
       scene_.warnings.push_back("faces without a material are drawn as a checker");
     }
-    if (texture.file.empty()) {
-      texture.missing = true;
-      texture.file = writeMissingTexture(imageFolder_);
-      texture.width = texture.height = kMissingTextureSide;
-    }
+    if (texture.file.empty()) useMissingTexture(texture, imageFolder_);
     const auto index = static_cast<uint32_t>(scene_.textures.size());
     scene_.textures.push_back(std::move(texture));
     byMaterial_.emplace(material, index);
@@ -80,16 +76,15 @@ class MaterialTextures {
 
  private:
   void probe(const std::filesystem::path& image, SourceTexture& texture) {
-    auto input = OIIO::ImageInput::open(image.string());
-    if (!input || input->spec().width <= 0 || input->spec().height <= 0) {
-      (void)OIIO::geterror();
+    const std::optional<ImageHeader> header = readImageHeader(image);
+    if (!header || header->width <= 0 || header->height <= 0) {
       scene_.warnings.push_back("material " + texture.name + ": " + image.string() +
                                 " is not a readable image, drawn as a checker");
       return;
     }
     texture.file = std::filesystem::absolute(image);
-    texture.width = static_cast<uint32_t>(input->spec().width);
-    texture.height = static_cast<uint32_t>(input->spec().height);
+    texture.width = static_cast<uint32_t>(header->width);
+    texture.height = static_cast<uint32_t>(header->height);
     texture.foundAs = image.string();
   }
 

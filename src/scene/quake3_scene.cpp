@@ -1,12 +1,11 @@
 #include "scene/quake3_scene.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <cmath>
 #include <map>
 #include <sstream>
 
 #include "common/error.h"
+#include "common/image_file.h"
 #include "common/posix_file.h"
 #include "scene/bsp_entities.h"
 #include "scene/bsp_file.h"
@@ -114,9 +113,7 @@ class SourceImages {
     texture.name = name;
     if (const auto resolved = resolver_.resolve(name)) extract(*resolved, texture);
     if (texture.file.empty()) {
-      texture.missing = true;
-      texture.file = writeMissingTexture(folder_);
-      texture.width = texture.height = kMissingTextureSide;
+      useMissingTexture(texture, folder_);
       scene_.warnings.push_back("texture " + name + ": no image found, drawn as a checker");
     }
     const auto index = static_cast<uint32_t>(scene_.textures.size());
@@ -133,16 +130,15 @@ class SourceImages {
       std::filesystem::create_directories(path.parent_path());
       writeFileAtomically(path, std::as_bytes(std::span(bytes)));
     }
-    auto input = OIIO::ImageInput::open(path.string());
-    if (!input || input->spec().width <= 0 || input->spec().height <= 0) {
+    const std::optional<ImageHeader> header = readImageHeader(path);
+    if (!header || header->width <= 0 || header->height <= 0) {
       scene_.warnings.push_back("texture " + texture.name + ": " + files_.describe(resolved.file) +
                                 " is not a readable image");
-      (void)OIIO::geterror();
       return;
     }
     texture.file = path;
-    texture.width = static_cast<uint32_t>(input->spec().width);
-    texture.height = static_cast<uint32_t>(input->spec().height);
+    texture.width = static_cast<uint32_t>(header->width);
+    texture.height = static_cast<uint32_t>(header->height);
     texture.foundAs = files_.describe(resolved.file) + " (" + describeVia(resolved.via) + ")";
   }
 
