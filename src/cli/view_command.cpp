@@ -22,6 +22,7 @@
 #include "gl/gl_frame_renderer.h"
 #include "gl/hud_overlay.h"
 #include "gl/window_context.h"
+#include "reference/frame_images.h"
 #include "runtime/page_streamer.h"
 #include "runtime/virtual_texture_runtime.h"
 #include "scene/box_room.h"
@@ -182,15 +183,14 @@ void addViewCommand(CLI::App& app) {
 
       const bool lastFrame = o->maxFrames > 0 && frame + 1 >= o->maxFrames;
       if (lastFrame && !o->screenshot.empty()) {
-        std::vector<uint8_t> pixels(size_t(windowSize.x) * size_t(windowSize.y) * 4);
+        reference::Frame shot;  // rows bottom to top, as GL reads them
+        shot.viewport = {windowSize.x, windowSize.y};
+        shot.color.resize(size_t(windowSize.x) * size_t(windowSize.y) * 4);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);  // the window's, not the renderer's target
         glReadBuffer(GL_BACK);
-        glReadPixels(0, 0, windowSize.x, windowSize.y, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
-        std::vector<uint8_t> rows(pixels.size());  // GL's rows run bottom to top
-        const size_t stride = size_t(windowSize.x) * 4;
-        for (int y = 0; y < windowSize.y; ++y)
-          std::copy_n(&pixels[size_t(y) * stride], stride,
-                      &rows[size_t(windowSize.y - 1 - y) * stride]);
+        glReadPixels(0, 0, windowSize.x, windowSize.y, GL_RGBA, GL_UNSIGNED_BYTE,
+                     shot.color.data());
+        const std::vector<uint8_t> rows = reference::colorImage(shot);
         writeImage8(o->screenshot, static_cast<uint32_t>(windowSize.x),
                     static_cast<uint32_t>(windowSize.y), 4, std::as_bytes(std::span(rows)));
       }

@@ -147,4 +147,8 @@ void writeFileAtomically(const std::filesystem::path& path, std::span<const std:
   temporary.commit();
 }
 
+void writeFileAtomically(const std::filesystem::path& path, std::string_view text) {
+  writeFileAtomically(path, std::as_bytes(std::span(text.data(), text.size())));
+}
+
 }  // namespace vt

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <span>
+#include <string_view>
 
 namespace vt {
 
@@ -64,5 +65,6 @@ namespace vt {
 
 // Writes `bytes` as `path` through a TemporaryFile (the parent folder must exist).
 void writeFileAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes);
+void writeFileAtomically(const std::filesystem::path& path, std::string_view text);
 
 }  // namespace vt

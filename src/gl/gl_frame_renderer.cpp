@@ -1,10 +1,29 @@
 #include "gl/gl_frame_renderer.h"
 
 #include <cstddef>
+#include <vector>
 
 #include "gl/virtual_texture_program.h"
 
 namespace vt {
+namespace {
+
+// A needbuffer of `pixels` values fetched by read(destination, bytes) in the target's encoding;
+// the 8-bit encoding's channels are widened to 32 bits.
+template <class Read>
+std::vector<glm::uvec4> readNeed(size_t pixels, bool need8, Read read) {
+  std::vector<glm::uvec4> need(pixels);
+  if (!need8) {
+    read(need.data(), pixels * sizeof(glm::uvec4));
+    return need;
+  }
+  std::vector<glm::u8vec4> narrow(pixels);
+  read(narrow.data(), pixels * sizeof(glm::u8vec4));
+  for (size_t i = 0; i < pixels; ++i) need[i] = glm::uvec4(narrow[i]);
+  return need;
+}
+
+}  // namespace
 
 GlFrameRenderer::GlFrameRenderer(const reference::CacheState& cache)
     : cache_(cache), program_(virtualTextureVertexSource(), virtualTextureFragmentSource()) {
@@ -134,18 +153,13 @@ GlFrame GlFrameRenderer::render(const ClipSpaceMesh& mesh,
   draw(mesh, settings);
   const size_t pixels =
       static_cast<size_t>(settings.viewport.width) * static_cast<size_t>(settings.viewport.height);
-  GlFrame frame{std::vector<uint8_t>(pixels * 4), std::vector<glm::uvec4>(pixels), {}};
-  glGetTextureImage(targets_[0], 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(pixels * 4),
-                    frame.color.data());
-  if (settings.need8) {
-    std::vector<glm::u8vec4> need(pixels);
-    glGetTextureImage(targets_[1], 0, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE,
-                      static_cast<GLsizei>(pixels * 4), need.data());
-    for (size_t i = 0; i < pixels; ++i) frame.need[i] = glm::uvec4(need[i]);
-  } else {
-    glGetTextureImage(targets_[1], 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
-                      static_cast<GLsizei>(pixels * 16), frame.need.data());
-  }
+  GlFrame frame;
+  frame.color = readColor();
+  frame.need = readNeed(pixels, settings.need8, [&](void* destination, size_t bytes) {
+    glGetTextureImage(targets_[1], 0, GL_RGBA_INTEGER,
+                      settings.need8 ? GL_UNSIGNED_BYTE : GL_UNSIGNED_INT,
+                      static_cast<GLsizei>(bytes), destination);
+  });
   if (readDepth) {  // only for the Distance heuristic: a scene pays only for what it uses
     frame.depth.resize(pixels);
     glGetTextureImage(targets_[2], 0, GL_DEPTH_COMPONENT, GL_FLOAT,
@@ -200,16 +214,10 @@ std::optional<GlFrame> GlFrameRenderer::collectReadback() {
   readbackFence_ = nullptr;
   const size_t pixels =
       static_cast<size_t>(readbackViewport_.width) * static_cast<size_t>(readbackViewport_.height);
-  GlFrame frame{{}, std::vector<glm::uvec4>(pixels), {}};
-  if (readbackNeed8_) {
-    std::vector<glm::u8vec4> need(pixels);
-    glGetNamedBufferSubData(readbackBuffers_[0], 0, static_cast<GLsizeiptr>(pixels * 4),
-                            need.data());
-    for (size_t i = 0; i < pixels; ++i) frame.need[i] = glm::uvec4(need[i]);
-  } else {
-    glGetNamedBufferSubData(readbackBuffers_[0], 0, static_cast<GLsizeiptr>(pixels * 16),
-                            frame.need.data());
-  }
+  GlFrame frame;
+  frame.need = readNeed(pixels, readbackNeed8_, [&](void* destination, size_t bytes) {
+    glGetNamedBufferSubData(readbackBuffers_[0], 0, static_cast<GLsizeiptr>(bytes), destination);
+  });
   if (readbackDepth_) {
     frame.depth.resize(pixels);
     glGetNamedBufferSubData(readbackBuffers_[1], 0, static_cast<GLsizeiptr>(pixels * sizeof(float)),

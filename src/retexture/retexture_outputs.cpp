@@ -11,10 +11,6 @@ namespace {
 
 using nlohmann::ordered_json;
 
-void writeText(const std::filesystem::path& path, const std::string& text) {
-  writeFileAtomically(path, std::as_bytes(std::span(text.data(), text.size())));
-}
-
 ordered_json methodJson(const MethodResult& method) {
   ordered_json json = {
       {"side", method.layout.side},
@@ -54,7 +50,7 @@ void writeRetexturedObj(const std::filesystem::path& path, const TexturedScene& 
       out << '\n';
     }
   }
-  writeText(path, out.str());
+  writeFileAtomically(path, out.str());
 }
 
 void writeRetextureLayout(const std::filesystem::path& path, const TexturedScene& scene,
@@ -76,7 +72,7 @@ void writeRetextureLayout(const std::filesystem::path& path, const TexturedScene
                              {"border", settings.border},
                              {"side", layout.side},
                              {"images", images}};
-  writeText(path, json.dump(1) + "\n");
+  writeFileAtomically(path, json.dump(1) + "\n");
 }
 
 void writeViewpointTour(const std::filesystem::path& path, const TexturedScene& scene) {
@@ -90,7 +86,7 @@ void writeViewpointTour(const std::filesystem::path& path, const TexturedScene& 
                          {"target", {view.target.x, view.target.y, view.target.z}},
                          {"fov", view.fovYDegrees}});
   }
-  writeText(path, ordered_json{{"keyframes", keyframes}}.dump(1) + "\n");
+  writeFileAtomically(path, ordered_json{{"keyframes", keyframes}}.dump(1) + "\n");
 }
 
 void writeRetextureReport(const std::filesystem::path& path, const TexturedScene& scene,
@@ -141,7 +137,7 @@ void writeRetextureReport(const std::filesystem::path& path, const TexturedScene
       {"texture_list", textures},
       {"warnings", scene.warnings},
   };
-  writeText(path, json.dump(1) + "\n");
+  writeFileAtomically(path, json.dump(1) + "\n");
 }
 
 }  // namespace vt

@@ -102,7 +102,7 @@ void saveCameraPath(const std::filesystem::path& file, const std::vector<Keyfram
                       {"target", {k.camera.target.x, k.camera.target.y, k.camera.target.z}},
                       {"fov", k.camera.fovYDegrees}});
   const std::string text = nlohmann::json{{"keyframes", frames}}.dump(1) + "\n";
-  writeFileAtomically(file, std::as_bytes(std::span(text.data(), text.size())));
+  writeFileAtomically(file, text);
 }
 
 }  // namespace vt

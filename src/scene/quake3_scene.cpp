@@ -31,7 +31,8 @@ std::string mapEntry(std::string_view map) {
   return entry;
 }
 
-SurfaceGeometry polygonGeometry(const BspFile& bsp, const BspSurface& surface) {
+// The surface's own vertices (a patch's control points), in Quake space, without triangles.
+SurfaceGeometry surfaceVertices(const BspFile& bsp, const BspSurface& surface) {
   SurfaceGeometry geometry;
   for (int32_t v = 0; v < surface.vertexCount; ++v) {
     const BspVertex& vertex = bsp.vertices[static_cast<size_t>(surface.firstVertex + v)];
@@ -39,6 +40,11 @@ SurfaceGeometry polygonGeometry(const BspFile& bsp, const BspSurface& surface) {
     geometry.normals.push_back(vertex.normal);
     geometry.st.push_back(vertex.st);
   }
+  return geometry;
+}
+
+SurfaceGeometry polygonGeometry(const BspFile& bsp, const BspSurface& surface) {
+  SurfaceGeometry geometry = surfaceVertices(bsp, surface);
   for (int32_t i = 0; i < surface.indexCount; ++i)
     geometry.indices.push_back(
         static_cast<uint32_t>(bsp.indices[static_cast<size_t>(surface.firstIndex + i)]));
@@ -48,18 +54,11 @@ SurfaceGeometry polygonGeometry(const BspFile& bsp, const BspSurface& surface) {
 // Normals are tessellated with the positions' weights, so each vertex has the surface's
 // interpolated normal for the winding decision.
 SurfaceGeometry patchGeometry(const BspFile& bsp, const BspSurface& surface, int level) {
-  std::vector<glm::vec3> positions, normals;
-  std::vector<glm::vec2> st;
-  for (int32_t v = 0; v < surface.vertexCount; ++v) {
-    const BspVertex& vertex = bsp.vertices[static_cast<size_t>(surface.firstVertex + v)];
-    positions.push_back(vertex.position);
-    normals.push_back(vertex.normal);
-    st.push_back(vertex.st);
-  }
-  TessellatedPatch patch =
-      tessellatePatch(positions, st, surface.patchWidth, surface.patchHeight, level);
-  TessellatedPatch normalPatch =
-      tessellatePatch(normals, st, surface.patchWidth, surface.patchHeight, level);
+  const SurfaceGeometry controls = surfaceVertices(bsp, surface);
+  TessellatedPatch patch = tessellatePatch(controls.positions, controls.st, surface.patchWidth,
+                                           surface.patchHeight, level);
+  TessellatedPatch normalPatch = tessellatePatch(controls.normals, controls.st, surface.patchWidth,
+                                                 surface.patchHeight, level);
   return {std::move(patch.positions), std::move(normalPatch.positions), std::move(patch.st),
           std::move(patch.indices)};
 }
