@@ -13,9 +13,27 @@ if(VT_SANITIZE_THREAD)
   target_compile_options(vt_compile_options INTERFACE -fsanitize=thread -fno-omit-frame-pointer)
   target_link_options(vt_compile_options INTERFACE -fsanitize=thread)
 endif()
+# The oracle's tile workers on std::thread instead of TBB (reference/parallel_for.h), so that
+# ThreadSanitizer, which cannot see into TBB, checks them. Same bytes either way.
+option(VT_STD_THREAD_WORKERS "Run the oracle's parallel loops on std::thread instead of TBB"
+       ${VT_SANITIZE_THREAD})
+if(VT_STD_THREAD_WORKERS)
+  target_compile_definitions(vt_compile_options INTERFACE VT_STD_THREAD_WORKERS)
+endif()
 if(VT_SANITIZE)
   target_compile_options(vt_compile_options INTERFACE -fsanitize=address,undefined
                                                       -fno-sanitize-recover=all -fno-omit-frame-pointer)
+  target_link_options(vt_compile_options INTERFACE -fsanitize=address,undefined)
+endif()
+# The fuzz programs of tests/fuzz (scripts/fuzz.sh): every library instrumented for libFuzzer's
+# coverage, AddressSanitizer and UndefinedBehaviorSanitizer; libFuzzer itself comes with clang.
+option(VT_FUZZ "Build the libFuzzer programs of tests/fuzz (clang only)" OFF)
+if(VT_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "VT_FUZZ needs clang: configure with -DCMAKE_CXX_COMPILER=clang++")
+  endif()
+  target_compile_options(vt_compile_options INTERFACE -fsanitize=fuzzer-no-link,address,undefined
+                         -fno-sanitize-recover=all -fno-omit-frame-pointer -gline-tables-only)
   target_link_options(vt_compile_options INTERFACE -fsanitize=address,undefined)
 endif()
 

@@ -1,14 +1,12 @@
 #include "reference/renderer.h"
 
-#include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <thread>
 
 #include "reference/cache_state.h"
+#include "reference/parallel_for.h"
 #include "shader/shader_cpp.h"
 
 namespace vt::reference {
@@ -181,10 +179,7 @@ Frame render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDesc
              glm::vec2 cacheSize, const RenderSettings& settings) {
   const Viewport viewport = settings.viewport;
   // The thread limit covers everything: setup, Embree's scene build and the tiles.
-  const unsigned threads =
-      settings.threads ? settings.threads : std::thread::hardware_concurrency();
-  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
-                                        std::max(1u, threads));
+  const ThreadLimit parallelism(settings.threads);
   const bool fused = usesFusedPlanes(settings.profile);
   const std::vector<SetupTriangle> triangles = setupTriangles(mesh, viewport, fused);
   const Visibility visibility(triangles, viewport, settings.depthFormat, fused);
@@ -218,90 +213,96 @@ Frame render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDesc
   constexpr int kTile = 16;
   const int tilesX = (viewport.width + kTile - 1) / kTile,
             tilesY = (viewport.height + kTile - 1) / kTile;
-  tbb::parallel_for(0, tilesX * tilesY, [&](int tile) {
-    const DenormalMode denormals(settings.profile);
-    shader::ShaderLogic<Backend> shader(&texture, settings.profile);
-    const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
-    // Block by block (one Embree packet of 4 x 4 rays), quad by quad: a triangle's planes are
-    // evaluated once at the quad's four pixels (helpers included) and serve every pixel of the
-    // quad that shows it.
-    for (int by = y0; by < std::min(y0 + kTile, viewport.height); by += Visibility::kBlock)
-      for (int bx = x0; bx < std::min(x0 + kTile, viewport.width); bx += Visibility::kBlock) {
-        const auto hits = visibility.block(bx, by);
-        for (int qy = by; qy < std::min(by + Visibility::kBlock, viewport.height); qy += 2)
-          for (int qx = bx; qx < std::min(bx + Visibility::kBlock, viewport.width); qx += 2) {
-            std::array<int32_t, 4> quadTriangle{-1, -1, -1, -1};
-            std::array<std::array<Attributes, 4>, 4> quadAttributes{};  // [slot][pixel of the quad]
-            int slots = 0;
-            for (int k = 0; k < 4; ++k) {
-              const int px = qx + (k & 1), py = qy + (k >> 1);
-              if (px >= viewport.width || py >= viewport.height) continue;
-              const size_t index = static_cast<size_t>(py) * static_cast<size_t>(viewport.width) +
-                                   static_cast<size_t>(px);
-              const PixelHit hit =
-                  hits[static_cast<size_t>((px - bx) + Visibility::kBlock * (py - by))];
-              if (hit.triangle < 0) continue;
-              const SetupTriangle& t = triangles[static_cast<size_t>(hit.triangle)];
-              int slot = 0;
-              while (slot < slots && quadTriangle[static_cast<size_t>(slot)] != hit.triangle)
-                ++slot;
-              if (slot == slots) {
-                quadTriangle[static_cast<size_t>(slot)] = hit.triangle;
-                for (int q = 0; q < 4; ++q)
-                  quadAttributes[static_cast<size_t>(slot)][static_cast<size_t>(q)] =
-                      attributesAt(t, qx + (q & 1), qy + (q >> 1), fused);
-                ++slots;
-              }
-              const auto& at = quadAttributes[static_cast<size_t>(slot)];
-              const int column = k & 1, row = k >> 1;
-              const Attributes here = at[static_cast<size_t>(k)];
-              const Attributes left = at[static_cast<size_t>(2 * row)],
-                               right = at[static_cast<size_t>(2 * row + 1)];
-              const Attributes below = at[static_cast<size_t>(column)],
-                               above = at[static_cast<size_t>(2 + column)];
-              const vec2 dUVdx = right.uv - left.uv, dUVdy = above.uv - below.uv;
-              const shader::VtFragment f =
-                  shader.vtShadeFragment(here.uv, dUVdx, dUVdy, parameters);
+  parallelFor(
+      static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY), settings.threads,
+      [&](size_t tileIndex) {
+        const int tile = static_cast<int>(tileIndex);
+        const DenormalMode denormals(settings.profile);
+        shader::ShaderLogic<Backend> shader(&texture, settings.profile);
+        const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
+        // Block by block (one Embree packet of 4 x 4 rays), quad by quad: a triangle's planes are
+        // evaluated once at the quad's four pixels (helpers included) and serve every pixel of the
+        // quad that shows it.
+        for (int by = y0; by < std::min(y0 + kTile, viewport.height); by += Visibility::kBlock)
+          for (int bx = x0; bx < std::min(x0 + kTile, viewport.width); bx += Visibility::kBlock) {
+            const auto hits = visibility.block(bx, by);
+            for (int qy = by; qy < std::min(by + Visibility::kBlock, viewport.height); qy += 2)
+              for (int qx = bx; qx < std::min(bx + Visibility::kBlock, viewport.width); qx += 2) {
+                std::array<int32_t, 4> quadTriangle{-1, -1, -1, -1};
+                std::array<std::array<Attributes, 4>, 4>
+                    quadAttributes{};  // [slot][pixel of the quad]
+                int slots = 0;
+                for (int k = 0; k < 4; ++k) {
+                  const int px = qx + (k & 1), py = qy + (k >> 1);
+                  if (px >= viewport.width || py >= viewport.height) continue;
+                  const size_t index =
+                      static_cast<size_t>(py) * static_cast<size_t>(viewport.width) +
+                      static_cast<size_t>(px);
+                  const PixelHit hit =
+                      hits[static_cast<size_t>((px - bx) + Visibility::kBlock * (py - by))];
+                  if (hit.triangle < 0) continue;
+                  const SetupTriangle& t = triangles[static_cast<size_t>(hit.triangle)];
+                  int slot = 0;
+                  while (slot < slots && quadTriangle[static_cast<size_t>(slot)] != hit.triangle)
+                    ++slot;
+                  if (slot == slots) {
+                    quadTriangle[static_cast<size_t>(slot)] = hit.triangle;
+                    for (int q = 0; q < 4; ++q)
+                      quadAttributes[static_cast<size_t>(slot)][static_cast<size_t>(q)] =
+                          attributesAt(t, qx + (q & 1), qy + (q >> 1), fused);
+                    ++slots;
+                  }
+                  const auto& at = quadAttributes[static_cast<size_t>(slot)];
+                  const int column = k & 1, row = k >> 1;
+                  const Attributes here = at[static_cast<size_t>(k)];
+                  const Attributes left = at[static_cast<size_t>(2 * row)],
+                                   right = at[static_cast<size_t>(2 * row + 1)];
+                  const Attributes below = at[static_cast<size_t>(column)],
+                                   above = at[static_cast<size_t>(2 + column)];
+                  const vec2 dUVdx = right.uv - left.uv, dUVdy = above.uv - below.uv;
+                  const shader::VtFragment f =
+                      shader.vtShadeFragment(here.uv, dUVdx, dUVdy, parameters);
 
-              for (int c = 0; c < 4; ++c)
-                frame.color[index * 4 + static_cast<size_t>(c)] = toUnorm8(f.color[c]);
-              frame.need[index] = f.need;
-              frame.depth[index] = hit.depth;
-              frame.triangle[index] = static_cast<int32_t>(t.primitive);
-              if (debug) {
-                frame.uv[index] = here.uv;
-                frame.derivatives[index] = vec4(dUVdx.x, dUVdx.y, dUVdy.x, dUVdy.y);
-                frame.lod[index] = f.lod;
-                frame.residentLevel[index] = static_cast<int8_t>(f.residentLevel);
-              }
+                  for (int c = 0; c < 4; ++c)
+                    frame.color[index * 4 + static_cast<size_t>(c)] = toUnorm8(f.color[c]);
+                  frame.need[index] = f.need;
+                  frame.depth[index] = hit.depth;
+                  frame.triangle[index] = static_cast<int32_t>(t.primitive);
+                  if (debug) {
+                    frame.uv[index] = here.uv;
+                    frame.derivatives[index] = vec4(dUVdx.x, dUVdx.y, dUVdy.x, dUVdy.y);
+                    frame.lod[index] = f.lod;
+                    frame.residentLevel[index] = static_cast<int8_t>(f.residentLevel);
+                  }
 
-              if (settings.profile == PrecisionProfile::kLlvmpipe)
-                continue;  // exact: nothing to flag
-              uint8_t reasons = 0;
-              for (const Edge& e : t.edges) {
-                const double length =
-                    std::sqrt(static_cast<double>(e.a) * e.a + static_cast<double>(e.b) * e.b);
-                if (std::fabs(static_cast<double>(e.at(px, py))) <= length) reasons |= kNearEdge;
+                  if (settings.profile == PrecisionProfile::kLlvmpipe)
+                    continue;  // exact: nothing to flag
+                  uint8_t reasons = 0;
+                  for (const Edge& e : t.edges) {
+                    const double length =
+                        std::sqrt(static_cast<double>(e.a) * e.a + static_cast<double>(e.b) * e.b);
+                    if (std::fabs(static_cast<double>(e.at(px, py))) <= length)
+                      reasons |= kNearEdge;
+                  }
+                  // Depths within 4 ulps (32F) or 2 units of Z24: another implementation may pick
+                  // the other.
+                  const float depthTolerance =
+                      settings.depthFormat == DepthFormat::kDepth24
+                          ? 2.0f / 16777215.0f
+                          : 4.0f * (std::nextafter(hit.depth, 2.0f) - hit.depth);
+                  if (hit.runnerUpDepth - hit.depth <= depthTolerance) reasons |= kNearlyCoplanar;
+                  const float scale = static_cast<float>(1 << f.neededLevel);
+                  if (nearInteger(here.uv.x * scale) || nearInteger(here.uv.y * scale))
+                    reasons |= kPageBoundary;
+                  if (std::fabs(f.lod - std::nearbyint(f.lod)) <= 1.0f / 4096.0f)
+                    reasons |= kLevelBoundary;
+                  for (const Attributes& a : {here, left, right, below, above})
+                    if (!(a.w > 0.0f && a.w < 1e30f)) reasons |= kNearZeroW;
+                  frame.ambiguity[index] = reasons;
+                }
               }
-              // Depths within 4 ulps (32F) or 2 units of Z24: another implementation may pick the
-              // other.
-              const float depthTolerance =
-                  settings.depthFormat == DepthFormat::kDepth24
-                      ? 2.0f / 16777215.0f
-                      : 4.0f * (std::nextafter(hit.depth, 2.0f) - hit.depth);
-              if (hit.runnerUpDepth - hit.depth <= depthTolerance) reasons |= kNearlyCoplanar;
-              const float scale = static_cast<float>(1 << f.neededLevel);
-              if (nearInteger(here.uv.x * scale) || nearInteger(here.uv.y * scale))
-                reasons |= kPageBoundary;
-              if (std::fabs(f.lod - std::nearbyint(f.lod)) <= 1.0f / 4096.0f)
-                reasons |= kLevelBoundary;
-              for (const Attributes& a : {here, left, right, below, above})
-                if (!(a.w > 0.0f && a.w < 1e30f)) reasons |= kNearZeroW;
-              frame.ambiguity[index] = reasons;
-            }
           }
-      }
-  });
+      });
   return frame;
 }
 

@@ -1,9 +1,9 @@
 #include "reference/triangle_setup.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
+
+#include "reference/parallel_for.h"
 
 namespace vt::reference {
 namespace {
@@ -216,12 +216,12 @@ void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport, bool
 std::vector<SetupTriangle> setupTriangles(const ClipSpaceMesh& mesh, Viewport viewport, bool fused,
                                           SetupStatistics* statistics) {
   // Blocks of triangles in parallel, concatenated in draw order: the result does not depend on
-  // the thread count.
+  // the thread count (the caller's ThreadLimit; on std::threads, every core).
   constexpr size_t kBlock = 2048;
   const size_t triangles = mesh.indices.size() / 3, blocks = (triangles + kBlock - 1) / kBlock;
   std::vector<std::vector<SetupTriangle>> parts(blocks);
   std::vector<SetupStatistics> partStats(blocks);
-  tbb::parallel_for(size_t{0}, blocks, [&](size_t block) {
+  parallelFor(blocks, 0, [&](size_t block) {
     for (size_t k = block * kBlock; k < std::min(triangles, (block + 1) * kBlock); ++k)
       setupPrimitive(mesh, k, viewport, fused, parts[block], partStats[block]);
   });

@@ -88,7 +88,13 @@ float windowDepth(const SetupTriangle& t, int px, int py, bool fused) {
 Visibility::Visibility(const std::vector<SetupTriangle>& triangles, Viewport viewport,
                        DepthFormat format, bool fused)
     : triangles_(triangles), viewport_(viewport), format_(format), fused_(fused) {
+#ifdef VT_STD_THREAD_WORKERS
+  // The ThreadSanitizer build (parallel_for.h): Embree's scene build runs on TBB, which TSan
+  // cannot follow, so it runs on this thread; the tile workers still trace rays in parallel.
+  device_ = rtcNewDevice("threads=1");
+#else
   device_ = rtcNewDevice(nullptr);
+#endif
   if (!device_) throw std::runtime_error("Embree: cannot create a device");
   scene_ = rtcNewScene(device_);
   RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);

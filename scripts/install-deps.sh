@@ -6,6 +6,8 @@ set -euo pipefail
 packages=(
   # toolchain
   g++ cmake ninja-build pkg-config clang-format
+  # fuzzing (scripts/fuzz.sh): clang with libFuzzer's runtime, llvm-symbolizer for the reports
+  clang libclang-rt-14-dev llvm
   # geometry, images, ray tracing, meshes
   libglm-dev libopenimageio-dev openimageio-tools libembree-dev libtinyobjloader-dev
   # Quake 3 maps: .pk3 archives are zip files
@@ -18,6 +20,8 @@ packages=(
   python3 python3-skimage
   # tests, benchmarks, command line, JSON, checksums
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libxxhash-dev
+  # the frame-by-frame inspect page is tested in headless Chromium
+  chromium
   # parallel loops
   libtbb-dev
   # peers and measurement for the benchmarks: maketx comes with openimageio-tools; GNU time

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "cli/run_command.h"
+#include "test_support.h"
 
 namespace vt::test {
 
@@ -18,11 +19,6 @@ inline std::optional<std::filesystem::path> openArenaFolder() {
   const char* folder = std::getenv("VT_OPENARENA_DIR");
   if (folder && std::filesystem::is_directory(folder)) return std::filesystem::path(folder);
   return std::nullopt;
-}
-
-inline bool runningInCi() {
-  const char* ci = std::getenv("CI");
-  return ci && std::string(ci) == "true";
 }
 
 // `vt retexture q3dm6ish` into `folder`/q3 and `vt build` of its layout into `folder`/q3.vt.

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cstddef>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -12,6 +13,12 @@
 #include <vector>
 
 namespace vt::test {
+
+// CI sets CI=true: there, optional resources (OpenArena, Chromium) must be present.
+inline bool runningInCi() {
+  const char* ci = std::getenv("CI");
+  return ci && std::string(ci) == "true";
+}
 
 // A fresh, empty folder named after the running test, removed afterwards.
 class ScratchDirectory {

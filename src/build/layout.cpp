@@ -4,6 +4,7 @@
 #include <bit>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numeric>
@@ -11,28 +12,13 @@
 
 #include "common/error.h"
 #include "common/image_file.h"
+#include "common/json_text.h"
+#include "common/resource_limits.h"
 
 namespace vt {
 namespace {
 
 using nlohmann::json;
-
-struct ImageInfo {
-  uint32_t width = 0, height = 0, channels = 0;
-};
-
-// Reads the image's header for its size and channels.
-ImageInfo probeImage(const std::filesystem::path& file, const std::string& namedBy) {
-  if (!std::filesystem::exists(file))
-    throw InputError(file, "image not found (named by " + namedBy + ")");
-  std::string error;
-  const std::optional<ImageHeader> header = readImageHeader(file, &error);
-  if (!header) throw InputError(file, "cannot read image (named by " + namedBy + "): " + error);
-  if (header->width <= 0 || header->height <= 0 || header->channels <= 0)
-    throw InputError(file, "image has no texels");
-  return {static_cast<uint32_t>(header->width), static_cast<uint32_t>(header->height),
-          static_cast<uint32_t>(header->channels)};
-}
 
 // Fills the image's own size and channels and, where no region gave them, the placed size.
 void setImage(Placement& placement, const ImageInfo& image, std::optional<uint32_t> width,
@@ -176,17 +162,50 @@ void finish(Layout& layout, std::optional<uint64_t> side, std::optional<uint32_t
                                  std::to_string(i) + "])");
   }
 
+  // A region placement's image is decoded whole (image_rows.h), in the larger of its own and the
+  // texture's channels.
+  for (size_t i = 0; i < layout.images.size(); ++i) {
+    const Placement& image = layout.images[i];
+    const uint64_t bytes =
+        uint64_t{image.imageWidth} * image.imageHeight * std::max(image.channels, d.channels);
+    if (image.region && bytes > kMaxWholeImageBytes)
+      throw limitError(image.file,
+                       "decoding the " + std::to_string(image.imageWidth) + " x " +
+                           std::to_string(image.imageHeight) + " image whole for the region of " +
+                           file.string() + " images[" + std::to_string(i) + "]",
+                       bytes, kMaxWholeImageBytes, " bytes");
+  }
+
   requireNoOverlap(layout);
 }
 
 }  // namespace
 
+ImageInfo probeImageFile(const std::filesystem::path& file, const std::string& namedBy) {
+  if (!std::filesystem::exists(file))
+    throw InputError(file, "image not found (named by " + namedBy + ")");
+  std::string error;
+  const std::optional<ImageHeader> header = readImageHeader(file, &error);
+  if (!header) throw InputError(file, "cannot read image (named by " + namedBy + "): " + error);
+  if (header->width <= 0 || header->height <= 0 || header->channels <= 0)
+    throw InputError(file, "image has no texels");
+  return {static_cast<uint32_t>(header->width), static_cast<uint32_t>(header->height),
+          static_cast<uint32_t>(header->channels)};
+}
+
 Layout readLayout(const std::filesystem::path& file, const LayoutOverrides& overrides) {
-  std::ifstream in(file);
+  std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file, "cannot open layout file");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(file, "cannot read layout file");
+  return parseLayout(text, file, overrides, probeImageFile);
+}
+
+Layout parseLayout(std::string_view text, const std::filesystem::path& file,
+                   const LayoutOverrides& overrides, const ImageProbe& probe) {
   json root;
   try {
-    root = json::parse(in);
+    root = parseJsonText(text, file);
   } catch (const json::exception& e) {
     throw InputError(file, std::string("not valid JSON: ") + e.what());
   }
@@ -245,8 +264,8 @@ Layout readLayout(const std::filesystem::path& file, const LayoutOverrides& over
       auto known = probed.find(key);
       if (known == probed.end())
         known = probed
-                    .emplace(key, probeImage(placement.file, file.string() + " " +
-                                                                 where.substr(0, where.size() - 1)))
+                    .emplace(key, probe(placement.file,
+                                        file.string() + " " + where.substr(0, where.size() - 1)))
                     .first;
       setImage(placement, known->second, width, height);
       layout.images.push_back(std::move(placement));
@@ -270,7 +289,7 @@ Layout singleImageLayout(const std::filesystem::path& image, const LayoutOverrid
   layout.filter = overrides.filter.value_or(MipFilter::kBox);
   Placement placement;
   placement.file = image;
-  setImage(placement, probeImage(image, "the command line"), std::nullopt, std::nullopt);
+  setImage(placement, probeImageFile(image, "the command line"), std::nullopt, std::nullopt);
   layout.images.push_back(placement);
   finish(layout, overrides.side, overrides.channels);
   return layout;

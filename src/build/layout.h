@@ -31,8 +31,10 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "format/texture_description.h"
@@ -79,10 +81,27 @@ struct LayoutOverrides {
   std::optional<MipFilter> filter = std::nullopt;
 };
 
+// An image's size and channels, as its header states them.
+struct ImageInfo {
+  uint32_t width = 0, height = 0, channels = 0;
+};
+
+// Reads the header of `image` (OpenImageIO); throws InputError naming the image and `namedBy`
+// (who asked for it) when it is missing, unreadable or empty.
+ImageInfo probeImageFile(const std::filesystem::path& image, const std::string& namedBy);
+using ImageProbe = std::function<ImageInfo(const std::filesystem::path&, const std::string&)>;
+
 // Reads and validates a layout file: every distinct image is opened once (header only) for its
-// size and channels, placements are checked against the texture and each other. Throws InputError
-// naming the layout file or the image and the problem; nothing is written.
+// size and channels, placements are checked against the texture and each other, and a region
+// placement's image, decoded whole, must stay within kMaxWholeImageBytes
+// (common/resource_limits.h). Throws InputError naming the layout file or the image and the
+// problem; nothing is written.
 Layout readLayout(const std::filesystem::path& file, const LayoutOverrides& overrides = {});
+
+// The same for a layout's text held in memory: `file` names it in errors and image paths are
+// relative to its folder; `probe` gives each distinct image's header.
+Layout parseLayout(std::string_view text, const std::filesystem::path& file,
+                   const LayoutOverrides& overrides, const ImageProbe& probe);
 
 // A layout of one image at (0, 0).
 Layout singleImageLayout(const std::filesystem::path& image, const LayoutOverrides& overrides = {});

@@ -7,14 +7,12 @@
 #include <vector>
 
 #include "build/layout.h"
+#include "common/resource_limits.h"
 
 namespace vt {
 
-// The most pages one texture may store (2^28 pages of 128^2 RGBA texels are about 19 TiB).
-inline constexpr uint64_t kMaxStoredPages = uint64_t{1} << 28;
-
 // Absolute indices of the stored pages, rising. Throws InputError when more than
-// kMaxStoredPages would be stored, before allocating for them.
+// kMaxStoredPages (common/resource_limits.h) would be stored, before allocating for them.
 std::vector<uint64_t> storedPages(const Layout& layout);
 
 }  // namespace vt

@@ -15,6 +15,7 @@
 #include "build/row_ring.h"
 #include "common/error.h"
 #include "common/progress_bar.h"
+#include "common/resource_limits.h"
 #include "format/virtual_texture_writer.h"
 
 namespace vt {
@@ -234,6 +235,13 @@ BuildReport buildVirtualTexture(const Layout& layout, const std::filesystem::pat
                                 const BuildOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const TextureDescription& d = layout.description;
+  // Memory first, then pages and disk: each refused before anything is allocated for it.
+  if (const uint64_t ringBytes = ringBytesBound(d, layout.filter); ringBytes > kMaxBuildRingBytes)
+    throw limitError(layout.source,
+                     "building a " + std::to_string(d.sideTexels()) + "^2-texel texture (" +
+                         std::to_string(d.channels) + " channels, page size " +
+                         std::to_string(d.pageSize) + ", " + toString(layout.filter) + " filter)",
+                     ringBytes, kMaxBuildRingBytes, " bytes of row rings");
   std::vector<uint64_t> stored = storedPages(layout);
   const bool sparse = stored.size() < d.totalPages();
   BuildReport report;

@@ -38,8 +38,9 @@ struct BuildReport {
 // The bound of the documented formula above for the rings, in bytes.
 uint64_t ringBytesBound(const TextureDescription& description, MipFilter filter);
 
-// Builds `output` from a validated layout. Checks free disk space first; writes a temporary file
-// renamed at the end. The bytes written do not depend on the thread count.
+// Builds `output` from a validated layout. Checks first the rings' memory (at most
+// kMaxBuildRingBytes, common/resource_limits.h), the stored pages and the free disk space; writes
+// a temporary file renamed at the end. The bytes written do not depend on the thread count.
 BuildReport buildVirtualTexture(const Layout& layout, const std::filesystem::path& output,
                                 const BuildOptions& options = {});
 

@@ -9,8 +9,11 @@ namespace vt {
 void addBuildCommand(CLI::App& app);
 void addCrosscheckCommand(CLI::App& app);
 void addInfoCommand(CLI::App& app);
+void addInspectCommand(CLI::App& app);
 void addDemoCommand(CLI::App& app);
+void addEvalCommand(CLI::App& app);
 void addExportLevelCommand(CLI::App& app);
+void addGoldenCommand(CLI::App& app);
 void addFlyCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
 void addRetextureCommand(CLI::App& app);

@@ -38,8 +38,11 @@ int main(int argc, char** argv) {
   vt::addBuildCommand(app);
   vt::addCrosscheckCommand(app);
   vt::addInfoCommand(app);
+  vt::addInspectCommand(app);
   vt::addDemoCommand(app);
+  vt::addEvalCommand(app);
   vt::addExportLevelCommand(app);
+  vt::addGoldenCommand(app);
   vt::addFlyCommand(app);
   vt::addRenderCommand(app);
   vt::addRetextureCommand(app);

@@ -148,7 +148,7 @@ void addViewCommand(CLI::App& app) {
         camera = flyCamera(camera, readInput(window, cursor), seconds,
                            static_cast<float>(o->speed) * fast);
       }
-      if (recording) recorded.push_back({static_cast<int>(recorded.size()), camera});
+      if (recording) recorded.push_back({static_cast<int>(recorded.size()), camera, std::nullopt});
 
       // Draw from the cache as it is, analyse, ask the thread, apply what arrived.
       const glm::ivec2 windowSize = window.framebufferSize();

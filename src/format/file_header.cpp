@@ -6,6 +6,7 @@
 #include "common/checksum.h"
 #include "common/error.h"
 #include "common/little_endian.h"
+#include "common/resource_limits.h"
 
 namespace vt {
 namespace {
@@ -121,6 +122,11 @@ FileHeader decodeHeader(std::span<const std::byte> bytes, uint64_t fileBytes,
     fail("stored_page_count", std::to_string(header.storedPageCount) + " is not the " +
                                   std::to_string(total) + " pages of a dense texture of " +
                                   std::to_string(d.levelCount) + " levels");
+
+  // Before any size is derived from the count: the reader's tables hold 20 bytes per page.
+  if (header.storedPageCount > kMaxStoredPages)
+    throw limitError(path, "header field stored_page_count", header.storedPageCount,
+                     kMaxStoredPages, " pages");
 
   // Every section must lie exactly where the description and the page count put it.
   const FileLayout expected = layoutFor(d, header.sparse, header.storedPageCount);

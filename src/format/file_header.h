@@ -70,8 +70,9 @@ struct FileHeader {
 std::array<std::byte, kHeaderBytes> encodeHeader(const FileHeader& header);
 
 // Decodes and validates the header of `path`, whose size is `fileBytes`: each field against the
-// format's limits, the sections against each other and against the file's size, then the header
-// checksum. Throws InputError naming the file and the first bad field.
+// format's limits (stored_page_count at most kMaxStoredPages, common/resource_limits.h), the
+// sections against each other and against the file's size, then the header checksum. Throws
+// InputError naming the file and the first bad field.
 FileHeader decodeHeader(std::span<const std::byte> bytes, uint64_t fileBytes,
                         const std::filesystem::path& path);
 

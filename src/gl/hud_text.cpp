@@ -1,140 +1,33 @@
 #include "gl/hud_text.h"
 
 #include <algorithm>
-#include <array>
-#include <cctype>
+#include <span>
+
+#include "common/bitmap_font.h"
 
 namespace vt {
-namespace {
-
-// Seven rows of five bits (the leftmost pixel in bit 4), top row first.
-using Glyph = std::array<uint8_t, 7>;
-
-Glyph glyph(char c) {
-  switch (std::toupper(static_cast<unsigned char>(c))) {
-    case 'A':
-      return {0x0E, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11};
-    case 'B':
-      return {0x1E, 0x11, 0x11, 0x1E, 0x11, 0x11, 0x1E};
-    case 'C':
-      return {0x0E, 0x11, 0x10, 0x10, 0x10, 0x11, 0x0E};
-    case 'D':
-      return {0x1E, 0x11, 0x11, 0x11, 0x11, 0x11, 0x1E};
-    case 'E':
-      return {0x1F, 0x10, 0x10, 0x1E, 0x10, 0x10, 0x1F};
-    case 'F':
-      return {0x1F, 0x10, 0x10, 0x1E, 0x10, 0x10, 0x10};
-    case 'G':
-      return {0x0E, 0x11, 0x10, 0x17, 0x11, 0x11, 0x0F};
-    case 'H':
-      return {0x11, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11};
-    case 'I':
-      return {0x0E, 0x04, 0x04, 0x04, 0x04, 0x04, 0x0E};
-    case 'J':
-      return {0x07, 0x02, 0x02, 0x02, 0x02, 0x12, 0x0C};
-    case 'K':
-      return {0x11, 0x12, 0x14, 0x18, 0x14, 0x12, 0x11};
-    case 'L':
-      return {0x10, 0x10, 0x10, 0x10, 0x10, 0x10, 0x1F};
-    case 'M':
-      return {0x11, 0x1B, 0x15, 0x15, 0x11, 0x11, 0x11};
-    case 'N':
-      return {0x11, 0x11, 0x19, 0x15, 0x13, 0x11, 0x11};
-    case 'O':
-      return {0x0E, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E};
-    case 'P':
-      return {0x1E, 0x11, 0x11, 0x1E, 0x10, 0x10, 0x10};
-    case 'Q':
-      return {0x0E, 0x11, 0x11, 0x11, 0x15, 0x12, 0x0D};
-    case 'R':
-      return {0x1E, 0x11, 0x11, 0x1E, 0x14, 0x12, 0x11};
-    case 'S':
-      return {0x0F, 0x10, 0x10, 0x0E, 0x01, 0x01, 0x1E};
-    case 'T':
-      return {0x1F, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04};
-    case 'U':
-      return {0x11, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E};
-    case 'V':
-      return {0x11, 0x11, 0x11, 0x11, 0x11, 0x0A, 0x04};
-    case 'W':
-      return {0x11, 0x11, 0x11, 0x15, 0x15, 0x15, 0x0A};
-    case 'X':
-      return {0x11, 0x11, 0x0A, 0x04, 0x0A, 0x11, 0x11};
-    case 'Y':
-      return {0x11, 0x11, 0x0A, 0x04, 0x04, 0x04, 0x04};
-    case 'Z':
-      return {0x1F, 0x01, 0x02, 0x04, 0x08, 0x10, 0x1F};
-    case '0':
-      return {0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E};
-    case '1':
-      return {0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E};
-    case '2':
-      return {0x0E, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1F};
-    case '3':
-      return {0x1F, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0E};
-    case '4':
-      return {0x02, 0x06, 0x0A, 0x12, 0x1F, 0x02, 0x02};
-    case '5':
-      return {0x1F, 0x10, 0x1E, 0x01, 0x01, 0x11, 0x0E};
-    case '6':
-      return {0x06, 0x08, 0x10, 0x1E, 0x11, 0x11, 0x0E};
-    case '7':
-      return {0x1F, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08};
-    case '8':
-      return {0x0E, 0x11, 0x11, 0x0E, 0x11, 0x11, 0x0E};
-    case '9':
-      return {0x0E, 0x11, 0x11, 0x0F, 0x01, 0x02, 0x0C};
-    case '.':
-      return {0x00, 0x00, 0x00, 0x00, 0x00, 0x0C, 0x0C};
-    case ':':
-      return {0x00, 0x0C, 0x0C, 0x00, 0x0C, 0x0C, 0x00};
-    case '%':
-      return {0x18, 0x19, 0x02, 0x04, 0x08, 0x13, 0x03};
-    case '/':
-      return {0x00, 0x01, 0x02, 0x04, 0x08, 0x10, 0x00};
-    case '-':
-      return {0x00, 0x00, 0x00, 0x1F, 0x00, 0x00, 0x00};
-    case '+':
-      return {0x00, 0x04, 0x04, 0x1F, 0x04, 0x04, 0x00};
-    case '(':
-      return {0x02, 0x04, 0x08, 0x08, 0x08, 0x04, 0x02};
-    case ')':
-      return {0x08, 0x04, 0x02, 0x02, 0x02, 0x04, 0x08};
-    case ' ':
-      return {0, 0, 0, 0, 0, 0, 0};
-    default:
-      return {0x1F, 0x11, 0x11, 0x11, 0x11, 0x11, 0x1F};
-  }
-}
-
-}  // namespace
 
 HudImage renderHudText(const std::vector<std::string>& lines, uint32_t scale) {
-  constexpr uint32_t kAdvance = 6, kLineHeight = 9, kMargin = 2;  // font pixels
+  constexpr int kLineHeight = 9, kMargin = 2;  // font pixels
+  const int s = static_cast<int>(scale);
   size_t longest = 0;
   for (const std::string& line : lines) longest = std::max(longest, line.size());
   HudImage image;
-  image.width = (static_cast<uint32_t>(longest) * kAdvance + 2 * kMargin) * scale;
+  image.width = (static_cast<uint32_t>(longest) * kGlyphAdvance + 2 * kMargin) * scale;
   image.height = (static_cast<uint32_t>(lines.size()) * kLineHeight + 2 * kMargin) * scale;
-  image.rgba.assign(size_t{image.width} * image.height * 4, 0);
-  for (size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;  // a black panel
+  // Draw top to bottom, as the font does, then flip to the GL's rows bottom to top.
+  std::vector<uint8_t> topDown(size_t{image.width} * image.height * 4, 0);
+  for (size_t i = 3; i < topDown.size(); i += 4) topDown[i] = 255;  // a black panel
+  const RgbaCanvas canvas{static_cast<int>(image.width), static_cast<int>(image.height), topDown};
   for (size_t l = 0; l < lines.size(); ++l)
-    for (size_t c = 0; c < lines[l].size(); ++c) {
-      const Glyph g = glyph(lines[l][c]);
-      for (uint32_t row = 0; row < 7; ++row)
-        for (uint32_t column = 0; column < 5; ++column) {
-          if (!(g[row] >> (4 - column) & 1)) continue;
-          // Font pixel (x, y from the top) -> a scale x scale block, rows counted from the bottom.
-          const uint32_t x = (kMargin + static_cast<uint32_t>(c) * kAdvance + column) * scale;
-          const uint32_t yTop = (kMargin + static_cast<uint32_t>(l) * kLineHeight + row) * scale;
-          for (uint32_t dy = 0; dy < scale; ++dy)
-            for (uint32_t dx = 0; dx < scale; ++dx) {
-              const uint32_t y = image.height - 1 - (yTop + dy);
-              uint8_t* p = &image.rgba[(size_t{y} * image.width + x + dx) * 4];
-              p[0] = p[1] = p[2] = p[3] = 255;
-            }
-        }
-    }
+    drawText(canvas, kMargin * s, (kMargin + static_cast<int>(l) * kLineHeight) * s, lines[l], s,
+             {255, 255, 255, 255});
+  const size_t rowBytes = size_t{image.width} * 4;
+  image.rgba.resize(topDown.size());
+  for (uint32_t y = 0; y < image.height; ++y)
+    std::copy_n(
+        topDown.begin() + static_cast<std::ptrdiff_t>(y * rowBytes), rowBytes,
+        image.rgba.begin() + static_cast<std::ptrdiff_t>((image.height - 1 - y) * rowBytes));
   return image;
 }
 

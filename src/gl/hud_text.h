@@ -1,8 +1,8 @@
 #pragma once
-// The viewer's HUD as pixels: lines of text in a built-in 5 x 7 pixel font (upper-case letters,
-// digits and . : % / - + ( ) and space; lower-case letters are drawn upper-case, anything else
-// as a box), white on a black panel, `scale` screen pixels per font pixel. Rows run
-// bottom to top, as GL textures and the oracle's frames.
+// The viewer's HUD as pixels: lines of text in the project's 5 x 7 pixel font
+// (common/bitmap_font.h; lines 9 font pixels apart, so descenders stay clear of the next line),
+// white on a black panel, `scale` screen pixels per font pixel. Rows run bottom to top, as GL
+// textures and the oracle's frames.
 
 #include <cstdint>
 #include <string>

@@ -41,7 +41,46 @@ double noiseToResident(PageId page, uint32_t residentLevel, const NoiseValues& n
   return sum;
 }
 
+// The value of each factor of the heuristic for one needed page, in the heuristic's order.
+std::vector<std::pair<std::string, double>> termsOf(
+    const std::vector<std::string>& factors, uint64_t absolute, const PageStatistics& statistics,
+    const PageTable& table, const NoiseValues& noise, const PriorityOptions& options) {
+  const PageId page = fromAbsoluteIndex(absolute);
+  const uint32_t residentLevel = table.entry(page).z;
+  std::vector<std::pair<std::string, double>> terms;
+  for (const std::string& factor : factors) {
+    double value = 1.0;
+    if (factor == "random")
+      value = hashUnit(absolute, options.seed);
+    else if (factor == "pixelsum")
+      value = static_cast<double>(statistics.pixels);
+    else if (factor == "distance")
+      value = 1.0 - statistics.meanDepth();
+    else if (factor == "weightedpixel")
+      value = statistics.centreWeight;
+    else if (factor == "hotspot")
+      value = statistics.hotSpotWeight;
+    else if (factor == "noisevalue")
+      value = noiseToResident(page, residentLevel, noise);
+    else if (factor == "mipgap")
+      value = residentLevel == PageTable::kNone ? page.level + 1.0
+                                                : static_cast<double>(page.level - residentLevel);
+    terms.emplace_back(factor, value);
+  }
+  return terms;
+}
+
 }  // namespace
+
+std::vector<std::pair<std::string, double>> priorityTerms(uint64_t page,
+                                                          const NeedBufferAnalysis& analysis,
+                                                          const PageTable& table,
+                                                          const NoiseValues& noise,
+                                                          const PriorityOptions& options) {
+  const auto found = analysis.pages.find(page);
+  if (found == analysis.pages.end()) return {};
+  return termsOf(factorsOf(options.heuristic), page, found->second, table, noise, options);
+}
 
 void validateHeuristic(const std::string& heuristic) {
   const auto factors = factorsOf(heuristic);
@@ -73,26 +112,9 @@ std::vector<StreamRequest> prioritizePages(const NeedBufferAnalysis& analysis,
   for (const auto& [absolute, statistics] : analysis.pages) {
     const PageId page = fromAbsoluteIndex(absolute);
     if (page.level >= table.levelCount() || table.resident(page)) continue;
-    const uint32_t residentLevel = table.entry(page).z;
     double value = 1.0;
-    for (const std::string& factor : factors) {
-      if (factor == "random")
-        value *= hashUnit(absolute, options.seed);
-      else if (factor == "pixelsum")
-        value *= static_cast<double>(statistics.pixels);
-      else if (factor == "distance")
-        value *= 1.0 - statistics.meanDepth();
-      else if (factor == "weightedpixel")
-        value *= statistics.centreWeight;
-      else if (factor == "hotspot")
-        value *= statistics.hotSpotWeight;
-      else if (factor == "noisevalue")
-        value *= noiseToResident(page, residentLevel, noise);
-      else if (factor == "mipgap")
-        value *= residentLevel == PageTable::kNone
-                     ? page.level + 1.0
-                     : static_cast<double>(page.level - residentLevel);
-    }
+    for (const auto& [factor, term] : termsOf(factors, absolute, statistics, table, noise, options))
+      value *= term;
     priority[absolute] = value;
   }
 

@@ -54,6 +54,15 @@ using NoiseValues = std::function<float(PageId)>;
 void validateHeuristic(const std::string& heuristic);
 AncestorStrategy parseAncestorStrategy(const std::string& name);  // none, intern, extern
 
+// The value of each factor of the heuristic for a page the analysis holds, in the heuristic's
+// order (the priority is their product); empty for other pages, such as ancestors, whose priority
+// is the sum of their children's. For inspecting a frame's priority queue.
+std::vector<std::pair<std::string, double>> priorityTerms(uint64_t page,
+                                                          const NeedBufferAnalysis& analysis,
+                                                          const PageTable& table,
+                                                          const NoiseValues& noise,
+                                                          const PriorityOptions& options);
+
 // Non-resident needed pages (and ancestors, by the strategy), in the order to stream them.
 std::vector<StreamRequest> prioritizePages(const NeedBufferAnalysis& analysis,
                                            const PageTable& table, const NoiseValues& noise,

@@ -130,6 +130,10 @@ std::vector<StreamRequest> VirtualTextureRuntime::analyze(
     return reader_.contains(page) ? reader_.noiseValue(page) : 0.0f;
   };
   std::vector<StreamRequest> requests = prioritizePages(combined, table_, noise, priority);
+  if (options_.keepAnalysis) {
+    lastAnalysis_ = std::move(combined);
+    lastFrame_ = frameNumber;
+  }
   // Pages the file does not store (outside a sparse layout) cannot be streamed.
   std::erase_if(requests, [this](const StreamRequest& r) {
     return !reader_.contains(fromAbsoluteIndex(r.page));
@@ -137,6 +141,16 @@ std::vector<StreamRequest> VirtualTextureRuntime::analyze(
   statistics.requested = requests.size();
   statistics.resident = pageCache_.size();
   return requests;
+}
+
+std::vector<std::pair<std::string, double>> VirtualTextureRuntime::priorityTerms(
+    uint64_t page) const {
+  PriorityOptions priority = options_.priority;
+  priority.seed = lastFrame_;
+  const NoiseValues noise = [this](PageId p) {
+    return reader_.contains(p) ? reader_.noiseValue(p) : 0.0f;
+  };
+  return vt::priorityTerms(page, lastAnalysis_, table_, noise, priority);
 }
 
 }  // namespace vt

@@ -24,6 +24,7 @@ struct RuntimeOptions {
   uint32_t lockedLevels = 0;  // levels 0 .. lockedLevels - 1 never leave the cache; the root
                               // (level 0) never does in any case: every lookup falls back to it
   PriorityOptions priority;
+  bool keepAnalysis = false;  // keep each frame's analysis for priorityTerms (inspection)
 };
 
 struct FrameStatistics {
@@ -68,6 +69,10 @@ class VirtualTextureRuntime {
   // Whether the configured heuristic reads depth (only then need the renderer deliver it).
   bool needsDepth() const;
 
+  // With keepAnalysis: the factors that ranked `page` in the last analysed frame (the drawn and
+  // the LookAhead needbuffer together), runtime/page_priority.h's priorityTerms.
+  std::vector<std::pair<std::string, double>> priorityTerms(uint64_t page) const;
+
  private:
   void insert(uint64_t page, std::span<const std::byte> texels, uint64_t& evicted);
   void syncIndirection();
@@ -77,6 +82,8 @@ class VirtualTextureRuntime {
   PageCache pageCache_;
   PageTable table_;
   reference::CacheState cache_;
+  NeedBufferAnalysis lastAnalysis_;  // with keepAnalysis only
+  uint64_t lastFrame_ = 0;
 };
 
 }  // namespace vt

@@ -6,6 +6,7 @@
 
 #include "common/error.h"
 #include "common/little_endian.h"
+#include "common/resource_limits.h"
 
 namespace vt {
 namespace {
@@ -72,6 +73,7 @@ class BspParser {
     bsp.vertices = readVertices();
     bsp.indices = readIndices();
     bsp.surfaces = readSurfaces();
+    checkIndexTotal(bsp);
     for (size_t s = 0; s < bsp.surfaces.size(); ++s) checkSurface(bsp, s);
     return bsp;
   }
@@ -173,6 +175,21 @@ class BspParser {
       surface.patchHeight = loadI32(record + 100);
     }
     return surfaces;
+  }
+
+  // Surfaces may share index ranges: a small file could make every index be checked (and
+  // later drawn) billions of times. Refused before any is checked (common/resource_limits.h).
+  void checkIndexTotal(const BspFile& bsp) const {
+    uint64_t total = 0;
+    for (const BspSurface& surface : bsp.surfaces) {
+      const auto type = static_cast<BspSurfaceType>(surface.type);
+      if ((type == BspSurfaceType::kPolygon || type == BspSurfaceType::kMesh) &&
+          surface.indexCount > 0)
+        total += static_cast<uint64_t>(surface.indexCount);
+    }
+    if (total > kMaxMapIndices)
+      throw limitError(name_, "the triangle list of the polygon and mesh surfaces", total,
+                       kMaxMapIndices, " indices");
   }
 
   // Checks that [first, first + count) lies inside a lump of `size` records.

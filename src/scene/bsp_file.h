@@ -7,7 +7,8 @@
 // past the end, a lump whose size is not a whole number of records, a surface whose vertex or
 // index range leaves its lump, an index outside its surface's vertices, a shader number out of
 // range or a patch whose control grid is not (2n+1) x (2m+1) with w * h vertices is an InputError
-// naming the map and the lump or surface.
+// naming the map and the lump or surface. Polygon and mesh surfaces whose index counts add up to
+// more than kMaxMapIndices (common/resource_limits.h) are refused before any index is checked.
 
 #include <cstdint>
 #include <glm/glm.hpp>

@@ -3,22 +3,37 @@
 #include <tiny_obj_loader.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "common/error.h"
 
 namespace vt {
 
 Mesh loadObjMesh(const std::filesystem::path& path) {
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
-  config.mtl_search_path = path.parent_path().string();
-  tinyobj::ObjReader reader;
   if (!std::filesystem::exists(path)) throw InputError(path, "mesh not found");
-  if (!reader.ParseFromFile(path.string(), config))
-    throw InputError(path, "cannot read OBJ: " + reader.Error());
-  const auto& attributes = reader.GetAttrib();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot open mesh");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(path, "cannot read mesh");
+  return parseObjMesh(text, path);
+}
+
+Mesh parseObjMesh(std::string_view text, const std::filesystem::path& path) {
+  tinyobj::attrib_t attributes;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string warning, error;
+  std::istringstream stream{std::string(text)};
+  // No material reader: `mtllib` lines are skipped, the mesh needs no materials.
+  if (!tinyobj::LoadObj(&attributes, &shapes, &materials, &warning, &error, &stream, nullptr,
+                        /*triangulate=*/true, /*default_vcols_fallback=*/true))
+    throw InputError(path, "cannot read OBJ: " + error);
   Mesh mesh;
-  for (const auto& shape : reader.GetShapes()) {
+  for (const auto& shape : shapes) {
     for (const auto& index : shape.mesh.indices) {
       if (index.texcoord_index < 0)
         throw InputError(path, "shape '" + shape.name + "' has a face without texture coordinates");

@@ -5,11 +5,15 @@
 // indices out of range, are errors naming the file.
 
 #include <filesystem>
+#include <string_view>
 
 #include "scene/mesh.h"
 
 namespace vt {
 
 Mesh loadObjMesh(const std::filesystem::path& path);
+
+// The same for an OBJ's text held in memory, `path` naming it in errors. Materials play no part.
+Mesh parseObjMesh(std::string_view text, const std::filesystem::path& path);
 
 }  // namespace vt

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 
@@ -14,42 +15,64 @@
 namespace vt {
 namespace {
 
-// The folder of the MTL file defining each material (map_Kd names are relative to it). A missing
-// MTL file is an error (tinyobjloader only warns).
-std::map<std::string, std::filesystem::path> materialFolders(const std::filesystem::path& path) {
+std::string readText(const std::filesystem::path& path, const char* what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, std::string("cannot open ") + what);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(path, std::string("cannot read ") + what);
+  return text;
+}
+
+// The folder of the MTL file defining each material (map_Kd names are relative to it). A library
+// the OBJ names but the source lacks is an error (tinyobjloader only warns).
+std::map<std::string, std::filesystem::path> materialFolders(const ObjSceneText& source) {
   std::map<std::string, std::filesystem::path> folders;
-  std::ifstream stream(path);
-  std::string line;
-  while (std::getline(stream, line)) {
-    std::istringstream words(line);
-    std::string keyword, library;
-    words >> keyword;
-    if (keyword != "mtllib") continue;
-    while (words >> library) {
-      const std::filesystem::path file = path.parent_path() / library;
-      if (!std::filesystem::exists(file))
-        throw InputError(path, "material library " + library + " not found");
-      std::ifstream mtl(file);
-      std::string definition;
-      while (std::getline(mtl, definition)) {
-        std::istringstream parts(definition);
-        std::string word, name;
-        if (parts >> word >> name && word == "newmtl")
-          folders.try_emplace(name, file.parent_path());
-      }
+  for (const std::string& library : materialLibraryNames(source.obj)) {
+    const auto text = source.materialLibraries.find(library);
+    if (text == source.materialLibraries.end())
+      throw InputError(source.path, "material library " + library + " not found");
+    const std::filesystem::path folder = (source.path.parent_path() / library).parent_path();
+    std::istringstream mtl(text->second);
+    std::string definition;
+    while (std::getline(mtl, definition)) {
+      std::istringstream parts(definition);
+      std::string word, name;
+      if (parts >> word >> name && word == "newmtl") folders.try_emplace(name, folder);
     }
   }
   return folders;
 }
 
+// Serves tinyobjloader the material libraries of an ObjSceneText by name.
+class LibraryReader : public tinyobj::MaterialReader {
+ public:
+  explicit LibraryReader(const std::map<std::string, std::string>& libraries)
+      : libraries_(libraries) {}
+
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* materialIds, std::string* warning,
+                  std::string* error) override {
+    const auto text = libraries_.find(name);
+    if (text == libraries_.end()) return false;
+    std::istringstream stream(text->second);
+    tinyobj::LoadMtl(materialIds, materials, &stream, warning, error);
+    return true;
+  }
+
+ private:
+  const std::map<std::string, std::string>& libraries_;
+};
+
 class MaterialTextures {
  public:
   MaterialTextures(std::map<std::string, std::filesystem::path> folders,
                    const std::filesystem::path& imageFolder,
-                   const std::vector<tinyobj::material_t>& materials, TexturedScene& scene)
+                   const std::vector<tinyobj::material_t>& materials, const ObjSceneText& source,
+                   TexturedScene& scene)
       : folders_(std::move(folders)),
         imageFolder_(imageFolder),
         materials_(materials),
+        source_(source),
         scene_(scene) {}
 
   uint32_t textureFor(int material) {
@@ -76,7 +99,8 @@ class MaterialTextures {
 
  private:
   void probe(const std::filesystem::path& image, SourceTexture& texture) {
-    const std::optional<ImageHeader> header = readImageHeader(image);
+    const std::optional<ImageHeader> header =
+        source_.imageHeader ? source_.imageHeader(image) : readImageHeader(image);
     if (!header || header->width <= 0 || header->height <= 0) {
       scene_.warnings.push_back("material " + texture.name + ": " + image.string() +
                                 " is not a readable image, drawn as a checker");
@@ -91,28 +115,58 @@ class MaterialTextures {
   std::map<std::string, std::filesystem::path> folders_;  // material name -> its MTL's folder
   std::filesystem::path imageFolder_;
   const std::vector<tinyobj::material_t>& materials_;
+  const ObjSceneText& source_;
   TexturedScene& scene_;
   std::map<int, uint32_t> byMaterial_;
 };
 
 }  // namespace
 
+std::vector<std::string> materialLibraryNames(std::string_view objText) {
+  std::vector<std::string> names;
+  std::istringstream lines{std::string(objText)};
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::istringstream words(line);
+    std::string keyword, library;
+    words >> keyword;
+    if (keyword != "mtllib") continue;
+    while (words >> library) names.push_back(library);
+  }
+  return names;
+}
+
 TexturedScene loadObjScene(const std::filesystem::path& path,
                            const std::filesystem::path& imageFolder) {
   if (!std::filesystem::exists(path)) throw InputError(path, "mesh not found");
-  std::map<std::string, std::filesystem::path> folders = materialFolders(path);
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = false;  // each polygon stays one face
-  config.mtl_search_path = path.parent_path().string();
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path.string(), config))
-    throw InputError(path, "cannot read OBJ: " + reader.Error());
-  const auto& attributes = reader.GetAttrib();
+  ObjSceneText source{path, readText(path, "mesh"), {}};
+  for (const std::string& library : materialLibraryNames(source.obj)) {
+    const std::filesystem::path file = path.parent_path() / library;
+    if (!std::filesystem::exists(file))
+      throw InputError(path, "material library " + library + " not found");
+    source.materialLibraries.try_emplace(library, readText(file, "material library"));
+  }
+  return loadObjScene(source, imageFolder);
+}
+
+TexturedScene loadObjScene(const ObjSceneText& source, const std::filesystem::path& imageFolder) {
+  const std::filesystem::path& path = source.path;
+  std::map<std::string, std::filesystem::path> folders = materialFolders(source);
+  tinyobj::attrib_t attributes;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string warning, error;
+  std::istringstream obj(source.obj);
+  LibraryReader libraries(source.materialLibraries);
+  // Each polygon stays one face (no triangulation); vertex colours are not used.
+  if (!tinyobj::LoadObj(&attributes, &shapes, &materials, &warning, &error, &obj, &libraries,
+                        /*triangulate=*/false, /*default_vcols_fallback=*/true))
+    throw InputError(path, "cannot read OBJ: " + error);
 
   TexturedScene scene;
   scene.name = path.stem().string();
-  MaterialTextures textures(std::move(folders), imageFolder, reader.GetMaterials(), scene);
-  for (const auto& shape : reader.GetShapes()) {
+  MaterialTextures textures(std::move(folders), imageFolder, materials, source, scene);
+  for (const auto& shape : shapes) {
     size_t offset = 0;
     for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
       const size_t corners = shape.mesh.num_face_vertices[f];

@@ -10,7 +10,14 @@
 // image and a warning.
 
 #include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
 
+#include "common/image_file.h"
 #include "scene/textured_scene.h"
 
 namespace vt {
@@ -18,5 +25,19 @@ namespace vt {
 // The checker image, when needed, is written into `imageFolder`.
 TexturedScene loadObjScene(const std::filesystem::path& path,
                            const std::filesystem::path& imageFolder);
+
+// An OBJ scene's text held in memory: the OBJ and each material library its `mtllib` lines name,
+// by that name. `path` names the OBJ in errors, and map_Kd images are found relative to its
+// folder as for a file, their headers read by `imageHeader` (by default OpenImageIO's).
+struct ObjSceneText {
+  std::filesystem::path path;
+  std::string obj;
+  std::map<std::string, std::string> materialLibraries;
+  std::function<std::optional<ImageHeader>(const std::filesystem::path&)> imageHeader = {};
+};
+TexturedScene loadObjScene(const ObjSceneText& source, const std::filesystem::path& imageFolder);
+
+// The material libraries the `mtllib` lines of an OBJ text name, in order.
+std::vector<std::string> materialLibraryNames(std::string_view objText);
 
 }  // namespace vt

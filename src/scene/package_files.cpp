@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common/error.h"
+#include "common/resource_limits.h"
 
 namespace vt {
 namespace {
@@ -19,7 +20,7 @@ std::string libzipMessage(int code) {
   return message;
 }
 
-// One open archive; closing it releases its file descriptor.
+// One open archive, from a file or from memory; closing it releases its file descriptor.
 class ZipArchive {
  public:
   explicit ZipArchive(std::filesystem::path path) : path_(std::move(path)) {
@@ -29,12 +30,28 @@ class ZipArchive {
     if (zip_ == nullptr)
       throw InputError(path_, "not a readable zip archive: " + libzipMessage(code));
   }
+  // The archive reads `bytes` in place: the vector's buffer moves with this object, never copied.
+  ZipArchive(std::filesystem::path name, std::vector<uint8_t> bytes)
+      : path_(std::move(name)), memory_(std::move(bytes)) {
+    zip_error_t error;
+    zip_error_init(&error);
+    zip_source_t* source = zip_source_buffer_create(memory_.data(), memory_.size(), 0, &error);
+    if (source != nullptr) {
+      zip_ = zip_open_from_source(source, ZIP_RDONLY, &error);
+      if (zip_ == nullptr) zip_source_free(source);  // still ours when the open failed
+    }
+    const std::string message = zip_error_strerror(&error);
+    zip_error_fini(&error);
+    if (zip_ == nullptr) throw InputError(path_, "not a readable zip archive: " + message);
+  }
   ~ZipArchive() {
     // A read-only archive has nothing to write back, so zip_discard cannot fail.
     if (zip_ != nullptr) zip_discard(zip_);
   }
   ZipArchive(ZipArchive&& other) noexcept
-      : path_(std::move(other.path_)), zip_(std::exchange(other.zip_, nullptr)) {}
+      : path_(std::move(other.path_)),
+        memory_(std::move(other.memory_)),
+        zip_(std::exchange(other.zip_, nullptr)) {}
   ZipArchive& operator=(ZipArchive&&) = delete;
   ZipArchive(const ZipArchive&) = delete;
   ZipArchive& operator=(const ZipArchive&) = delete;
@@ -44,6 +61,7 @@ class ZipArchive {
 
  private:
   std::filesystem::path path_;
+  std::vector<uint8_t> memory_;  // the archive's bytes when it is held in memory
   zip_t* zip_ = nullptr;
 };
 
@@ -67,6 +85,21 @@ struct PackageFiles::Archives {
   std::vector<ZipArchive> archives;
   std::map<std::string, Entry> entries;  // by packageNameKey; the last archive to add a name wins
 
+  // Opens `archive` after the others: its files override theirs.
+  void add(ZipArchive archive) {
+    const ZipArchive& added = archives.emplace_back(std::move(archive));
+    const zip_int64_t count = zip_get_num_entries(added.handle(), 0);
+    if (count < 0) throw InputError(added.path(), "cannot count the archive's entries");
+    for (zip_uint64_t i = 0; i < static_cast<zip_uint64_t>(count); ++i) {
+      const char* stored = zip_get_name(added.handle(), i, ZIP_FL_ENC_GUESS);
+      if (stored == nullptr)
+        throw InputError(added.path(), "entry " + std::to_string(i) + " has an unreadable name");
+      const std::string name = stored;
+      if (name.empty() || name.back() == '/' || name.back() == '\\') continue;  // a folder
+      entries.insert_or_assign(packageNameKey(name), Entry{archives.size() - 1, i, name});
+    }
+  }
+
   const Entry* lookup(std::string_view name) const {
     const auto it = entries.find(packageNameKey(name));
     return it == entries.end() ? nullptr : &it->second;
@@ -81,23 +114,18 @@ struct PackageFiles::Archives {
   }
 };
 
-PackageFiles::PackageFiles(const std::vector<std::filesystem::path>& archives)
-    : archives_(std::make_unique<Archives>()) {
+PackageFiles::PackageFiles() : archives_(std::make_unique<Archives>()) {}
+
+PackageFiles::PackageFiles(const std::vector<std::filesystem::path>& archives) : PackageFiles() {
   archives_->archives.reserve(archives.size());
-  for (const auto& path : archives) {
-    const ZipArchive& archive = archives_->archives.emplace_back(path);
-    const zip_int64_t count = zip_get_num_entries(archive.handle(), 0);
-    if (count < 0) throw InputError(path, "cannot count the archive's entries");
-    for (zip_uint64_t i = 0; i < static_cast<zip_uint64_t>(count); ++i) {
-      const char* stored = zip_get_name(archive.handle(), i, ZIP_FL_ENC_GUESS);
-      if (stored == nullptr)
-        throw InputError(path, "entry " + std::to_string(i) + " has an unreadable name");
-      const std::string name = stored;
-      if (name.empty() || name.back() == '/' || name.back() == '\\') continue;  // a folder
-      archives_->entries.insert_or_assign(packageNameKey(name),
-                                          Archives::Entry{archives_->archives.size() - 1, i, name});
-    }
-  }
+  for (const auto& path : archives) archives_->add(ZipArchive(path));
+}
+
+PackageFiles PackageFiles::fromMemory(const std::filesystem::path& name,
+                                      std::vector<uint8_t> archive) {
+  PackageFiles files;
+  files.archives_->add(ZipArchive(name, std::move(archive)));
+  return files;
 }
 
 PackageFiles PackageFiles::fromFolders(const std::vector<std::filesystem::path>& folders) {
@@ -143,10 +171,13 @@ std::vector<uint8_t> PackageFiles::read(std::string_view name) const {
   if (zip_stat_index(archive.handle(), entry->index, 0, &stat) != 0 ||
       (stat.valid & ZIP_STAT_SIZE) == 0)
     throw fail(zip_strerror(archive.handle()));
+  if (stat.size > kMaxPackageEntryBytes)
+    throw limitError(archive.path(), "entry '" + entry->name + "'", stat.size,
+                     kMaxPackageEntryBytes, " bytes");
   zip_file_t* file = zip_fopen_index(archive.handle(), entry->index, 0);
   if (file == nullptr) throw fail(zip_strerror(archive.handle()));
-  // Read to the end rather than trusting the declared size (a damaged entry may lie); libzip
-  // checks the CRC when the end is reached.
+  // Read to the end rather than trusting the declared size (a damaged entry may lie), but never
+  // past it: a lying entry could inflate without bound. libzip checks the CRC at the end.
   std::vector<uint8_t> bytes;
   bytes.reserve(std::min<zip_uint64_t>(stat.size, zip_uint64_t{1} << 26));
   uint8_t chunk[1 << 16];
@@ -159,8 +190,12 @@ std::vector<uint8_t> PackageFiles::read(std::string_view name) const {
     }
     if (n == 0) break;
     bytes.insert(bytes.end(), chunk, chunk + n);
+    if (bytes.size() > stat.size) break;
   }
   zip_fclose(file);
+  if (bytes.size() > stat.size)
+    throw fail("inflates to more than the " + std::to_string(stat.size) +
+               " bytes the directory says");
   if (bytes.size() != stat.size)
     throw fail("inflated to " + std::to_string(bytes.size()) + " bytes, the directory says " +
                std::to_string(stat.size));

@@ -30,6 +30,8 @@ class PackageFiles {
   explicit PackageFiles(const std::vector<std::filesystem::path>& archives);
   // Every *.pk3 of each folder (in the order given), each folder's archives sorted by name.
   static PackageFiles fromFolders(const std::vector<std::filesystem::path>& folders);
+  // One archive held in memory (tests, fuzzing); `name` stands for its path in messages.
+  static PackageFiles fromMemory(const std::filesystem::path& name, std::vector<uint8_t> archive);
 
   PackageFiles(PackageFiles&&) noexcept;
   PackageFiles& operator=(PackageFiles&&) noexcept;
@@ -37,8 +39,9 @@ class PackageFiles {
 
   // The name as stored in the winning archive, or nothing.
   std::optional<std::string> find(std::string_view name) const;
-  // The file's bytes; an InputError naming archive and entry if it is missing or cannot be
-  // inflated.
+  // The file's bytes; an InputError naming archive and entry if it is missing, cannot be inflated,
+  // or would inflate to more than its directory entry says or than kMaxPackageEntryBytes
+  // (common/resource_limits.h).
   std::vector<uint8_t> read(std::string_view name) const;
   // Every file whose name starts with `prefix` and ends with `suffix` (case-insensitive), as
   // stored, sorted by lower-cased name.
@@ -48,6 +51,7 @@ class PackageFiles {
 
  private:
   struct Archives;
+  PackageFiles();
   std::unique_ptr<Archives> archives_;
 };
 

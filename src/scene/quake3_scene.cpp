@@ -1,14 +1,15 @@
 #include "scene/quake3_scene.h"
 
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <sstream>
 
 #include "common/error.h"
 #include "common/image_file.h"
 #include "common/posix_file.h"
+#include "common/resource_limits.h"
 #include "scene/bsp_entities.h"
-#include "scene/bsp_file.h"
 #include "scene/missing_texture.h"
 #include "scene/quake_axes.h"
 #include "scene/texture_resolver.h"
@@ -103,20 +104,21 @@ std::string describeVia(ResolvedTexture::Via via) {
 // Extracts and probes the source images of the map's shaders, once per shader used.
 class SourceImages {
  public:
-  SourceImages(const PackageFiles& files, const std::filesystem::path& folder, TexturedScene& scene)
-      : files_(files), resolver_(files), folder_(folder), scene_(scene) {}
+  SourceImages(const PackageFiles& files, const std::filesystem::path& folder)
+      : files_(files), resolver_(files), folder_(folder) {}
 
-  uint32_t textureFor(int32_t shader, const std::string& name) {
+  uint32_t textureFor(int32_t shader, const std::string& name, TexturedScene& scene) {
+    scene_ = &scene;
     if (const auto found = byShader_.find(shader); found != byShader_.end()) return found->second;
     SourceTexture texture;
     texture.name = name;
     if (const auto resolved = resolver_.resolve(name)) extract(*resolved, texture);
     if (texture.file.empty()) {
       useMissingTexture(texture, folder_);
-      scene_.warnings.push_back("texture " + name + ": no image found, drawn as a checker");
+      scene.warnings.push_back("texture " + name + ": no image found, drawn as a checker");
     }
-    const auto index = static_cast<uint32_t>(scene_.textures.size());
-    scene_.textures.push_back(std::move(texture));
+    const auto index = static_cast<uint32_t>(scene.textures.size());
+    scene.textures.push_back(std::move(texture));
     byShader_.emplace(shader, index);
     return index;
   }
@@ -131,8 +133,8 @@ class SourceImages {
     }
     const std::optional<ImageHeader> header = readImageHeader(path);
     if (!header || header->width <= 0 || header->height <= 0) {
-      scene_.warnings.push_back("texture " + texture.name + ": " + files_.describe(resolved.file) +
-                                " is not a readable image");
+      scene_->warnings.push_back("texture " + texture.name + ": " + files_.describe(resolved.file) +
+                                 " is not a readable image");
       return;
     }
     texture.file = path;
@@ -144,7 +146,7 @@ class SourceImages {
   const PackageFiles& files_;
   TextureResolver resolver_;
   std::filesystem::path folder_;
-  TexturedScene& scene_;
+  TexturedScene* scene_ = nullptr;  // the scene of the current textureFor call
   std::map<int32_t, uint32_t> byShader_;
 };
 
@@ -227,6 +229,47 @@ std::vector<Camera> spawnCameras(const std::vector<BspEntity>& entities) {
   return cameras;
 }
 
+bool isDrawnType(BspSurfaceType type) {
+  return type == BspSurfaceType::kPolygon || type == BspSurfaceType::kMesh ||
+         type == BspSurfaceType::kPatch;
+}
+
+bool isDrawnShader(const BspShader& shader) {
+  SkippedFaces ignored;
+  return !skipByShader(shader, ignored);
+}
+
+// Refuses a map whose drawn surfaces would give more vertices or indices than the limits, before
+// any is made: surfaces may share vertex ranges, and each patch multiplies its control points.
+void requireWithinLimits(const BspFile& bsp, const std::string& source, int patchLevel) {
+  // Each term is below 2^42 (parseBsp bounds the counts); the sums saturate rather than wrap.
+  const auto add = [](uint64_t& sum, uint64_t term) {
+    sum = term > UINT64_MAX - sum ? UINT64_MAX : sum + term;
+  };
+  uint64_t vertices = 0, indices = 0;
+  for (const BspSurface& surface : bsp.surfaces) {
+    const auto type = static_cast<BspSurfaceType>(surface.type);
+    if (!isDrawnType(type) || !isDrawnShader(bsp.shaders[static_cast<size_t>(surface.shader)]))
+      continue;
+    if (type == BspSurfaceType::kPatch) {
+      // bezier_patch.h: (n * level + 1) x (m * level + 1) vertices, two triangles per cell.
+      const uint64_t level = static_cast<uint64_t>(patchLevel);
+      const uint64_t columns = static_cast<uint64_t>(surface.patchWidth - 1) / 2 * level,
+                     rows = static_cast<uint64_t>(surface.patchHeight - 1) / 2 * level;
+      add(vertices, (columns + 1) * (rows + 1));
+      add(indices, 6 * columns * rows);
+    } else {
+      add(vertices, static_cast<uint64_t>(surface.vertexCount));
+      add(indices, static_cast<uint64_t>(surface.indexCount));
+    }
+  }
+  const std::string what =
+      "tessellating the drawn surfaces (patches at level " + std::to_string(patchLevel) + ")";
+  if (vertices > kMaxMapVertices)
+    throw limitError(source, what, vertices, kMaxMapVertices, " vertices");
+  if (indices > kMaxMapIndices) throw limitError(source, what, indices, kMaxMapIndices, " indices");
+}
+
 }  // namespace
 
 TexturedScene loadQuake3Map(const PackageFiles& files, std::string_view map,
@@ -236,11 +279,23 @@ TexturedScene loadQuake3Map(const PackageFiles& files, std::string_view map,
   const std::optional<std::string> entry = files.find(wanted);
   if (!entry) throw InputError(wanted, "no such map in the packages");
   const std::vector<uint8_t> bytes = files.read(*entry);
-  const BspFile bsp = parseBsp(bytes, files.describe(*entry));
-
-  TexturedScene scene;
+  const std::string source = files.describe(*entry);
+  const BspFile bsp = parseBsp(bytes, source);
+  SourceImages images(files, imageFolder);
+  TexturedScene scene = quake3Scene(
+      bsp, source,
+      [&](int32_t shader, const std::string& name, TexturedScene& into) {
+        return images.textureFor(shader, name, into);
+      },
+      options);
   scene.name = std::filesystem::path(*entry).stem().string();
-  SourceImages images(files, imageFolder, scene);
+  return scene;
+}
+
+TexturedScene quake3Scene(const BspFile& bsp, const std::string& source,
+                          const ShaderTextures& textureFor, const Quake3Options& options) {
+  requireWithinLimits(bsp, source, options.patchLevel);
+  TexturedScene scene;
   for (const BspSurface& surface : bsp.surfaces) {
     const BspShader& shader = bsp.shaders[static_cast<size_t>(surface.shader)];
     const auto type = static_cast<BspSurfaceType>(surface.type);
@@ -248,8 +303,7 @@ TexturedScene loadQuake3Map(const PackageFiles& files, std::string_view map,
       ++scene.skipped.flare;
       continue;
     }
-    if (type != BspSurfaceType::kPolygon && type != BspSurfaceType::kMesh &&
-        type != BspSurfaceType::kPatch) {
+    if (!isDrawnType(type)) {
       ++scene.skipped.unknownType;
       continue;
     }
@@ -266,7 +320,7 @@ TexturedScene loadQuake3Map(const PackageFiles& files, std::string_view map,
       continue;
     }
     if (type == BspSurfaceType::kPatch) ++scene.patchFaces;
-    const uint32_t texture = images.textureFor(surface.shader, shader.name);
+    const uint32_t texture = textureFor(surface.shader, shader.name, scene);
     if (type == BspSurfaceType::kPatch) {
       addFace(scene, geometry, geometry.indices, texture);
       continue;
@@ -277,8 +331,8 @@ TexturedScene loadQuake3Map(const PackageFiles& files, std::string_view map,
     if (pieces.size() > 1) ++scene.splitSurfaces;
     for (const std::vector<uint32_t>& piece : pieces) addFace(scene, geometry, piece, texture);
   }
-  if (scene.faces.empty()) throw InputError(files.describe(*entry), "the map draws no faces");
-  scene.viewpoints = spawnCameras(parseEntities(bsp.entities, files.describe(*entry)));
+  if (scene.faces.empty()) throw InputError(source, "the map draws no faces");
+  scene.viewpoints = spawnCameras(parseEntities(bsp.entities, source));
   if (scene.viewpoints.empty()) scene.warnings.push_back("the map has no player spawn point");
   return scene;
 }

@@ -14,9 +14,12 @@
 // present of info_player_start and the CTF team spawns) at view height, looking along their angle.
 
 #include <filesystem>
+#include <functional>
+#include <string>
 #include <string_view>
 
 #include "scene/bezier_patch.h"
+#include "scene/bsp_file.h"
 #include "scene/package_files.h"
 #include "scene/textured_scene.h"
 
@@ -30,5 +33,16 @@ struct Quake3Options {
 TexturedScene loadQuake3Map(const PackageFiles& files, std::string_view map,
                             const std::filesystem::path& imageFolder,
                             const Quake3Options& options = {});
+
+// The texture of a drawn surface's shader (its number in the map and its name): an index into
+// `scene.textures`, which the function fills. loadQuake3Map finds the images in the packages.
+using ShaderTextures =
+    std::function<uint32_t(int32_t shader, const std::string& name, TexturedScene& scene)>;
+
+// The faces, skipped surfaces and viewpoints of a parsed map, `source` naming it in errors.
+// Refuses, before tessellating, drawn surfaces that would give more than kMaxMapVertices vertices
+// or kMaxMapIndices indices (common/resource_limits.h). The scene's name is left empty.
+TexturedScene quake3Scene(const BspFile& bsp, const std::string& source,
+                          const ShaderTextures& textureFor, const Quake3Options& options = {});
 
 }  // namespace vt

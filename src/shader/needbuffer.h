@@ -5,6 +5,9 @@
 //   32-bit: r = px, g = py, b = m, a = 1; no geometry (0, 0, 0, 0).
 //   8-bit:  r = px mod 256, g = py mod 256, b = m, a = px / 256 + (py / 256) * 16;
 //           no geometry b = 255.
+// A value that names no page of any texture (m above kMaxLevel, or px or py outside level m, or
+// an 8-bit component above 255) cannot come from the shader: it decodes as no page rather than
+// as an address no table holds.
 
 #include <algorithm>
 #include <cstdint>
@@ -22,12 +25,15 @@ inline glm::uvec4 needClearValue(bool need8) {
 }
 
 inline std::optional<PageId> decodeNeed(glm::uvec4 v, bool need8) {
+  PageId page{v.x, v.y, v.z};
   if (need8) {
-    if (v.z == 255) return std::nullopt;
-    return PageId{v.x + (v.w & 15u) * 256u, v.y + (v.w >> 4) * 256u, v.z};
+    if (v.z == 255 || glm::any(glm::greaterThan(v, glm::uvec4(255)))) return std::nullopt;
+    page = {v.x + (v.w & 15u) * 256u, v.y + (v.w >> 4) * 256u, v.z};
+  } else if (v.w == 0) {
+    return std::nullopt;
   }
-  if (v.w == 0) return std::nullopt;
-  return PageId{v.x, v.y, v.z};
+  if (!isValid(page)) return std::nullopt;
+  return page;
 }
 
 // The distinct pages a needbuffer names (absolute indices, ascending) and its pixels with geometry.

@@ -1,0 +1,126 @@
+#include "cli/configuration_options.h"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli/size_argument.h"
+#include "common/error.h"
+#include "scene/box_room.h"
+#include "scene/obj_mesh.h"
+
+namespace vt {
+
+void FlightSceneArguments::addTo(CLI::App* command) {
+  command->add_option("TEXTURE", texture, "Virtual-texture file (.vt)")->required();
+  command->add_option("--path", path,
+                      "Camera path or storyboard (.json); default: a turn around the box room");
+  command->add_option("--mesh", mesh,
+                      "OBJ mesh with virtual texture coordinates (default: the box room)");
+  command->add_option("--size", size, "WIDTHxHEIGHT")
+      ->check(sizeValidator())
+      ->capture_default_str();
+}
+
+CameraPath FlightSceneArguments::cameraPath() const {
+  return path.empty() ? boxRoomPath() : CameraPath::load(path);
+}
+
+Mesh FlightSceneArguments::loadMesh() const { return mesh.empty() ? boxRoom() : loadObjMesh(mesh); }
+
+std::string FlightSceneArguments::sceneName() const { return mesh.empty() ? "box room" : mesh; }
+
+struct ConfigurationOptions::Values {
+  std::string config, heuristic = "pixelsum", ancestors = "none", lookAhead = "none",
+                      hotSpot = "shifted", needScale = "1", readback = "sync";
+  uint32_t budget = 10, latency = 0, lockedLevels = 0, initialLevels = 3, frames = 16;
+  float noiseThreshold = -1.0f;
+  bool noiseSkipping = false, preloadVisible = false;
+};
+
+ConfigurationOptions::ConfigurationOptions(CLI::App* command)
+    : values_(std::make_shared<Values>()), command_(command) {
+  Values& v = *values_;
+  command->add_option("--config", v.config,
+                      "Configuration (.json, the keys of the options below); options given as "
+                      "well override it");
+  command->add_option("--budget", v.budget, "Pages streamed per frame (thesis 4.1.1)")
+      ->capture_default_str();
+  command->add_option("--latency", v.latency, "Frames between a request and its page's arrival")
+      ->capture_default_str();
+  command
+      ->add_option("--need-scale", v.needScale,
+                   "Needbuffer at 1/N of the resolution per axis, jittered per frame: 1, 2, 4, 8")
+      ->check(CLI::IsMember({"1", "2", "4", "8"}))
+      ->capture_default_str();
+  command
+      ->add_option("--heuristic", v.heuristic,
+                   "Factors joined by '*': random, pixelsum, distance, weightedpixel, "
+                   "hotspot, noisevalue, mipgap")
+      ->capture_default_str();
+  command->add_option("--ancestors", v.ancestors, "Ancestor streaming: none, intern, extern")
+      ->check(CLI::IsMember({"none", "intern", "extern"}))
+      ->capture_default_str();
+  command->add_flag("--noise-skipping", v.noiseSkipping, "NoiseValueSkipping (with extern)");
+  command->add_option("--lookahead", v.lookAhead, "LookAhead camera (4.2.4): none, plain, stopfix")
+      ->check(CLI::IsMember({"none", "plain", "stopfix"}))
+      ->capture_default_str();
+  command->add_option("--hotspot", v.hotSpot, "HotSpot centre (4.2.3.1): fixed, shifted, sliding")
+      ->check(CLI::IsMember({"fixed", "shifted", "sliding"}))
+      ->capture_default_str();
+  command->add_option("--noise-threshold", v.noiseThreshold,
+                      "NoiseValueSkipping threshold (default: the mean NoiseValue)");
+  command
+      ->add_option("--locked-levels", v.lockedLevels, "Levels 0..K-1 never leave the cache (4.3.1)")
+      ->capture_default_str();
+  command
+      ->add_option("--initial-levels", v.initialLevels,
+                   "Levels 0..K-1 loaded before the first frame (4.2.1)")
+      ->capture_default_str();
+  command->add_flag("--preload-visible", v.preloadVisible,
+                    "Also load the pages the first frame needs before it (4.2.1)");
+  command->add_option("--cache-frames", v.frames, "The cache holds N x N frames")
+      ->capture_default_str();
+  command
+      ->add_option("--readback", v.readback,
+                   "sync, or async: the analysis sees the previous frame's needbuffer (GL: "
+                   "pixel-buffer objects and a fence)")
+      ->check(CLI::IsMember({"sync", "async"}))
+      ->capture_default_str();
+}
+
+FlightConfiguration ConfigurationOptions::configuration() const {
+  const Values& v = *values_;
+  FlightConfiguration base;
+  if (!v.config.empty()) {
+    std::ifstream in(v.config);
+    if (!in) throw InputError(v.config, "cannot open the configuration");
+    try {
+      base = FlightConfiguration::fromJson(nlohmann::json::parse(in), base);
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(v.config, std::string("not a configuration: ") + e.what());
+    } catch (const std::invalid_argument& e) {
+      throw InputError(v.config, e.what());
+    }
+  }
+  // Options on the command line (or all of them, without --config) as JSON keys.
+  const bool all = v.config.empty();
+  const auto given = [&](const char* option) { return all || command_->count(option) > 0; };
+  nlohmann::json options = nlohmann::json::object();
+  if (given("--heuristic")) options["heuristic"] = v.heuristic;
+  if (given("--ancestors")) options["ancestors"] = v.ancestors;
+  if (given("--noise-skipping")) options["noise_skipping"] = v.noiseSkipping;
+  if (given("--noise-threshold")) options["noise_threshold"] = v.noiseThreshold;
+  if (given("--lookahead")) options["lookahead"] = v.lookAhead;
+  if (given("--hotspot")) options["hotspot"] = v.hotSpot;
+  if (given("--budget")) options["budget"] = v.budget;
+  if (given("--latency")) options["latency"] = v.latency;
+  if (given("--cache-frames")) options["cache_frames"] = v.frames;
+  if (given("--locked-levels")) options["locked_levels"] = v.lockedLevels;
+  if (given("--initial-levels")) options["initial_levels"] = v.initialLevels;
+  if (given("--preload-visible")) options["preload_visible"] = v.preloadVisible;
+  if (given("--need-scale")) options["need_scale"] = std::stoi(v.needScale);
+  if (given("--readback")) options["readback"] = v.readback;
+  return FlightConfiguration::fromJson(options, base);
+}
+
+}  // namespace vt

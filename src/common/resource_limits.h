@@ -1,0 +1,54 @@
+#pragma once
+// What an input may ask for. A size read from a file (a header field, a layout entry, a map's
+// surfaces, a camera path's frames, an archive entry) that would need more memory, disk or time
+// than any real input needs is refused before anything is allocated for it, with one line naming
+// the file, what was asked and the limit:
+//   "scene.vt: header field stored_page_count asks for 1431655765 pages, the limit is 268435456
+//   pages"
+// Each limit lies far above what the real inputs of this project use (next to each: the largest
+// we know) and far below what would exhaust a machine.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "common/error.h"
+
+namespace vt {
+
+// Pages one virtual texture may store: 2^28 pages of 128^2 RGBA texels are about 19 TiB, and the
+// reader's tables for them 5 GiB. (A 16384^2 texture with P = 128 stores 21,845.)
+inline constexpr uint64_t kMaxStoredPages = uint64_t{1} << 28;
+
+// Bytes `vt build` may hold in its row rings (texture_builder.h gives the bound): 16 GiB. A
+// 2^20-texel-wide RGBA texture with P = 128 needs 1.2 GB; 16384^2 RGB needs 14 MB.
+inline constexpr uint64_t kMaxBuildRingBytes = uint64_t{16} << 30;
+
+// Bytes of one image that `vt build` decodes whole (region placements, layout.h): 4 GiB, an RGBA
+// image of 32768^2. (Whole-image placements are streamed by scanlines and need no such limit.)
+inline constexpr uint64_t kMaxWholeImageBytes = uint64_t{4} << 30;
+
+// Vertices and indices a Quake 3 map's drawn surfaces may give after patch tessellation: 2^24 and
+// 2^26. Surfaces may share vertex ranges, so a small file could otherwise ask for billions.
+// (q3dm6ish gives 4,406 vertices.)
+inline constexpr uint64_t kMaxMapVertices = uint64_t{1} << 24;
+inline constexpr uint64_t kMaxMapIndices = uint64_t{1} << 26;
+
+// Bytes one file of a .pk3 archive may inflate to: 256 MiB (the largest file of OpenArena's
+// archives is a 10.2 MB map). A zip entry may claim, or inflate to, far more than its compressed
+// size.
+inline constexpr uint64_t kMaxPackageEntryBytes = uint64_t{256} << 20;
+
+// Frames of a camera path: 10^6, more than four hours at 60 frames a second. Every frame is
+// rendered, so a path of 2^31 frames would run for years.
+inline constexpr int64_t kMaxCameraPathFrames = 1'000'000;
+
+// The error for a request beyond a limit: "<file>: <what> asks for <asked><unit>, the limit is
+// <limit><unit>", e.g. what = "header field stored_page_count", unit = " pages".
+inline InputError limitError(const std::filesystem::path& file, const std::string& what,
+                             uint64_t asked, uint64_t limit, const std::string& unit) {
+  return InputError(file, what + " asks for " + std::to_string(asked) + unit + ", the limit is " +
+                              std::to_string(limit) + unit);
+}
+
+}  // namespace vt

@@ -1,0 +1,182 @@
+#include "eval/evaluation_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "common/posix_file.h"
+#include "eval/flight_records.h"
+#include "eval/line_plot.h"
+
+namespace vt {
+namespace {
+
+std::string fixed(double value, int digits) {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(digits) << value;
+  return text.str();
+}
+
+// Markdown table cells must not contain '|'.
+std::string cell(std::string text) {
+  for (char& c : text)
+    if (c == '|') c = '/';
+  return text;
+}
+
+std::string framesCsv(const Evaluation& evaluation) {
+  std::string csv = flightCsvHeader(true, "configuration,");
+  for (size_t r = 0; r < evaluation.runs.size(); ++r)
+    csv += flightCsvRows(evaluation.runs[r].result, true, std::to_string(r) + ",");
+  return csv;
+}
+
+nlohmann::json summaryJson(const EvaluationDescription& description, const CameraPath& path,
+                           const reference::RenderSettings& settings,
+                           const Evaluation& evaluation) {
+  nlohmann::json motions = nlohmann::json::array();
+  for (const NamedMotion& m : path.motions())
+    motions.push_back({{"name", m.name}, {"kind", m.kind}, {"first", m.first}, {"last", m.last}});
+  nlohmann::json runs = nlohmann::json::array();
+  for (size_t r = 0; r < evaluation.runs.size(); ++r) {
+    const EvaluationRun& run = evaluation.runs[r];
+    nlohmann::json perMotion = nlohmann::json::array();
+    for (const NamedMotion& m : path.motions()) {
+      const RangeQuality q = rangeQuality(run.result, m.first, m.last);
+      perMotion.push_back({{"name", m.name},
+                           {"mean_ssim", q.meanSsim},
+                           {"min_ssim", q.minSsim},
+                           {"mean_wssim", q.meanWssim},
+                           {"mean_rmse", q.meanRmse}});
+    }
+    nlohmann::json entry = {{"index", r},
+                            {"name", run.configuration.label()},
+                            {"configuration", run.configuration.toJson()},
+                            {"seconds", run.result.seconds},
+                            {"motions", perMotion}};
+    entry.update(flightTotals(run.result));
+    runs.push_back(entry);
+  }
+  return {{"title", description.title},
+          {"scene", description.scene},
+          {"texture", description.texture},
+          {"frames", path.frameCount()},
+          {"width", settings.viewport.width},
+          {"height", settings.viewport.height},
+          {"profile", reference::toString(settings.profile)},
+          {"jobs", description.jobs},
+          {"reference_seconds", evaluation.referenceSeconds},
+          {"wall_seconds", evaluation.wallSeconds},
+          {"motions", motions},
+          {"runs", runs}};
+}
+
+std::string summaryMarkdown(const nlohmann::json& summary) {
+  std::ostringstream md;
+  md << "# " << cell(summary["title"]) << "\n\n"
+     << summary["frames"].get<int>() << " frames at " << summary["width"].get<int>() << " x "
+     << summary["height"].get<int>() << ", scene `" << summary["scene"].get<std::string>()
+     << "`, texture `" << summary["texture"].get<std::string>() << "`; quality against every "
+     << "needed page resident (SSIM 8 x 8 on luminance, WSSIM, RMSE in 8-bit units). Run time: "
+     << "the flight alone (drawing, analysis, streaming), " << summary["jobs"].get<unsigned>()
+     << " runs at once, one thread each; reference images "
+     << fixed(summary["reference_seconds"].get<double>(), 1) << " s.\n\n"
+     << "| Configuration | mean SSIM | min SSIM | mean WSSIM | mean RMSE | pages streamed | "
+        "needed pages missed | run time (s) |\n"
+     << "|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const auto& run : summary["runs"])
+    md << "| " << cell(run["name"]) << " | " << fixed(run["mean_ssim"], 4) << " | "
+       << fixed(run["min_ssim"], 4) << " | " << fixed(run["mean_wssim"], 4) << " | "
+       << fixed(run["mean_rmse"], 3) << " | " << run["streamed"].get<uint64_t>() << " | "
+       << run["misses"].get<uint64_t>() << " | " << fixed(run["seconds"], 2) << " |\n";
+  if (!summary["motions"].empty()) {
+    md << "\nMean SSIM per named motion (frames first to last):\n\n| Motion | frames |";
+    for (const auto& run : summary["runs"]) md << ' ' << cell(run["name"]) << " |";
+    md << "\n|---|---|";
+    for (size_t r = 0; r < summary["runs"].size(); ++r) md << "---:|";
+    md << '\n';
+    for (size_t m = 0; m < summary["motions"].size(); ++m) {
+      const auto& motion = summary["motions"][m];
+      md << "| " << cell(motion["name"]) << " (" << motion["kind"].get<std::string>() << ") | "
+         << motion["first"].get<int>() << "-" << motion["last"].get<int>() << " |";
+      for (const auto& run : summary["runs"])
+        md << ' ' << fixed(run["motions"][m]["mean_ssim"], 4) << " |";
+      md << '\n';
+    }
+  }
+  return md.str();
+}
+
+LinePlot qualityPlot(const std::string& title, const std::string& measure, const CameraPath& path,
+                     const Evaluation& evaluation, double FrameQuality::*field,
+                     const std::vector<std::string>& chosen = {}) {
+  LinePlot plot;
+  plot.title = title;
+  plot.yLabel = measure;
+  if (measure != "RMSE") plot.yMax = 1.0;
+  std::vector<const EvaluationRun*> runs;
+  for (const EvaluationRun& run : evaluation.runs) runs.push_back(&run);
+  if (!chosen.empty()) {
+    runs.clear();
+    for (const std::string& label : chosen) {
+      const auto found = std::find_if(
+          evaluation.runs.begin(), evaluation.runs.end(),
+          [&](const EvaluationRun& run) { return run.configuration.label() == label; });
+      if (found == evaluation.runs.end())
+        throw std::invalid_argument("figure '" + title + "': no configuration named '" + label +
+                                    "'");
+      runs.push_back(&*found);
+    }
+  }
+  for (const EvaluationRun* chosenRun : runs) {
+    const EvaluationRun& run = *chosenRun;
+    PlotSeries series;
+    series.label = run.configuration.label();
+    for (const FlightFrame& frame : run.result.frames)
+      series.values.push_back(frame.quality ? (*frame.quality).*field : std::nan(""));
+    plot.series.push_back(series);
+  }
+  for (const NamedMotion& m : path.motions()) {
+    if (m.kind == "hold") continue;
+    // A name like "9: fast turn towards the corridor" is labelled by its number.
+    const size_t colon = m.name.find(':');
+    plot.bands.push_back(
+        {m.first, m.last, colon == std::string::npos ? m.name : m.name.substr(0, colon)});
+  }
+  return plot;
+}
+
+}  // namespace
+
+void writeEvaluation(const std::filesystem::path& folder, const EvaluationDescription& description,
+                     const CameraPath& path, const reference::RenderSettings& settings,
+                     const Evaluation& evaluation) {
+  std::filesystem::create_directories(folder);
+  writeFileAtomically(folder / "frames.csv", framesCsv(evaluation));
+  const nlohmann::json summary = summaryJson(description, path, settings, evaluation);
+  writeFileAtomically(folder / "summary.json", summary.dump(2) + "\n");
+  writeFileAtomically(folder / "summary.md", summaryMarkdown(summary));
+  writeLinePlot(folder / "ssim.png", qualityPlot(description.title + ": SSIM", "SSIM", path,
+                                                 evaluation, &FrameQuality::ssim));
+  writeLinePlot(folder / "wssim.png", qualityPlot(description.title + ": WSSIM", "WSSIM", path,
+                                                  evaluation, &FrameQuality::wssim));
+  writeLinePlot(folder / "rmse.png", qualityPlot(description.title + ": RMSE", "RMSE", path,
+                                                 evaluation, &FrameQuality::rmse));
+  for (const EvaluationFigure& figure : description.figures) {
+    const bool rmse = figure.measure == "rmse", wssim = figure.measure == "wssim";
+    writeLinePlot(folder / figure.file, qualityPlot(figure.title,
+                                                    rmse    ? "RMSE"
+                                                    : wssim ? "WSSIM"
+                                                            : "SSIM",
+                                                    path, evaluation,
+                                                    rmse    ? &FrameQuality::rmse
+                                                    : wssim ? &FrameQuality::wssim
+                                                            : &FrameQuality::ssim,
+                                                    figure.runs));
+  }
+}
+
+}  // namespace vt

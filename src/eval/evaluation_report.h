@@ -1,0 +1,41 @@
+#pragma once
+// An evaluation's results as files in one folder (DESIGN section 5: CSV, PNG plots and a short
+// table, every error next to its run time):
+//   frames.csv          per configuration and frame: the runtime's statistics, RMSE, SSIM, WSSIM
+//   summary.md          per configuration: mean and minimum SSIM, mean WSSIM and RMSE, pages
+//                       streamed, misses and run time; then mean SSIM per named motion
+//   summary.json        the same, with each configuration's settings, for scripts
+//   ssim.png, wssim.png, rmse.png   the measure over the frames, one curve per configuration,
+//                       the path's named motions shaded (the thesis's figures); and the
+//                       description's figures of chosen runs
+// frames.csv holds the same bytes for any number of jobs; run times live in the summaries only.
+// Every file is written to a temporary name and renamed.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "eval/evaluation.h"
+
+namespace vt {
+
+// A figure of chosen runs (a claim of chapter 4 compares a few configurations, not all of them).
+struct EvaluationFigure {
+  std::string file;                // e.g. "basic5.png", in the output folder
+  std::string title;
+  std::string measure = "ssim";    // ssim, wssim or rmse
+  std::vector<std::string> runs;   // configuration labels, in the legend's order
+};
+
+struct EvaluationDescription {
+  std::string title;           // e.g. "q3dm6ish: basic heuristics"
+  std::string scene, texture;  // what was flown, for the record
+  unsigned jobs = 1;
+  std::vector<EvaluationFigure> figures;  // drawn besides the three plots of every run
+};
+
+void writeEvaluation(const std::filesystem::path& folder, const EvaluationDescription& description,
+                     const CameraPath& path, const reference::RenderSettings& settings,
+                     const Evaluation& evaluation);
+
+}  // namespace vt

@@ -1,0 +1,79 @@
+#pragma once
+// A flight (thesis chapter 4's setup): a camera path frame by frame with streaming. Each frame is
+// drawn from the current cache state, its needbuffer analysed and prioritised, and pages streamed
+// for the next frame, under one FlightConfiguration. Optionally each frame's quality against its
+// reference image (every needed page resident, DESIGN section 5), measured apart from the
+// flight's run time.
+//
+// Per-frame results are the same for any thread count and for either backend under the
+// llvmpipe profile on llvmpipe (tests/gl/fly_backend_test.cpp); in the streaming thread's real-time
+// mode they depend on timing.
+
+#include <functional>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "eval/flight_configuration.h"
+#include "format/virtual_texture_reader.h"
+#include "reference/renderer.h"
+#include "runtime/page_streamer.h"
+#include "runtime/virtual_texture_runtime.h"
+#include "scene/camera_path.h"
+#include "scene/mesh.h"
+
+namespace vt {
+
+struct FrameQuality {
+  double rmse = 0.0, ssim = 0.0, wssim = 0.0;  // eval/image_metrics.h; SSIM 8 x 8 uniform
+};
+
+struct FlightFrame {
+  FrameStatistics statistics;
+  std::optional<FrameQuality> quality;
+};
+
+struct FlightResult {
+  std::vector<FlightFrame> frames;
+  FrameStatistics totals;  // hits, misses, streamed and evicted summed over the frames
+  double seconds = 0.0;    // the flight, without measuring quality
+  double qualitySeconds = 0.0;
+};
+
+// What the flight saw in one frame, for observers (frame images, the inspector). Valid during the
+// call; the runtime is in the state the frame was drawn and analysed with, before the pages
+// streamed for the next frame are applied.
+struct FlightFrameView {
+  int frame = 0;
+  std::span<const uint8_t> color;  // RGBA8 rows bottom to top, when asked (wantsColor)
+  std::span<const glm::uvec4> need;
+  Viewport needViewport;
+  std::span<const uint8_t> reference;  // the reference image, when quality is measured
+  const std::vector<StreamRequest>& requests;
+  std::span<const uint64_t> streamed;  // pages that arrive for the next frame
+  const VirtualTextureRuntime& runtime;
+  const FlightFrame& result;
+};
+
+struct FlightOptions {
+  reference::RenderSettings settings;  // viewport (the screen), profile, threads, need8
+  bool gl = false;  // draw with the GL path (a current context is the caller's), else the oracle
+  bool threadedStreaming = false;  // a streaming thread in real time over `link`, not the budget
+  LinkModel link;
+  // The reference image of a frame (RGBA8, rows bottom to top, the screen's size); when set,
+  // every frame's quality is measured against it.
+  std::function<std::vector<uint8_t>(int frame)> reference;
+  std::function<bool(int frame)> wantsColor;  // also keep the colour when no reference asks it
+  std::function<void(const FlightFrameView&)> observe;
+  bool keepAnalysis = false;  // let observers ask the runtime for priority terms
+};
+
+FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const CameraPath& path,
+                 const FlightConfiguration& configuration, const FlightOptions& options);
+
+// The frame drawn with every page resident, at `settings`' viewport: the reference image.
+std::vector<uint8_t> referenceImage(const reference::ResidentTexture& everything, const Mesh& mesh,
+                                    const Camera& camera,
+                                    const reference::RenderSettings& settings);
+
+}  // namespace vt

@@ -1,0 +1,146 @@
+#include "eval/flight_configuration.h"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "runtime/needbuffer_scale.h"
+
+namespace vt {
+
+std::string toString(AncestorStrategy strategy) {
+  switch (strategy) {
+    case AncestorStrategy::kIntern:
+      return "intern";
+    case AncestorStrategy::kExtern:
+      return "extern";
+    default:
+      return "none";
+  }
+}
+
+std::string toString(LookAhead mode) {
+  switch (mode) {
+    case LookAhead::kPlain:
+      return "plain";
+    case LookAhead::kStopFix:
+      return "stopfix";
+    default:
+      return "none";
+  }
+}
+
+std::string toString(HotSpotMode mode) {
+  switch (mode) {
+    case HotSpotMode::kFixed:
+      return "fixed";
+    case HotSpotMode::kSliding:
+      return "sliding";
+    default:
+      return "shifted";
+  }
+}
+
+std::string FlightConfiguration::label() const {
+  if (!name.empty()) return name;
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string.
+  std::string text = heuristic;
+  const auto add = [&text](const std::string& key, const std::string& value) {
+    text.append(" ").append(key).append(value);
+  };
+  add("", std::to_string(budget) + "/frame");
+  if (lookAhead != LookAhead::kNone) add("lookahead=", toString(lookAhead));
+  if (heuristic.find("hotspot") != std::string::npos && hotSpot != HotSpotMode::kShifted)
+    add("hotspot=", toString(hotSpot));
+  if (ancestors != AncestorStrategy::kNone) add("", toString(ancestors));
+  if (noiseSkipping) add("", "skipping");
+  if (lockedLevels > 0) add("locked=", std::to_string(lockedLevels));
+  if (needScaleLog2 > 0) add("need=1/", std::to_string(1 << needScaleLog2));
+  if (asyncReadback) add("", "async");
+  if (latency > 0) add("latency=", std::to_string(latency));
+  return text;
+}
+
+nlohmann::json FlightConfiguration::toJson() const {
+  return {{"name", label()},
+          {"heuristic", heuristic},
+          {"ancestors", toString(ancestors)},
+          {"noise_skipping", noiseSkipping},
+          {"noise_threshold", noiseThreshold},
+          {"lookahead", toString(lookAhead)},
+          {"hotspot", toString(hotSpot)},
+          {"budget", budget},
+          {"latency", latency},
+          {"cache_frames", cacheFrames},
+          {"locked_levels", lockedLevels},
+          {"initial_levels", initialLevels},
+          {"preload_visible", preloadVisible},
+          {"need_scale", 1 << needScaleLog2},
+          {"readback", asyncReadback ? "async" : "sync"}};
+}
+
+FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
+                                                  const FlightConfiguration& defaults) {
+  if (!object.is_object()) throw std::invalid_argument("a configuration must be a JSON object");
+  FlightConfiguration c = defaults;
+  for (const auto& [key, value] : object.items()) {
+    const auto text = [&] {
+      if (!value.is_string()) throw std::invalid_argument("'" + key + "' must be a string");
+      return value.get<std::string>();
+    };
+    const auto flag = [&] {
+      if (!value.is_boolean()) throw std::invalid_argument("'" + key + "' must be true or false");
+      return value.get<bool>();
+    };
+    const auto count = [&](uint32_t low, uint32_t high) {
+      if (!value.is_number_integer() || value.get<int64_t>() < low || value.get<int64_t>() > high)
+        throw std::invalid_argument("'" + key + "' must be a whole number from " +
+                                    std::to_string(low) + " to " + std::to_string(high));
+      return static_cast<uint32_t>(value.get<int64_t>());
+    };
+    if (key == "name") {
+      c.name = text();
+    } else if (key == "heuristic") {
+      c.heuristic = text();
+      validateHeuristic(c.heuristic);
+    } else if (key == "ancestors") {
+      c.ancestors = parseAncestorStrategy(text());
+    } else if (key == "noise_skipping") {
+      c.noiseSkipping = flag();
+    } else if (key == "noise_threshold") {
+      if (!value.is_number() || !std::isfinite(value.get<double>()))
+        throw std::invalid_argument("'noise_threshold' must be a finite number");
+      c.noiseThreshold = value.get<float>();
+    } else if (key == "lookahead") {
+      c.lookAhead = parseLookAhead(text());
+    } else if (key == "hotspot") {
+      c.hotSpot = parseHotSpotMode(text());
+    } else if (key == "budget") {
+      c.budget = count(0, 1u << 20);
+    } else if (key == "latency") {
+      c.latency = count(0, 1000);
+    } else if (key == "cache_frames") {
+      c.cacheFrames = count(1, 256);
+    } else if (key == "locked_levels") {
+      c.lockedLevels = count(0, 24);
+    } else if (key == "initial_levels") {
+      c.initialLevels = count(0, 24);
+    } else if (key == "preload_visible") {
+      c.preloadVisible = flag();
+    } else if (key == "need_scale") {
+      if (!value.is_number_integer())
+        throw std::invalid_argument("'need_scale' must be 1, 2, 4 or 8");
+      c.needScaleLog2 = parseNeedScale(std::to_string(value.get<int64_t>()));
+    } else if (key == "readback") {
+      const std::string mode = text();
+      if (mode != "sync" && mode != "async")
+        throw std::invalid_argument("'readback' must be sync or async");
+      c.asyncReadback = mode == "async";
+    } else {
+      throw std::invalid_argument("unknown configuration key '" + key + "'");
+    }
+  }
+  return c;
+}
+
+}  // namespace vt

@@ -1,0 +1,49 @@
+#pragma once
+// One configuration of the streaming system as chapter 4 of the thesis compares them: everything
+// that decides which pages reach the cache and when. With a fixed budget of pages per frame
+// (4.1.1) two configurations differ only in how well they choose.
+//
+// The JSON form uses the names of `vt fly`'s options, e.g.
+//   { "name": "HotSpot x NoiseValue, LookAhead", "heuristic": "hotspot*noisevalue",
+//     "lookahead": "stopfix", "budget": 5, "ancestors": "extern", "noise_skipping": true,
+//     "locked_levels": 4, "need_scale": 4 }
+// Keys left out keep their defaults (below, or the defaults given to fromJson); unknown keys and
+// values out of range are errors.
+
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+
+#include "runtime/page_priority.h"
+#include "scene/camera_motion.h"
+
+namespace vt {
+
+struct FlightConfiguration {
+  std::string name;  // label in tables and plots; empty: label() describes the settings
+  std::string heuristic = "pixelsum";  // runtime/page_priority.h
+  AncestorStrategy ancestors = AncestorStrategy::kNone;
+  bool noiseSkipping = false;
+  float noiseThreshold = -1.0f;  // NoiseValueSkipping; negative: the texture's mean NoiseValue
+  LookAhead lookAhead = LookAhead::kNone;
+  HotSpotMode hotSpot = HotSpotMode::kShifted;
+  uint32_t budget = 10;         // pages streamed per frame
+  uint32_t latency = 0;         // frames between a request and its page's arrival
+  uint32_t cacheFrames = 16;    // the cache holds cacheFrames x cacheFrames frames
+  uint32_t lockedLevels = 0;    // levels 0..K-1 never leave the cache (4.3.1)
+  uint32_t initialLevels = 3;   // levels 0..K-1 loaded before the first frame (4.2.1)
+  bool preloadVisible = false;  // and the pages the first frame needs (4.2.1)
+  int needScaleLog2 = 0;        // needbuffer at 1/2^k of the screen per axis, jittered
+  bool asyncReadback = false;   // the analysis sees the previous frame's needbuffer
+
+  std::string label() const;  // the name, or a short description of the settings
+  nlohmann::json toJson() const;
+  // Throws std::invalid_argument naming the key and what is wrong.
+  static FlightConfiguration fromJson(const nlohmann::json& object,
+                                      const FlightConfiguration& defaults);
+};
+
+std::string toString(AncestorStrategy strategy);
+std::string toString(LookAhead mode);
+std::string toString(HotSpotMode mode);
+
+}  // namespace vt

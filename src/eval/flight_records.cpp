@@ -1,0 +1,73 @@
+#include "eval/flight_records.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "common/image_file.h"
+#include "common/posix_file.h"
+
+namespace vt {
+
+std::string flightCsvHeader(bool quality, const std::string& prefix) {
+  return prefix +
+         "frame,covered_pixels,needed_pages,hits,misses,hit_pixels,requested,streamed,evicted,"
+         "resident" +
+         (quality ? ",rmse,ssim,wssim\n" : "\n");
+}
+
+std::string flightCsvRows(const FlightResult& result, bool quality,
+                          const std::string& prefixValue) {
+  std::ostringstream csv;
+  for (size_t f = 0; f < result.frames.size(); ++f) {
+    const FrameStatistics& s = result.frames[f].statistics;
+    csv << prefixValue << f << ',' << s.coveredPixels << ',' << s.neededPages << ',' << s.hits
+        << ',' << s.misses << ',' << s.hitPixels << ',' << s.requested << ',' << s.streamed << ','
+        << s.evicted << ',' << s.resident;
+    if (quality) {
+      const FrameQuality q = result.frames[f].quality.value_or(FrameQuality{});
+      csv << ',' << q.rmse << ',' << q.ssim << ',' << q.wssim;
+    }
+    csv << '\n';
+  }
+  return csv.str();
+}
+
+nlohmann::json flightTotals(const FlightResult& result) {
+  nlohmann::json totals = {{"hits", result.totals.hits},
+                           {"misses", result.totals.misses},
+                           {"streamed", result.totals.streamed},
+                           {"evicted", result.totals.evicted}};
+  if (result.frames.empty() || !result.frames.front().quality) return totals;
+  double rmseSum = 0.0, ssimSum = 0.0, wssimSum = 0.0, ssimMin = 1.0;
+  for (const FlightFrame& frame : result.frames) {
+    const FrameQuality q = frame.quality.value_or(FrameQuality{});
+    rmseSum += q.rmse, ssimSum += q.ssim, wssimSum += q.wssim;
+    ssimMin = std::min(ssimMin, q.ssim);
+  }
+  const auto frames = static_cast<double>(result.frames.size());
+  totals["mean_rmse"] = rmseSum / frames;
+  totals["mean_ssim"] = ssimSum / frames;
+  totals["min_ssim"] = ssimMin;
+  totals["mean_wssim"] = wssimSum / frames;
+  return totals;
+}
+
+void writeFlightRecords(const std::filesystem::path& folder, const FlightResult& result,
+                        bool quality) {
+  writeFileAtomically(folder / "frames.csv",
+                      flightCsvHeader(quality) + flightCsvRows(result, quality));
+}
+
+void writeColorImage(const std::filesystem::path& file, Viewport viewport,
+                     std::span<const uint8_t> rgba) {
+  const auto width = static_cast<size_t>(viewport.width),
+             height = static_cast<size_t>(viewport.height);
+  std::vector<uint8_t> rows(rgba.size());
+  for (size_t y = 0; y < height; ++y)
+    std::copy_n(rgba.begin() + static_cast<std::ptrdiff_t>((height - 1 - y) * width * 4), width * 4,
+                rows.begin() + static_cast<std::ptrdiff_t>(y * width * 4));
+  writeImage8(file, static_cast<uint32_t>(width), static_cast<uint32_t>(height), 4,
+              std::as_bytes(std::span(rows)));
+}
+
+}  // namespace vt

@@ -1,0 +1,32 @@
+#pragma once
+// A flight's results as files: frames.csv (one row per frame: the runtime's statistics and, when
+// measured, RMSE, SSIM and WSSIM), the totals as JSON, frame images. Numbers are written the same
+// way for any thread count, so two runs compare byte by byte.
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <span>
+#include <string>
+
+#include "eval/flight.h"
+
+namespace vt {
+
+// The CSV header and rows; `prefix` (e.g. "configuration,") comes before each and `prefixValue`
+// (e.g. "3,") before each row.
+std::string flightCsvHeader(bool quality, const std::string& prefix = "");
+std::string flightCsvRows(const FlightResult& result, bool quality,
+                          const std::string& prefixValue = "");
+
+// hits, misses, streamed, evicted; with quality: mean_rmse, mean_ssim, min_ssim, mean_wssim.
+nlohmann::json flightTotals(const FlightResult& result);
+
+// folder/frames.csv, through a temporary file renamed at the end.
+void writeFlightRecords(const std::filesystem::path& folder, const FlightResult& result,
+                        bool quality);
+
+// An RGBA8 frame (rows bottom to top, as rendered) as a PNG (rows top to bottom).
+void writeColorImage(const std::filesystem::path& file, Viewport viewport,
+                     std::span<const uint8_t> rgba);
+
+}  // namespace vt

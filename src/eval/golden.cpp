@@ -1,0 +1,252 @@
+#include "eval/golden.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+
+#include "common/checksum.h"
+#include "common/error.h"
+#include "common/posix_file.h"
+#include "eval/flight_records.h"
+#include "format/virtual_texture_reader.h"
+#include "reference/frame_comparison.h"
+#include "reference/texture_source.h"
+#include "scene/obj_mesh.h"
+
+namespace vt {
+namespace {
+
+constexpr const char* kFormat = "vt-golden 1";
+
+std::string hex(uint64_t value) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
+  return text;
+}
+
+uint64_t fileChecksum(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file, "cannot open");
+  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)),
+                                std::istreambuf_iterator<char>());
+  return checksum64(std::as_bytes(std::span(bytes)));
+}
+
+template <typename T>
+uint64_t bytesChecksum(std::span<const T> values) {
+  return checksum64(std::as_bytes(values));
+}
+
+std::string imageName(int frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame%04d.png", frame);
+  return name;
+}
+
+// The PNG's RGBA8 rows, turned bottom to top like a rendered frame.
+std::vector<uint8_t> readGoldenImage(const std::filesystem::path& file, Viewport viewport) {
+  auto input = OIIO::ImageInput::open(file.string());
+  if (!input) throw InputError(file, "cannot read golden image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = input->spec();
+  if (spec.width != viewport.width || spec.height != viewport.height || spec.nchannels != 4)
+    throw InputError(file, "golden image is not " + std::to_string(viewport.width) + " x " +
+                               std::to_string(viewport.height) + " RGBA");
+  std::vector<uint8_t> rows(static_cast<size_t>(viewport.width) * viewport.height * 4);
+  if (!input->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, rows.data()))
+    throw InputError(file, "cannot read golden image: " + input->geterror());
+  std::vector<uint8_t> flipped(rows.size());
+  const size_t stride = static_cast<size_t>(viewport.width) * 4;
+  for (int y = 0; y < viewport.height; ++y)
+    std::copy_n(rows.begin() + static_cast<std::ptrdiff_t>(y * stride), stride,
+                flipped.begin() + static_cast<std::ptrdiff_t>((viewport.height - 1 - y) * stride));
+  return flipped;
+}
+
+struct Recorded {
+  int frame;
+  std::vector<uint8_t> color;
+  std::vector<glm::uvec4> need;
+  FrameQuality quality;
+};
+
+// Flies `configuration` and keeps every `every`-th frame.
+std::vector<Recorded> flyAndRecord(const VirtualTextureReader& reader, const Mesh& mesh,
+                                   const CameraPath& path, const FlightConfiguration& configuration,
+                                   Viewport viewport, reference::PrecisionProfile profile,
+                                   int every, bool gl) {
+  FlightOptions options;
+  options.settings.viewport = viewport;
+  options.settings.profile = profile;
+  options.settings.need8 = reader.description().finestLevel() <= 12;
+  options.gl = gl;
+  const reference::ResidentTexture everything(reader);
+  reference::RenderSettings referenceSettings = options.settings;
+  referenceSettings.profile = reference::PrecisionProfile::kExact;
+  options.reference = [&](int frame) {
+    return referenceImage(everything, mesh, path.at(frame), referenceSettings);
+  };
+  std::vector<Recorded> recorded;
+  options.observe = [&](const FlightFrameView& view) {
+    if (view.frame % every != 0) return;
+    recorded.push_back({view.frame, std::vector<uint8_t>(view.color.begin(), view.color.end()),
+                        std::vector<glm::uvec4>(view.need.begin(), view.need.end()),
+                        view.result.quality.value_or(FrameQuality{})});
+  };
+  fly(reader, mesh, path, configuration, options);
+  return recorded;
+}
+
+}  // namespace
+
+void generateGolden(const GoldenRequest& request, const std::filesystem::path& folder) {
+  if (request.every < 1) throw std::invalid_argument("golden: --every must be at least 1");
+  const VirtualTextureReader reader(request.texture);
+  const Mesh mesh = loadObjMesh(request.mesh);
+  const CameraPath path = CameraPath::load(request.path);
+  const std::vector<Recorded> recorded =
+      flyAndRecord(reader, mesh, path, request.configuration, request.viewport, request.profile,
+                   request.every, false);
+  std::filesystem::create_directories(folder);
+  nlohmann::json frames = nlohmann::json::array();
+  for (const Recorded& r : recorded) {
+    writeColorImage(folder / imageName(r.frame), request.viewport, r.color);
+    frames.push_back({{"frame", r.frame},
+                      {"color", hex(bytesChecksum(std::span<const uint8_t>(r.color)))},
+                      {"need", hex(bytesChecksum(std::span<const glm::uvec4>(r.need)))},
+                      {"rmse", r.quality.rmse},
+                      {"ssim", r.quality.ssim},
+                      {"wssim", r.quality.wssim},
+                      {"image", imageName(r.frame)}});
+  }
+  const nlohmann::json golden = {{"format", kFormat},
+                                 {"texture", request.texture.filename().string()},
+                                 {"texture_identity", hex(reader.identity())},
+                                 {"mesh", request.mesh.filename().string()},
+                                 {"mesh_checksum", hex(fileChecksum(request.mesh))},
+                                 {"path", request.path.filename().string()},
+                                 {"path_checksum", hex(fileChecksum(request.path))},
+                                 {"configuration", request.configuration.toJson()},
+                                 {"width", request.viewport.width},
+                                 {"height", request.viewport.height},
+                                 {"profile", reference::toString(request.profile)},
+                                 {"every", request.every},
+                                 {"frames", frames}};
+  writeFileAtomically(folder / "golden.json", golden.dump(1) + "\n");
+}
+
+bool GoldenCheck::passed() const {
+  if (frames.empty()) return false;
+  for (const GoldenFrameCheck& frame : frames)
+    if (!frame.passed) return false;
+  return true;
+}
+
+GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesystem::path& texture,
+                        const std::filesystem::path& mesh, const std::filesystem::path& path,
+                        bool gl, reference::PrecisionProfile glProfile,
+                        const std::filesystem::path& report) {
+  const std::filesystem::path manifest = folder / "golden.json";
+  std::ifstream in(manifest);
+  if (!in) throw InputError(manifest, "cannot open the golden set");
+  nlohmann::json golden;
+  FlightConfiguration configuration;
+  Viewport viewport;
+  reference::PrecisionProfile profile;
+  int every = 1;
+  try {
+    golden = nlohmann::json::parse(in);
+    if (golden.at("format") != kFormat)
+      throw std::invalid_argument("format is not '" + std::string(kFormat) + "'");
+    configuration = FlightConfiguration::fromJson(golden.at("configuration"), {});
+    viewport = {golden.at("width").get<int>(), golden.at("height").get<int>()};
+    profile = reference::parsePrecisionProfile(golden.at("profile").get<std::string>());
+    every = golden.at("every").get<int>();
+    if (every < 1 || viewport.width < 1 || viewport.height < 1 || viewport.width > 16384 ||
+        viewport.height > 16384 || golden.at("frames").empty())
+      throw std::invalid_argument("size, every or frames out of range");
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(manifest, std::string("not a golden set: ") + e.what());
+  } catch (const std::invalid_argument& e) {
+    throw InputError(manifest, std::string("not a golden set: ") + e.what());
+  }
+
+  const VirtualTextureReader reader(texture);
+  if (hex(reader.identity()) != golden["texture_identity"])
+    throw InputError(texture, "its identity " + hex(reader.identity()) + " is not the golden's " +
+                                  golden["texture_identity"].get<std::string>() +
+                                  ": the goldens were made from another texture");
+  for (const auto& [file, key] : {std::pair{mesh, "mesh_checksum"}, {path, "path_checksum"}})
+    if (hex(fileChecksum(file)) != golden[key])
+      throw InputError(file, "its checksum " + hex(fileChecksum(file)) + " is not the golden's " +
+                                 golden[key].get<std::string>() +
+                                 ": the goldens were made from another file");
+
+  GoldenCheck check;
+  check.backend = gl ? "gl" : "oracle";
+  check.profile = gl ? glProfile : profile;
+  const std::vector<Recorded> recorded =
+      flyAndRecord(reader, loadObjMesh(mesh), CameraPath::load(path), configuration, viewport,
+                   check.profile, every, gl);
+  const bool exact = !gl || glProfile == reference::PrecisionProfile::kLlvmpipe;
+  const int bound = exact ? 0 : reference::colorBound(glProfile);
+  std::filesystem::create_directories(report);
+  nlohmann::json frames = nlohmann::json::array();
+  for (const auto& expected : golden["frames"]) {
+    GoldenFrameCheck frame;
+    frame.frame = expected.at("frame").get<int>();
+    const auto r = std::find_if(recorded.begin(), recorded.end(),
+                                [&](const Recorded& x) { return x.frame == frame.frame; });
+    if (r == recorded.end())
+      throw InputError(manifest, "frame " + std::to_string(frame.frame) + " is not on the path");
+    frame.colorMatches =
+        hex(bytesChecksum(std::span<const uint8_t>(r->color))) == expected["color"];
+    frame.needMatches =
+        hex(bytesChecksum(std::span<const glm::uvec4>(r->need))) == expected["need"];
+    frame.qualityMatches = r->quality.rmse == expected["rmse"].get<double>() &&
+                           r->quality.ssim == expected["ssim"].get<double>() &&
+                           r->quality.wssim == expected["wssim"].get<double>();
+    const std::vector<uint8_t> image =
+        readGoldenImage(folder / expected.at("image").get<std::string>(), viewport);
+    std::vector<uint8_t> difference(image.size(), 255);
+    for (size_t p = 0; p < image.size(); p += 4) {
+      int pixelMax = 0;
+      for (size_t c = 0; c < 4; ++c) {
+        const int d = std::abs(int{image[p + c]} - int{r->color[p + c]});
+        pixelMax = std::max(pixelMax, d);
+        if (c < 3) difference[p + c] = static_cast<uint8_t>(std::min(255, d * 16));
+      }
+      frame.pixelsDiffering += pixelMax > 0;
+      frame.maxColorDifference = std::max(frame.maxColorDifference, pixelMax);
+    }
+    frame.passed = exact ? frame.colorMatches && frame.needMatches && frame.qualityMatches
+                         : frame.maxColorDifference <= bound;
+    if (!frame.passed)
+      writeColorImage(
+          report /
+              std::filesystem::path(imageName(frame.frame)).replace_extension(".difference.png"),
+          viewport, difference);
+    frames.push_back({{"frame", frame.frame},
+                      {"color_matches", frame.colorMatches},
+                      {"need_matches", frame.needMatches},
+                      {"quality_matches", frame.qualityMatches},
+                      {"pixels_differing", frame.pixelsDiffering},
+                      {"max_color_difference", frame.maxColorDifference},
+                      {"passed", frame.passed}});
+    check.frames.push_back(frame);
+  }
+  writeFileAtomically(report / "check.json",
+                      nlohmann::json{{"golden", folder.string()},
+                                     {"backend", check.backend},
+                                     {"profile", reference::toString(check.profile)},
+                                     {"color_bound", bound},
+                                     {"passed", check.passed()},
+                                     {"frames", frames}}
+                              .dump(2) +
+                          "\n");
+  return check;
+}
+
+}  // namespace vt

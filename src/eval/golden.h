@@ -1,0 +1,59 @@
+#pragma once
+// Golden images: a flight's frames recorded once and checked later (DESIGN section 5). A golden
+// set is a folder:
+//   golden.json      what was flown (the texture's identity, checksums of the mesh and path files,
+//                    the configuration, screen size, precision profile, every n-th frame) and per
+//                    recorded frame the checksums of its colour and needbuffer (XXH3 of the RGBA8
+//                    bytes, rows bottom to top, and of the needbuffer as 32-bit little-endian
+//                    words) with its RMSE, SSIM and WSSIM against the reference image
+//   frameNNNN.png    each recorded frame's colour, small, for people to look at
+// Checking flies the same configuration again and compares each recorded frame: with the oracle
+// exactly (checksums and metrics to the bit); with the GL path under the llvmpipe profile exactly,
+// under the other profiles the colour within the profile's bound per channel
+// (reference/frame_comparison.h) and the needbuffer not at all (the oracle cannot say which
+// pixels are ambiguous in a cache state it did not draw).
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "eval/flight.h"
+
+namespace vt {
+
+struct GoldenRequest {
+  std::filesystem::path texture, mesh, path;  // the mesh and path files must exist
+  FlightConfiguration configuration;
+  Viewport viewport{160, 100};
+  reference::PrecisionProfile profile = reference::PrecisionProfile::kExact;
+  int every = 25;  // record frames 0, every, 2 every, ...
+};
+
+// Flies and writes the golden set into `folder` (every file through a temporary name).
+void generateGolden(const GoldenRequest& request, const std::filesystem::path& folder);
+
+struct GoldenFrameCheck {
+  int frame = 0;
+  bool colorMatches = false, needMatches = false, qualityMatches = false;
+  uint64_t pixelsDiffering = 0;  // against the golden PNG
+  int maxColorDifference = 0;    // 8-bit units
+  bool passed = false;
+};
+
+struct GoldenCheck {
+  std::string backend;
+  reference::PrecisionProfile profile = reference::PrecisionProfile::kExact;
+  std::vector<GoldenFrameCheck> frames;
+  bool passed() const;
+};
+
+// Flies the golden's flight again with the oracle or (gl = true, a current GL context is the
+// caller's) the GL path and compares. The texture, mesh and path files are the golden's unless
+// given; they must be the same by identity and checksum (InputError otherwise). Writes, for each
+// failed frame, frameNNNN.difference.png (colour difference x 16) into `report` with check.json.
+GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesystem::path& texture,
+                        const std::filesystem::path& mesh, const std::filesystem::path& path,
+                        bool gl, reference::PrecisionProfile glProfile,
+                        const std::filesystem::path& report);
+
+}  // namespace vt

@@ -1,0 +1,192 @@
+#pragma once
+// Crash consistency of a command that writes one output file (README, "Hardening"): the command
+// is killed with SIGKILL at random moments, and after each kill its output path must hold the
+// previous complete file byte for byte (nothing, when there was none) or the complete new file,
+// never a partial one. Files the killed command leaves beside it must carry the temporary name
+// (".<output name>.tmp-XXXXXX<extension>", common/posix_file.h) and must not pass for a complete
+// output unless they are one. `vt build` is checked here; `vt eval` results and golden images
+// fit the same helper: a command line, its output and how a complete output is recognised.
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <random>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli/run_command.h"
+#include "test_support.h"
+
+namespace vt::test {
+
+struct CrashTarget {
+  std::string program;
+  std::vector<std::string> args;  // a command line that writes `output`
+  std::filesystem::path output;
+  // Whether a file passes for a complete output (for a texture: `vt info` accepts it).
+  std::function<bool(const std::filesystem::path&)> accepts;
+  // Whether the uninterrupted command writes the same bytes every time; if not, a complete new
+  // output is recognised by `accepts` alone.
+  bool deterministic = true;
+};
+
+struct CrashRun {
+  double killedAfter = 0.0;  // seconds after the start
+  bool finished = false;     // the command had exited before the kill
+  std::string outcome;       // what the output path held afterwards
+  size_t leftovers = 0;      // temporary files left beside it
+};
+
+struct CrashReport {
+  double fullRunSeconds = 0.0;      // an uninterrupted run
+  double writingFromSeconds = 0.0;  // when it created its first file
+  std::vector<CrashRun> runs;
+  std::vector<std::string> problems;  // empty when consistent
+};
+
+namespace crash {
+
+inline std::optional<std::vector<std::byte>> contents(const std::filesystem::path& path) {
+  if (!std::filesystem::exists(path)) return std::nullopt;
+  return readBytes(path);
+}
+
+inline std::set<std::filesystem::path> filesIn(const std::filesystem::path& folder) {
+  std::set<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) files.insert(entry.path());
+  return files;
+}
+
+// Starts the command (output to `log`), kills it after `delay` unless it has exited; returns
+// whether it had exited (and then its exit code). `watch` is called every 0.2 ms meanwhile.
+inline std::pair<bool, int> runAndKill(const CrashTarget& target, std::chrono::microseconds delay,
+                                       const std::filesystem::path& log,
+                                       const std::function<void()>& watch = {}) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  std::vector<std::string> argv = {target.program};
+  argv.insert(argv.end(), target.args.begin(), target.args.end());
+  std::vector<char*> pointers;
+  for (std::string& arg : argv) pointers.push_back(arg.data());
+  pointers.push_back(nullptr);
+  pid_t pid = 0;
+  const int spawned =
+      posix_spawn(&pid, target.program.c_str(), &actions, nullptr, pointers.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) return {true, -1};
+  // Polls each 0.2 ms, so that a command that exits early is not waited for.
+  const auto deadline = std::chrono::steady_clock::now() + delay;
+  int status = 0;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (waitpid(pid, &status, WNOHANG) == pid)
+      return {true, WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status)};
+    if (watch) watch();
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, &status, 0);
+  // It may have exited between the check and the kill.
+  if (WIFEXITED(status)) return {true, WEXITSTATUS(status)};
+  return {false, 0};
+}
+
+inline void restore(const std::filesystem::path& output,
+                    const std::optional<std::vector<std::byte>>& bytes) {
+  if (bytes)
+    writeBytes(output, *bytes);
+  else
+    std::filesystem::remove(output);
+}
+
+}  // namespace crash
+
+// Runs the command once to completion (it must exit 0), then `kills` times killed after a
+// random moment (std::mt19937 of `seed`): the even-numbered kills anywhere in that run's
+// duration, the odd-numbered ones while it was writing (from the moment a new file appeared
+// beside the output; process start-up can take much of a short run). The output path is
+// restored to its state before each run. The output's folder must hold nothing else that changes
+// meanwhile, and `scratch` (for the command's log) must be another folder.
+inline CrashReport killAtRandomMoments(const CrashTarget& target, int kills, uint32_t seed,
+                                       const std::filesystem::path& scratch) {
+  using Clock = std::chrono::steady_clock;
+  CrashReport report;
+  const std::filesystem::path folder = target.output.parent_path(), log = scratch / "crash.log";
+  const std::string temporaryPrefix = "." + target.output.filename().string() + ".tmp-";
+  const std::optional<std::vector<std::byte>> previous = crash::contents(target.output);
+  const std::set<std::filesystem::path> before = crash::filesIn(folder);
+
+  const auto start = Clock::now();
+  std::optional<double> writingFrom;
+  const auto [finished, exitCode] = crash::runAndKill(target, std::chrono::hours(1), log, [&] {
+    if (!writingFrom && crash::filesIn(folder).size() > before.size())
+      writingFrom = std::chrono::duration<double>(Clock::now() - start).count();
+  });
+  report.fullRunSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+  report.writingFromSeconds = writingFrom.value_or(0.0);
+  const std::optional<std::vector<std::byte>> complete = crash::contents(target.output);
+  if (!finished || exitCode != 0 || !complete || !target.accepts(target.output)) {
+    report.problems.push_back("the uninterrupted run failed (exit " + std::to_string(exitCode) +
+                              "): " + slurp(log));
+    return report;
+  }
+  crash::restore(target.output, previous);
+
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> anytime(0.0, report.fullRunSeconds),
+      writing(report.writingFromSeconds, report.fullRunSeconds);
+  for (int k = 0; k < kills; ++k) {
+    CrashRun run;
+    run.killedAfter = k % 2 == 0 ? anytime(random) : writing(random);
+    const auto [exited, code] = crash::runAndKill(
+        target, std::chrono::microseconds(static_cast<int64_t>(run.killedAfter * 1e6)), log);
+    run.finished = exited;
+    const std::string where =
+        "kill " + std::to_string(k) + " after " + std::to_string(run.killedAfter) + " s: ";
+    if (exited && code != 0)
+      report.problems.push_back(where + "the command failed (exit " + std::to_string(code) + ")");
+
+    // The output path: the previous file, or the complete new one.
+    const std::optional<std::vector<std::byte>> now = crash::contents(target.output);
+    if (now == previous) {
+      run.outcome = previous ? "previous file" : "no file";
+    } else if (now && (target.deterministic ? now == complete : target.accepts(target.output))) {
+      run.outcome = "complete new file";
+    } else {
+      run.outcome = now ? "partial file" : "no file";
+      report.problems.push_back(
+          where + (now ? "the output holds " + std::to_string(now->size()) +
+                             " bytes that are neither the previous nor the complete file" +
+                             (target.accepts(target.output) ? ", and they pass for complete" : "")
+                       : std::string("the previous file is gone")));
+    }
+
+    // Everything else the run left beside the output.
+    for (const std::filesystem::path& file : crash::filesIn(folder)) {
+      if (before.contains(file) || file == target.output) continue;
+      ++run.leftovers;
+      const std::string name = file.filename().string();
+      if (!name.starts_with(temporaryPrefix))
+        report.problems.push_back(where + "left " + name + ", not named as a temporary file");
+      if (target.accepts(file) && (!target.deterministic || crash::contents(file) != complete))
+        report.problems.push_back(where + "left " + name + ", which passes for a complete output");
+      std::filesystem::remove(file);
+    }
+    crash::restore(target.output, previous);
+    report.runs.push_back(run);
+  }
+  return report;
+}
+
+}  // namespace vt::test

@@ -1,0 +1,98 @@
+// `vt build` killed with SIGKILL at random moments (crash_consistency.h): its output path holds
+// the previous texture or the complete new one, never a partial file `vt info` accepts, and what
+// a kill leaves beside it is a hidden temporary file that `vt info` rejects (its header is
+// written last) or, killed between the header and the rename, the complete texture.
+
+#include "cli/crash_consistency.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <iostream>
+#include <vector>
+
+#include "cli/run_command.h"
+#include "common/image_file.h"
+#include "test_support.h"
+
+namespace vt {
+namespace {
+
+// An RGB image of smooth ramps and a fine pattern: quick to write, a build of a few hundred ms.
+void writeTestImage(const std::filesystem::path& path, uint32_t side, uint32_t seed) {
+  std::vector<std::byte> texels(size_t{side} * side * 3);
+  for (uint32_t y = 0; y < side; ++y)
+    for (uint32_t x = 0; x < side; ++x) {
+      std::byte* texel = &texels[(size_t{y} * side + x) * 3];
+      texel[0] = std::byte(static_cast<uint8_t>(x * 255 / side));
+      texel[1] = std::byte(static_cast<uint8_t>(y * 255 / side));
+      texel[2] = std::byte(static_cast<uint8_t>(((x ^ y) + seed) * 37));
+    }
+  writeImage8(path, side, side, 3, texels);
+}
+
+class CrashConsistency : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::filesystem::create_directories(dir_ / "out");
+    std::filesystem::create_directories(dir_ / "log");
+    writeTestImage(dir_ / "large.png", 2048, 1);
+  }
+
+  // `vt build` of the large image to out/texture.vt, a complete output being one `vt info`
+  // opens.
+  test::CrashTarget buildTarget() {
+    test::CrashTarget target;
+    target.program = VT_EXECUTABLE;
+    target.output = dir_ / "out" / "texture.vt";
+    target.args = {
+        "build", (dir_ / "large.png").string(), "-o", target.output.string(), "-q", "--threads",
+        "2"};
+    target.accepts = [this](const std::filesystem::path& file) {
+      return test::runCommand(VT_EXECUTABLE, {"info", file.string()}, dir_.path()).exitCode == 0;
+    };
+    return target;
+  }
+
+  static void expectConsistent(const test::CrashReport& report, int kills) {
+    EXPECT_THAT(report.problems, ::testing::IsEmpty());
+    int killedMidway = 0;
+    size_t leftovers = 0;
+    for (const test::CrashRun& run : report.runs) {
+      killedMidway += !run.finished;
+      leftovers += run.leftovers;
+      std::cout << "killed after " << run.killedAfter << " s: " << run.outcome << ", "
+                << run.leftovers << " temporary file(s) left\n";
+    }
+    std::cout << "uninterrupted run " << report.fullRunSeconds << " s, writing from "
+              << report.writingFromSeconds << " s\n";
+    EXPECT_EQ(report.runs.size(), static_cast<size_t>(kills));
+    // Kills fall uniformly over the run's duration: most land before its end, or nothing is
+    // shown.
+    EXPECT_GE(killedMidway, kills / 2);
+    ::testing::Test::RecordProperty("leftovers", static_cast<int>(leftovers));
+  }
+
+  test::ScratchDirectory dir_;
+};
+
+TEST_F(CrashConsistency, KilledBuildLeavesThePreviousTextureOrTheCompleteNewOne) {
+  // The previous complete file at the output path: another texture.
+  writeTestImage(dir_ / "small.png", 256, 2);
+  const test::CommandResult previous = test::runCommand(
+      VT_EXECUTABLE,
+      {"build", (dir_ / "small.png").string(), "-o", (dir_ / "out" / "texture.vt").string(), "-q"},
+      dir_.path());
+  ASSERT_EQ(previous.exitCode, 0) << previous.err;
+  const test::CrashReport report =
+      test::killAtRandomMoments(buildTarget(), 10, 20261121, dir_ / "log");
+  expectConsistent(report, 10);
+}
+
+TEST_F(CrashConsistency, KilledFirstBuildLeavesNoTextureOrTheCompleteOne) {
+  const test::CrashReport report = test::killAtRandomMoments(buildTarget(), 6, 7, dir_ / "log");
+  expectConsistent(report, 6);
+}
+
+}  // namespace
+}  // namespace vt

@@ -1,0 +1,88 @@
+// `vt eval`: configurations from comma lists or a JSON file with figures, the files it writes,
+// and the errors for configuration files that cannot be run, before anything is flown.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "build/synthetic_texture.h"
+#include "cli/run_command.h"
+#include "test_support.h"
+
+namespace vt {
+namespace {
+
+using ::testing::HasSubstr;
+
+struct Fixture {
+  test::ScratchDirectory dir;
+  Fixture() {
+    writeSyntheticTexture(
+        dir / "t.vt", {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
+  }
+  test::CommandResult eval(std::vector<std::string> args) {
+    args.insert(args.begin(), {"eval", (dir / "t.vt").string(), "--size", "64x40"});
+    return test::runCommand(VT_EXECUTABLE, args, dir.path());
+  }
+};
+
+TEST(EvalCommand, FliesTheProductOfTheListsAndWritesTablesAndPlots) {
+  Fixture f;
+  const auto result = f.eval({"--heuristic", "pixelsum,random", "--budget", "2,4", "--jobs", "2",
+                              "-o", (f.dir / "out").string()});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("evaluated 4 configurations over 51 frames"));
+  std::ifstream csv(f.dir / "out" / "frames.csv");
+  int rows = 0;
+  for (std::string line; std::getline(csv, line);) ++rows;
+  EXPECT_EQ(rows, 1 + 4 * 51);
+  std::ifstream md(f.dir / "out" / "summary.md");
+  const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  for (const char* label :
+       {"| pixelsum 2/frame |", "| pixelsum 4/frame |", "| random 2/frame |", "| random 4/frame |"})
+    EXPECT_THAT(text, HasSubstr(label));
+  for (const char* plot : {"ssim.png", "wssim.png", "rmse.png"})
+    EXPECT_TRUE(std::filesystem::is_regular_file(f.dir / "out" / plot)) << plot;
+}
+
+TEST(EvalCommand, DrawsTheFiguresOfAConfigurationsFile) {
+  Fixture f;
+  std::ofstream(f.dir / "c.json") << R"({"defaults": {"budget": 2},
+    "configurations": [{"name": "A", "heuristic": "pixelsum"}, {"name": "B", "heuristic": "hotspot",
+                        "lookahead": "stopfix"}],
+    "figures": [{"file": "ab.png", "title": "A and B", "measure": "wssim", "runs": ["B", "A"]}]})";
+  const auto result =
+      f.eval({"--configs", (f.dir / "c.json").string(), "-o", (f.dir / "out").string()});
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_TRUE(std::filesystem::is_regular_file(f.dir / "out" / "ab.png"));
+  const nlohmann::json summary = nlohmann::json::parse(std::ifstream(f.dir / "out" / "summary.json"));
+  EXPECT_EQ(summary["runs"][1]["configuration"]["lookahead"], "stopfix");
+  EXPECT_EQ(summary["runs"][1]["configuration"]["budget"], 2);
+}
+
+TEST(EvalCommand, RefusesBadConfigurationFilesBeforeFlying) {
+  Fixture f;
+  const auto refuse = [&](const std::string& text, const std::string& message) {
+    std::ofstream(f.dir / "bad.json") << text;
+    const auto result =
+        f.eval({"--configs", (f.dir / "bad.json").string(), "-o", (f.dir / "out").string()});
+    EXPECT_EQ(result.exitCode, 1) << text;
+    EXPECT_THAT(result.err, HasSubstr("bad.json: " + message));
+    EXPECT_FALSE(std::filesystem::exists(f.dir / "out")) << text;
+  };
+  refuse(R"({"configurations": [{"budgt": 3}]})", "configuration 1: unknown configuration key");
+  refuse(R"({"configurations": [{"name": "A"}, {"name": "A", "budget": 3}]})",
+         "configuration 2: the name 'A' is taken");
+  refuse(R"({"configurations": [{"name": "A"}], "figures": [{"file": "x.png", "runs": ["B"]}]})",
+         "figure 'x.png': no configuration named 'B'");
+  refuse(R"({"configurations": []})", "expected a non-empty list of configurations");
+  refuse(R"({"configurations": [{"budget": 3}])", "not a configurations file");
+  const auto both = f.eval({"--configs", (f.dir / "bad.json").string(), "--budget", "3"});
+  EXPECT_EQ(both.exitCode, 1);
+  EXPECT_THAT(both.err, HasSubstr("give either --configs or --budget"));
+}
+
+}  // namespace
+}  // namespace vt
