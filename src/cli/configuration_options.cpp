@@ -1,10 +1,12 @@
 #include "cli/configuration_options.h"
 
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "cli/size_argument.h"
 #include "common/error.h"
+#include "common/json_text.h"
 #include "scene/box_room.h"
 #include "scene/obj_mesh.h"
 
@@ -94,8 +96,9 @@ FlightConfiguration ConfigurationOptions::configuration() const {
   if (!v.config.empty()) {
     std::ifstream in(v.config);
     if (!in) throw InputError(v.config, "cannot open the configuration");
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     try {
-      base = FlightConfiguration::fromJson(nlohmann::json::parse(in), base);
+      base = FlightConfiguration::fromJson(parseJsonText(text, v.config), base);
     } catch (const nlohmann::json::exception& e) {
       throw InputError(v.config, std::string("not a configuration: ") + e.what());
     } catch (const std::invalid_argument& e) {

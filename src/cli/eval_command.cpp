@@ -11,6 +11,7 @@
 
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -21,6 +22,7 @@
 #include "cli/configuration_options.h"
 #include "cli/size_argument.h"
 #include "common/error.h"
+#include "common/json_text.h"
 #include "common/progress_bar.h"
 #include "eval/evaluation.h"
 #include "eval/evaluation_report.h"
@@ -71,8 +73,9 @@ EvaluationFigure figureOf(const nlohmann::json& entry,
 ConfigurationsFile loadConfigurations(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw InputError(file, "cannot open the configurations");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   try {
-    const nlohmann::json root = nlohmann::json::parse(in);
+    const nlohmann::json root = parseJsonText(text, file);
     FlightConfiguration defaults;
     const nlohmann::json* list = &root;
     if (root.is_object()) {

@@ -9,6 +9,7 @@
 
 #include "common/checksum.h"
 #include "common/error.h"
+#include "common/json_text.h"
 #include "common/posix_file.h"
 #include "eval/flight_records.h"
 #include "format/virtual_texture_reader.h"
@@ -151,19 +152,27 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
   const std::filesystem::path manifest = folder / "golden.json";
   std::ifstream in(manifest);
   if (!in) throw InputError(manifest, "cannot open the golden set");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Whole numbers only: a float converted to int out of its range is undefined.
+  const auto whole = [](const nlohmann::json& value, const char* what) {
+    if (!value.is_number_integer() || value.get<int64_t>() < 0 || value.get<int64_t>() > 1 << 30)
+      throw std::invalid_argument(std::string(what) + " is not a whole number from 0 to 2^30");
+    return static_cast<int>(value.get<int64_t>());
+  };
   nlohmann::json golden;
   FlightConfiguration configuration;
   Viewport viewport;
   reference::PrecisionProfile profile;
   int every = 1;
   try {
-    golden = nlohmann::json::parse(in);
+    golden = parseJsonText(text, manifest);
     if (golden.at("format") != kFormat)
       throw std::invalid_argument("format is not '" + std::string(kFormat) + "'");
     configuration = FlightConfiguration::fromJson(golden.at("configuration"), {});
-    viewport = {golden.at("width").get<int>(), golden.at("height").get<int>()};
+    viewport = {whole(golden.at("width"), "width"), whole(golden.at("height"), "height")};
     profile = reference::parsePrecisionProfile(golden.at("profile").get<std::string>());
-    every = golden.at("every").get<int>();
+    every = whole(golden.at("every"), "every");
+    for (const auto& frame : golden.at("frames")) whole(frame.at("frame"), "a frame number");
     if (every < 1 || viewport.width < 1 || viewport.height < 1 || viewport.width > 16384 ||
         viewport.height > 16384 || golden.at("frames").empty())
       throw std::invalid_argument("size, every or frames out of range");
