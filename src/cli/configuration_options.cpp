@@ -94,11 +94,8 @@ FlightConfiguration ConfigurationOptions::configuration() const {
   const Values& v = *values_;
   FlightConfiguration base;
   if (!v.config.empty()) {
-    std::ifstream in(v.config);
-    if (!in) throw InputError(v.config, "cannot open the configuration");
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     try {
-      base = FlightConfiguration::fromJson(parseJsonText(text, v.config), base);
+      base = FlightConfiguration::fromJson(readJsonFile(v.config, "configuration"), base);
     } catch (const nlohmann::json::exception& e) {
       throw InputError(v.config, std::string("not a configuration: ") + e.what());
     } catch (const std::invalid_argument& e) {

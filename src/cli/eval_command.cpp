@@ -71,11 +71,8 @@ EvaluationFigure figureOf(const nlohmann::json& entry,
 }
 
 ConfigurationsFile loadConfigurations(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file, "cannot open the configurations");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   try {
-    const nlohmann::json root = parseJsonText(text, file);
+    const nlohmann::json root = readJsonFile(file, "configurations");
     FlightConfiguration defaults;
     const nlohmann::json* list = &root;
     if (root.is_object()) {

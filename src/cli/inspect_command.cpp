@@ -82,8 +82,10 @@ void addInspectCommand(CLI::App& app) {
     options.settings.need8 = reader.description().finestLevel() <= 12;
     options.keepAnalysis = true;
     const reference::ResidentTexture everything(reader);
+    // Reference images for the frames shown only.
     options.reference = [&](int frame) {
-      return referenceImage(everything, mesh, path.at(frame), options.settings);
+      return wanted(frame) ? referenceImage(everything, mesh, path.at(frame), options.settings)
+                           : std::vector<uint8_t>{};
     };
     const Viewport screen = options.settings.viewport;
     InspectRun run;

@@ -6,6 +6,8 @@
 // InputError naming the file.
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
@@ -24,6 +26,14 @@ inline nlohmann::json parseJsonText(std::string_view text, const std::filesystem
                                      std::to_string(kMaxJsonDepth) + " levels");
         return true;
       });
+}
+
+// The whole of `file` parsed as above; InputError "cannot open the <what>" when it cannot be read.
+inline nlohmann::json readJsonFile(const std::filesystem::path& file, const std::string& what) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file, "cannot open the " + what);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return parseJsonText(text, file);
 }
 
 }  // namespace vt

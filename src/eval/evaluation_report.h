@@ -21,10 +21,10 @@ namespace vt {
 
 // A figure of chosen runs (a claim of chapter 4 compares a few configurations, not all of them).
 struct EvaluationFigure {
-  std::string file;                // e.g. "basic5.png", in the output folder
+  std::string file;  // e.g. "basic5.png", in the output folder
   std::string title;
-  std::string measure = "ssim";    // ssim, wssim or rmse
-  std::vector<std::string> runs;   // configuration labels, in the legend's order
+  std::string measure = "ssim";   // ssim, wssim or rmse
+  std::vector<std::string> runs;  // configuration labels, in the legend's order
 };
 
 struct EvaluationDescription {

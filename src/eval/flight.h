@@ -48,7 +48,7 @@ struct FlightFrameView {
   std::span<const uint8_t> color;  // RGBA8 rows bottom to top, when asked (wantsColor)
   std::span<const glm::uvec4> need;
   Viewport needViewport;
-  std::span<const uint8_t> reference;  // the reference image, when quality is measured
+  std::span<const uint8_t> reference;  // the reference image, when this frame's quality is measured
   const std::vector<StreamRequest>& requests;
   std::span<const uint64_t> streamed;  // pages that arrive for the next frame
   const VirtualTextureRuntime& runtime;
@@ -61,7 +61,8 @@ struct FlightOptions {
   bool threadedStreaming = false;  // a streaming thread in real time over `link`, not the budget
   LinkModel link;
   // The reference image of a frame (RGBA8, rows bottom to top, the screen's size); when set,
-  // every frame's quality is measured against it.
+  // each frame's quality is measured against it, except where it returns no image (callers that
+  // look at a few frames only draw no reference for the others).
   std::function<std::vector<uint8_t>(int frame)> reference;
   std::function<bool(int frame)> wantsColor;  // also keep the colour when no reference asks it
   std::function<void(const FlightFrameView&)> observe;

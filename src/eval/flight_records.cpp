@@ -37,14 +37,18 @@ nlohmann::json flightTotals(const FlightResult& result) {
                            {"misses", result.totals.misses},
                            {"streamed", result.totals.streamed},
                            {"evicted", result.totals.evicted}};
-  if (result.frames.empty() || !result.frames.front().quality) return totals;
+  // Over the frames whose quality was measured.
   double rmseSum = 0.0, ssimSum = 0.0, wssimSum = 0.0, ssimMin = 1.0;
+  uint64_t measured = 0;
   for (const FlightFrame& frame : result.frames) {
-    const FrameQuality q = frame.quality.value_or(FrameQuality{});
+    if (!frame.quality) continue;
+    const FrameQuality& q = *frame.quality;
     rmseSum += q.rmse, ssimSum += q.ssim, wssimSum += q.wssim;
     ssimMin = std::min(ssimMin, q.ssim);
+    ++measured;
   }
-  const auto frames = static_cast<double>(result.frames.size());
+  if (measured == 0) return totals;
+  const auto frames = static_cast<double>(measured);
   totals["mean_rmse"] = rmseSum / frames;
   totals["mean_ssim"] = ssimSum / frames;
   totals["min_ssim"] = ssimMin;
