@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/resource_limits.h"
+
 namespace vt::reference {
 
 glm::u8vec4 expandToRgba(const std::byte* t, uint32_t channels) {
@@ -21,20 +23,18 @@ glm::u8vec4 expandToRgba(const std::byte* t, uint32_t channels) {
   }
 }
 
-CacheState makeCacheState(const VirtualTextureReader& reader, std::span<const uint64_t> pages,
-                          uint32_t framesX, uint32_t framesY) {
+CacheState placePages(const VirtualTextureReader& reader, std::span<const PlacedPage> pages,
+                      uint32_t framesX, uint32_t framesY) {
   CacheState state;
   state.description = reader.description();
   const TextureDescription& d = state.description;
-  std::vector<uint64_t> resident(pages.begin(), pages.end());
-  if (std::find(resident.begin(), resident.end(), uint64_t{0}) == resident.end())
-    resident.insert(resident.begin(), 0);
-  if (resident.size() > uint64_t{framesX} * framesY)
-    throw std::invalid_argument(std::to_string(resident.size()) + " pages do not fit into " +
-                                std::to_string(framesX) + " x " + std::to_string(framesY) +
-                                " frames");
   const uint32_t side = d.storedPageSide();
-  state.residentPages = resident;
+  if (framesX == 0 || framesY == 0 || uint64_t{framesX} * side > kMaxCacheSideTexels ||
+      uint64_t{framesY} * side > kMaxCacheSideTexels)
+    throw std::invalid_argument(std::to_string(framesX) + " x " + std::to_string(framesY) +
+                                " frames of " + std::to_string(side) +
+                                " texels: the cache texture must have 1 to " +
+                                std::to_string(kMaxCacheSideTexels) + " texels per side");
   state.framesX = framesX;
   state.framesY = framesY;
   state.widthTexels = framesX * side;
@@ -44,15 +44,32 @@ CacheState makeCacheState(const VirtualTextureReader& reader, std::span<const ui
   // Frames: the page's own entry; everything else inherits its parent's, level by level.
   std::vector<std::vector<glm::ivec2>> frameOf(d.levelCount);
   for (uint32_t m = 0; m < d.levelCount; ++m) frameOf[m].assign(pagesInLevel(m), glm::ivec2(-1));
-  for (size_t k = 0; k < resident.size(); ++k) {
-    const PageId page = fromAbsoluteIndex(resident[k]);
-    if (page.level >= d.levelCount || !reader.contains(page))
-      throw std::invalid_argument("page " + std::to_string(resident[k]) + " is not stored");
-    const glm::ivec2 frame(static_cast<int>(k % framesX), static_cast<int>(k / framesX));
-    frameOf[page.level][relativeIndex(page)] = frame;
-    storePage(state, static_cast<uint32_t>(frame.x), static_cast<uint32_t>(frame.y),
-              reader.readPage(page));
+  std::vector<bool> frameTaken(size_t{framesX} * framesY, false);
+  for (const PlacedPage& placed : pages) {
+    const std::string name = "page " + std::to_string(placed.page);
+    if (placed.page >= pageCount(d.levelCount - 1) ||
+        !reader.contains(fromAbsoluteIndex(placed.page)))
+      throw std::invalid_argument(name + " is not stored in the texture");
+    if (placed.frameX >= framesX || placed.frameY >= framesY)
+      throw std::invalid_argument(name + ": frame (" + std::to_string(placed.frameX) + ", " +
+                                  std::to_string(placed.frameY) + ") lies outside the " +
+                                  std::to_string(framesX) + " x " + std::to_string(framesY) +
+                                  " frames");
+    const size_t frame = size_t{placed.frameY} * framesX + placed.frameX;
+    const PageId page = fromAbsoluteIndex(placed.page);
+    if (frameTaken[frame])
+      throw std::invalid_argument(name + ": frame (" + std::to_string(placed.frameX) + ", " +
+                                  std::to_string(placed.frameY) + ") already holds a page");
+    if (frameOf[page.level][relativeIndex(page)].x >= 0)
+      throw std::invalid_argument(name + " is resident twice");
+    frameTaken[frame] = true;
+    frameOf[page.level][relativeIndex(page)] =
+        glm::ivec2(static_cast<int>(placed.frameX), static_cast<int>(placed.frameY));
+    storePage(state, placed.frameX, placed.frameY, reader.readPage(page));
+    state.residentPages.push_back(placed.page);
   }
+  if (frameOf[0][0].x < 0)
+    throw std::invalid_argument("the root page (0) is not resident: every lookup falls back to it");
   state.indirection.resize(d.levelCount);
   for (uint32_t m = 0; m < d.levelCount; ++m) {
     state.indirection[m].resize(pagesInLevel(m));
@@ -64,6 +81,23 @@ CacheState makeCacheState(const VirtualTextureReader& reader, std::span<const ui
     }
   }
   return state;
+}
+
+CacheState makeCacheState(const VirtualTextureReader& reader, std::span<const uint64_t> pages,
+                          uint32_t framesX, uint32_t framesY) {
+  std::vector<uint64_t> resident(pages.begin(), pages.end());
+  if (std::find(resident.begin(), resident.end(), uint64_t{0}) == resident.end())
+    resident.insert(resident.begin(), 0);
+  if (resident.size() > uint64_t{framesX} * framesY)
+    throw std::invalid_argument(std::to_string(resident.size()) + " pages do not fit into " +
+                                std::to_string(framesX) + " x " + std::to_string(framesY) +
+                                " frames");
+  std::vector<PlacedPage> placed;
+  placed.reserve(resident.size());
+  for (size_t k = 0; k < resident.size(); ++k)
+    placed.push_back(
+        {resident[k], static_cast<uint32_t>(k % framesX), static_cast<uint32_t>(k / framesX)});
+  return placePages(reader, placed, framesX, framesY);
 }
 
 void storePage(CacheState& cache, uint32_t frameX, uint32_t frameY,

@@ -31,6 +31,20 @@ struct CacheState {
   }
 };
 
+// A page and the frame that holds it.
+struct PlacedPage {
+  uint64_t page = 0;  // absolute index
+  uint32_t frameX = 0, frameY = 0;
+};
+
+// The cache state that holds `pages` in the frames given (an engine's cache, or the runtime's),
+// read from `reader`, with the indirection table derived from them: every entry names the frame
+// of its page or of the page's nearest resident ancestor. Throws std::invalid_argument when a
+// frame lies outside framesX x framesY, two pages share a frame or a page, a page is not stored,
+// or the root is missing (every lookup falls back to it).
+CacheState placePages(const VirtualTextureReader& reader, std::span<const PlacedPage> pages,
+                      uint32_t framesX, uint32_t framesY);
+
 // Places `pages` (absolute indices; the root is added when missing) into frames in the order
 // given, row by row, reads them from `reader` and builds the indirection table. Throws
 // std::invalid_argument when they do not fit into framesX x framesY frames or a page is not

@@ -51,6 +51,8 @@ FrameComparison compareFrames(const Frame& oracle, std::span<const uint8_t> colo
       } else {
         ++result.mismatched;
         result.needMismatched += !needSame;
+        if (result.mismatchedPixels.size() < kListedMismatches)
+          result.mismatchedPixels.push_back(i);
         shade = {255, 0, 0};
       }
       for (size_t c = 0; c < 3; ++c) result.classificationImage[out + c] = shade[c];

@@ -21,11 +21,16 @@ namespace vt::reference {
 
 int colorBound(PrecisionProfile profile);
 
+inline constexpr size_t kListedMismatches = 1000;
+
 struct FrameComparison {
   uint64_t pixels = 0, identical = 0, flagged = 0, withinBound = 0, mismatched = 0;
   uint64_t needMismatched = 0;     // unflagged pixels whose needbuffer differs
   int maxColorDifference = 0;      // over all pixels, 8-bit units
   double meanColorDifference = 0;  // over all channels of all pixels
+  // The first kListedMismatches mismatched pixels, as indices in the oracle's row order
+  // (py * width + px, window y up), rising.
+  std::vector<uint64_t> mismatchedPixels;
   // Images for people, rows top to bottom: the colour difference scaled by 16, and the
   // classification (black identical, green within bound, yellow flagged, red mismatched).
   std::vector<uint8_t> colorDifferenceImage, classificationImage;

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include "cli/crosscheck_captures.h"
 #include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/image_file.h"
@@ -41,14 +42,22 @@ struct Mode {
 void addCrosscheckCommand(CLI::App& app) {
   struct Options {
     std::string texture, scenes = "all", size = "320x200", profile = "auto", output = "crosscheck";
-    std::string mesh, path;
+    std::string mesh, path, captures;
     int every = 8;
+    unsigned threads = 0;
   };
   auto o = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand(
       "crosscheck",
-      "Render scenes with the oracle and with OpenGL and compare them pixel by pixel");
-  command->add_option("TEXTURE", o->texture, "Virtual-texture file (.vt)")->required();
+      "Render scenes with the oracle and with OpenGL, or read captures of any renderer, and "
+      "compare them pixel by pixel");
+  command->add_option("TEXTURE", o->texture, "Virtual-texture file (.vt); not with --captures");
+  command
+      ->add_option("--captures", o->captures,
+                   "Compare the captures of this folder (frames another renderer drew, "
+                   "reference/validate-your-renderer.md) with the oracle; writes junit.xml too")
+      ->check(CLI::ExistingDirectory);
+  command->add_option("--threads", o->threads, "With --captures: oracle threads (0: every core)");
   std::string names;
   for (const std::string& name : testSceneNames())
     names.append(names.empty() ? "" : ", ").append(name);
@@ -70,6 +79,18 @@ void addCrosscheckCommand(CLI::App& app) {
   command->add_option("-o,--output", o->output, "Folder for summary.json and difference images")
       ->capture_default_str();
   command->callback([o] {
+    if (!o->captures.empty()) {
+      if (!o->texture.empty())
+        throw CLI::ValidationError("TEXTURE", "--captures takes none: each capture names its own");
+      const CapturesCheckOptions options{o->captures, o->output, o->profile, o->threads};
+      if (!crosscheckCaptures(options))
+        throw InputError(o->captures,
+                         "crosscheck found unflagged mismatches or unreadable "
+                         "captures (see " +
+                             (std::filesystem::path(o->output) / "junit.xml").string() + ")");
+      return;
+    }
+    if (o->texture.empty()) throw CLI::ValidationError("TEXTURE", "needed without --captures");
     reference::RenderSettings settings;
     settings.viewport = parseSize(o->size);
     // The views: frames of a path through a mesh, or the named scenes. Bad input fails here,

@@ -11,6 +11,7 @@
 
 #include "cli/commands.h"
 #include "cli/configuration_options.h"
+#include "cli/flight_capture.h"
 #include "cli/size_argument.h"
 #include "common/posix_file.h"
 #include "eval/flight.h"
@@ -28,11 +29,11 @@ void addFlyCommand(CLI::App& app) {
   struct Options {
     FlightSceneArguments scene;
     std::string output = "fly", backend = "oracle";
-    std::string streaming = "budget", profile = "auto";
+    std::string streaming = "budget", profile = "auto", capture;
     double linkLatency = 0.0, linkMegabytes = 0.0;
     bool quality = false;
     unsigned threads = 0;
-    int imagesEvery = 0;
+    int imagesEvery = 0, captureEvery = 1;
   };
   auto o = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand(
@@ -68,6 +69,12 @@ void addFlyCommand(CLI::App& app) {
                     "resident (the oracle's reference image); the flight's run time excludes it");
   command->add_option("--images-every", o->imagesEvery,
                       "Write every n-th frame as an image (0: none)");
+  command->add_option("--capture", o->capture,
+                      "Write frames as captures for `vt crosscheck --captures` into this folder: "
+                      "each drawn again at full resolution from the frame's cache state");
+  command->add_option("--capture-every", o->captureEvery, "With --capture: every n-th frame")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
   command->add_option("-o,--output", o->output, "Output folder")->capture_default_str();
   command->callback([o, configurationOptions] {
     FlightOptions options;
@@ -107,6 +114,17 @@ void addFlyCommand(CLI::App& app) {
         char name[32];
         std::snprintf(name, sizeof name, "frame%04d.png", view.frame);
         writeColorImage(folder / name, options.settings.viewport, view.color);
+      };
+    }
+
+    if (!o->capture.empty()) {
+      std::filesystem::create_directories(o->capture);
+      const std::string renderer =
+          context ? context->renderer()
+                  : "vt oracle (" + reference::toString(options.settings.profile) + ")";
+      options.wantsCapture = [&](int frame) { return frame % o->captureEvery == 0; };
+      options.capture = [&, renderer](const FlightCaptureView& view) {
+        writeFlightCapture(o->capture, view, reader, options.settings, renderer);
       };
     }
 

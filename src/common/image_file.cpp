@@ -31,6 +31,29 @@ void writeImage8(const std::filesystem::path& path, uint32_t width, uint32_t hei
   output.commit();
 }
 
+Image8 readImage8(const std::filesystem::path& path, int maxSide) {
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto input = OIIO::ImageInput::open(path.string(), &config);
+  if (!input) throw InputError(path, "cannot read image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = input->spec();
+  if (spec.format != OIIO::TypeDesc::UINT8)
+    throw InputError(path,
+                     "image has " + std::string(spec.format.c_str()) + " channels, not 8-bit ones");
+  if (spec.width < 1 || spec.height < 1 || spec.width > maxSide || spec.height > maxSide ||
+      spec.nchannels < 1 || spec.nchannels > 4)
+    throw InputError(path, "image is " + std::to_string(spec.width) + " x " +
+                               std::to_string(spec.height) + " with " +
+                               std::to_string(spec.nchannels) + " channels; at most " +
+                               std::to_string(maxSide) + " pixels per side and 4 channels");
+  Image8 image{spec.width, spec.height, spec.nchannels, {}};
+  image.texels.resize(static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) *
+                      static_cast<size_t>(spec.nchannels));
+  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, image.texels.data()))
+    throw InputError(path, "cannot read image: " + input->geterror());
+  return image;
+}
+
 std::optional<ImageHeader> readImageHeader(const std::filesystem::path& path, std::string* error) {
   auto input = OIIO::ImageInput::open(path.string());
   if (!input) {

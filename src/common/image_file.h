@@ -9,12 +9,24 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace vt {
 
 // Rows of `width` texels of `channels` bytes each, top row first.
 void writeImage8(const std::filesystem::path& path, uint32_t width, uint32_t height,
                  uint32_t channels, std::span<const std::byte> texels);
+
+// An 8-bit image as its file stores it, rows top to bottom.
+struct Image8 {
+  int width = 0, height = 0, channels = 0;
+  std::vector<uint8_t> texels;  // width * height * channels
+};
+
+// Reads an image whose channels are 8 bits each, alpha as stored (never premultiplied). Throws
+// InputError naming the file when it cannot be read, is not 8 bits per channel, or is larger than
+// `maxSide` pixels per side (checked before its pixels are allocated).
+Image8 readImage8(const std::filesystem::path& path, int maxSide);
 
 // The size and channels an image file's header states (nothing is decoded).
 struct ImageHeader {

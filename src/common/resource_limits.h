@@ -43,6 +43,12 @@ inline constexpr uint64_t kMaxPackageEntryBytes = uint64_t{256} << 20;
 // rendered, so a path of 2^31 frames would run for years.
 inline constexpr int64_t kMaxCameraPathFrames = 1'000'000;
 
+// Texels per side of a page cache texture, and pixels per side of a captured frame: 16384, the
+// GL_MAX_TEXTURE_SIZE of llvmpipe and of current GPUs. (The flights' default cache, 16 x 16 frames
+// of 136 texels, is 2,176 texels wide.)
+inline constexpr uint64_t kMaxCacheSideTexels = 16384;
+inline constexpr uint64_t kMaxViewportSide = 16384;
+
 // The error for a request beyond a limit: "<file>: <what> asks for <asked><unit>, the limit is
 // <limit><unit>", e.g. what = "header field stored_page_count", unit = " pages".
 inline InputError limitError(const std::filesystem::path& file, const std::string& what,

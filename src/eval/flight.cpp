@@ -43,6 +43,27 @@ class FrameDrawer {
     if (color) pass(camera, settings_.viewport, 0, glm::vec2(0.0f), color, nullptr, nullptr, false);
   }
 
+  // The camera at the screen's resolution with a full-size needbuffer, synchronously: what a
+  // capture records. Leaves the delayed readback of the main pass alone.
+  void capture(const Camera& camera, int frame, const FlightOptions& options) {
+    reference::RenderSettings settings = settings_;
+    settings.needScaleLog2 = 0;
+    const ClipSpaceMesh clip = toClipSpace(mesh_, camera, settings.viewport);
+    std::vector<uint8_t> color;
+    std::vector<glm::uvec4> need;
+    if (gl_) {
+      gl_->uploadCache();
+      GlFrame drawn = gl_->render(clip, settings);
+      color = std::move(drawn.color);
+      need = std::move(drawn.need);
+    } else {
+      reference::Frame drawn = reference::renderFrame(clip, runtime_.cacheState(), settings);
+      color = std::move(drawn.color);
+      need = std::move(drawn.need);
+    }
+    options.capture(FlightCaptureView{frame, clip, color, need, runtime_});
+  }
+
  private:
   void pass(const Camera& camera, Viewport viewport, int scaleLog2, glm::vec2 jitter,
             std::vector<uint8_t>* color, std::vector<glm::uvec4>* need, std::vector<float>* depth,
@@ -165,6 +186,12 @@ FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const Cam
     std::vector<float> depth;
     drawer.draw(current, frameIndex, wantsColor ? &color : nullptr, need,
                 runtime.needsDepth() ? &depth : nullptr, configuration.asyncReadback);
+
+    if (options.capture && options.wantsCapture && options.wantsCapture(frameNumber)) {
+      const auto captureStart = Clock::now();
+      drawer.capture(current, frameNumber, options);
+      result.qualitySeconds += secondsSince(captureStart);
+    }
 
     VirtualTextureRuntime::Prediction prediction;
     prediction.hotSpot = hotSpot(previous, current, needViewport, configuration.hotSpot);

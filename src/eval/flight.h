@@ -55,6 +55,16 @@ struct FlightFrameView {
   const FlightFrame& result;
 };
 
+// A frame drawn again for a capture (vt fly --capture): the current camera at the screen's full
+// resolution, from the cache state the flight drew the frame with, by the flight's backend.
+struct FlightCaptureView {
+  int frame = 0;
+  const ClipSpaceMesh& mesh;
+  std::span<const uint8_t> color;  // RGBA8 rows bottom to top
+  std::span<const glm::uvec4> need;
+  const VirtualTextureRuntime& runtime;
+};
+
 struct FlightOptions {
   reference::RenderSettings settings;  // viewport (the screen), profile, threads, need8
   bool gl = false;  // draw with the GL path (a current context is the caller's), else the oracle
@@ -67,6 +77,9 @@ struct FlightOptions {
   std::function<bool(int frame)> wantsColor;  // also keep the colour when no reference asks it
   std::function<void(const FlightFrameView&)> observe;
   bool keepAnalysis = false;  // let observers ask the runtime for priority terms
+  // Frames to capture and what to do with each; their time counts as quality time, not flight.
+  std::function<bool(int frame)> wantsCapture;
+  std::function<void(const FlightCaptureView&)> capture;
 };
 
 FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const CameraPath& path,

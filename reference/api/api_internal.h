@@ -1,0 +1,44 @@
+#pragma once
+// What the API's implementation shares: the texture behind the public handle, conversions to the
+// oracle's internal types, and the one place where internal exceptions become vt::oracle::Error
+// (the shared library hides the internal exception types; callers catch Error).
+
+#include <memory>
+#include <utility>
+
+#include "format/virtual_texture_reader.h"
+#include "reference/cache_state.h"
+#include "reference/frame.h"
+#include "reference/renderer.h"
+#include "reference/texture_source.h"
+#include "vt/oracle/error.h"
+#include "vt/oracle/render.h"
+#include "vt/oracle/texture.h"
+
+namespace vt::oracle {
+
+struct Texture::Impl {
+  explicit Impl(const std::filesystem::path& path) : reader(path), everything(reader) {}
+  VirtualTextureReader reader;
+  reference::ResidentTexture everything;  // pages decoded on first use, kept
+};
+
+// Runs `work`, turning every exception but Error into Error with the same message.
+template <class Work>
+auto translatingErrors(Work&& work) -> decltype(work()) {
+  try {
+    return std::forward<Work>(work)();
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(e.what());
+  }
+}
+
+reference::PrecisionProfile internalProfile(Profile profile);
+reference::RenderSettings internalSettings(Viewport viewport, const RenderOptions& options);
+ClipSpaceMesh internalMesh(const Scene& scene);
+reference::CacheState internalCache(const VirtualTextureReader& reader, const CacheState& cache);
+Frame publicFrame(reference::Frame&& frame);
+
+}  // namespace vt::oracle

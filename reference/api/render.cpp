@@ -1,0 +1,128 @@
+#include "vt/oracle/render.h"
+
+#include "reference/api/api_internal.h"
+#include "reference/precision_profile.h"
+
+namespace vt::oracle {
+
+reference::PrecisionProfile internalProfile(Profile profile) {
+  switch (profile) {
+    case Profile::kLlvmpipe:
+      return reference::PrecisionProfile::kLlvmpipe;
+    case Profile::kNvidia:
+      return reference::PrecisionProfile::kNvidia;
+    default:
+      return reference::PrecisionProfile::kExact;
+  }
+}
+
+Profile parseProfile(const std::string& name) {
+  if (name == "exact") return Profile::kExact;
+  if (name == "llvmpipe") return Profile::kLlvmpipe;
+  if (name == "nvidia") return Profile::kNvidia;
+  throw Error("unknown precision profile '" + name + "' (exact, llvmpipe or nvidia)");
+}
+
+std::string toString(Profile profile) { return reference::toString(internalProfile(profile)); }
+
+Profile profileForRenderer(const std::string& glRenderer) {
+  switch (reference::profileForRenderer(glRenderer)) {
+    case reference::PrecisionProfile::kLlvmpipe:
+      return Profile::kLlvmpipe;
+    case reference::PrecisionProfile::kNvidia:
+      return Profile::kNvidia;
+    default:
+      return Profile::kExact;
+  }
+}
+
+std::string toString(NeedEncoding encoding) {
+  return encoding == NeedEncoding::k8Bit ? "need8" : "need32";
+}
+std::string toString(Filtering filtering) {
+  return filtering == Filtering::kBilinear ? "bilinear" : "trilinear";
+}
+std::string toString(Sampling sampling) {
+  return sampling == Sampling::kHardwareLinear ? "hardware_linear" : "texel_fetch";
+}
+
+reference::RenderSettings internalSettings(Viewport viewport, const RenderOptions& options) {
+  reference::RenderSettings settings;
+  settings.viewport = {viewport.width, viewport.height};
+  settings.profile = internalProfile(options.profile);
+  settings.trilinear = options.filtering == Filtering::kTrilinear;
+  settings.exactFilter = options.sampling == Sampling::kTexelFetch;
+  settings.need8 = options.needEncoding == NeedEncoding::k8Bit;
+  settings.threads = options.threads;
+  return settings;
+}
+
+ClipSpaceMesh internalMesh(const Scene& scene) {
+  ClipSpaceMesh mesh;
+  mesh.vertices.reserve(scene.vertices.size());
+  for (const ClipVertex& v : scene.vertices)
+    mesh.vertices.push_back({glm::vec4(v.x, v.y, v.z, v.w), glm::vec2(v.s, v.t)});
+  if (!scene.indices.empty()) {
+    if (scene.indices.size() % 3 != 0)
+      throw Error("scene: " + std::to_string(scene.indices.size()) +
+                  " indices are not a whole number of triangles");
+    for (const uint32_t index : scene.indices)
+      if (index >= scene.vertices.size())
+        throw Error("scene: index " + std::to_string(index) + " names no vertex (there are " +
+                    std::to_string(scene.vertices.size()) + ")");
+    mesh.indices = scene.indices;
+  } else {
+    if (scene.vertices.size() % 3 != 0)
+      throw Error("scene: " + std::to_string(scene.vertices.size()) +
+                  " vertices without indices are not a whole number of triangles");
+    for (uint32_t i = 0; i < scene.vertices.size(); ++i) mesh.indices.push_back(i);
+  }
+  return mesh;
+}
+
+reference::CacheState internalCache(const VirtualTextureReader& reader, const CacheState& cache) {
+  std::vector<reference::PlacedPage> placed;
+  placed.reserve(cache.pages.size());
+  for (const ResidentPage& p : cache.pages) {
+    const PageId page{p.x, p.y, p.level};
+    if (!isValid(page))
+      throw Error("cache state: page (" + std::to_string(p.x) + ", " + std::to_string(p.y) +
+                  ") of level " + std::to_string(p.level) + " does not exist");
+    placed.push_back({absoluteIndex(page), p.frameX, p.frameY});
+  }
+  return reference::placePages(reader, placed, cache.framesX, cache.framesY);
+}
+
+Frame publicFrame(reference::Frame&& frame) {
+  Frame result;
+  result.viewport = {frame.viewport.width, frame.viewport.height};
+  result.color = std::move(frame.color);
+  result.need.reserve(frame.need.size() * 4);
+  for (const glm::uvec4& v : frame.need)
+    result.need.insert(result.need.end(), {v.x, v.y, v.z, v.w});
+  result.depth = std::move(frame.depth);
+  result.ambiguity = std::move(frame.ambiguity);
+  return result;
+}
+
+Frame render(const Texture& texture, const Scene& scene, const CacheState& cache,
+             const RenderOptions& options) {
+  return translatingErrors([&] {
+    const Viewport v = scene.viewport;
+    if (v.width < 1 || v.height < 1 || v.width > 16384 || v.height > 16384)
+      throw Error("scene: viewport " + std::to_string(v.width) + " x " + std::to_string(v.height) +
+                  " is not within 1..16384 per side");
+    const VirtualTextureReader& reader = texture.impl().reader;
+    if (options.needEncoding == NeedEncoding::k8Bit && reader.description().finestLevel() > 12)
+      throw Error(reader.path().string() + ": the 8-bit needbuffer names pages of at most 12 " +
+                  "levels below the root; the texture has " +
+                  std::to_string(reader.description().finestLevel()));
+    const ClipSpaceMesh mesh = internalMesh(scene);
+    const reference::RenderSettings settings = internalSettings(v, options);
+    if (cache.allResident)
+      return publicFrame(reference::renderFrame(mesh, texture.impl().everything, settings));
+    return publicFrame(reference::renderFrame(mesh, internalCache(reader, cache), settings));
+  });
+}
+
+}  // namespace vt::oracle

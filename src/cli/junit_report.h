@@ -1,0 +1,27 @@
+#pragma once
+// A JUnit XML report, the format CI systems (GitLab, Jenkins, GitHub test reporters) display:
+// one test suite of test cases, each passed, failed (a check found a difference) or in error (it
+// could not run: a malformed input).
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace vt {
+
+struct JUnitCase {
+  std::string name;
+  double seconds = 0.0;
+  enum class Outcome { kPassed, kFailed, kError } outcome = Outcome::kPassed;
+  std::string message;  // one line, for failures and errors
+  std::string details;  // the body of <failure> or <error>
+};
+
+// Writes the suite `name` through a temporary file renamed into place.
+void writeJUnitReport(const std::filesystem::path& file, const std::string& name,
+                      const std::vector<JUnitCase>& cases);
+
+// Text with &, <, >, " and ' escaped, and control characters XML 1.0 cannot hold replaced by '?'.
+std::string escapeXml(const std::string& text);
+
+}  // namespace vt

@@ -1,0 +1,274 @@
+// The oracle's public API (<vt/oracle.h>): the same frames as the renderer it wraps, comparisons
+// that name the pixel that differs, and captures that round-trip through their files and are
+// refused, with the file and the problem named, when malformed or inconsistent.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "build/synthetic_texture.h"
+#include "reference/renderer.h"
+#include "scene/test_scenes.h"
+#include "test_support.h"
+#include "vt/oracle.h"
+
+namespace vt {
+namespace {
+
+using ::testing::HasSubstr;
+
+const SyntheticTexture kTexture{{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4},
+                                std::nullopt};
+
+oracle::Scene publicScene(const std::string& name, oracle::Viewport viewport) {
+  const NamedScene scene = testScene(name);
+  const ClipSpaceMesh clip =
+      toClipSpace(scene.mesh, scene.camera, {viewport.width, viewport.height});
+  oracle::Scene result{viewport, {}, clip.indices};
+  for (const vt::ClipVertex& v : clip.vertices)
+    result.vertices.push_back(
+        {v.position.x, v.position.y, v.position.z, v.position.w, v.uv.x, v.uv.y});
+  return result;
+}
+
+// The first pixel with geometry that the oracle did not flag as ambiguous.
+size_t firstClearPixel(const oracle::Frame& frame) {
+  for (size_t i = 0; i < frame.ambiguity.size(); ++i)
+    if (frame.ambiguity[i] == 0 && frame.color[i * 4 + 3] != 0) return i;
+  ADD_FAILURE() << "no unflagged pixel with geometry";
+  return 0;
+}
+
+TEST(OracleApi, RendersTheSameFrameAsTheOracleItWraps) {
+  test::ScratchDirectory dir;
+  writeSyntheticTexture(dir / "t.vt", kTexture);
+  const oracle::Texture texture = oracle::Texture::open(dir / "t.vt");
+  EXPECT_EQ(texture.pageSize(), 32u);
+  EXPECT_EQ(texture.levelCount(), 6u);
+  EXPECT_EQ(texture.side(), 1024u);
+  EXPECT_TRUE(texture.contains(5, 31, 31));
+  EXPECT_FALSE(texture.contains(5, 32, 0));
+
+  const oracle::Scene scene = publicScene("room", {96, 64});
+  oracle::RenderOptions options;
+  options.profile = oracle::Profile::kLlvmpipe;
+  options.needEncoding = oracle::NeedEncoding::k8Bit;
+  const oracle::Frame frame =
+      oracle::render(texture, scene, oracle::CacheState::everything(), options);
+
+  const VirtualTextureReader reader(dir / "t.vt");
+  const reference::ResidentTexture everything(reader);
+  reference::RenderSettings settings;
+  settings.viewport = {96, 64};
+  settings.profile = reference::PrecisionProfile::kLlvmpipe;
+  settings.need8 = true;
+  const NamedScene named = testScene("room");
+  const reference::Frame expected = reference::renderFrame(
+      toClipSpace(named.mesh, named.camera, settings.viewport), everything, settings);
+  EXPECT_EQ(frame.color, expected.color);
+  EXPECT_EQ(frame.depth, expected.depth);
+  EXPECT_EQ(frame.ambiguity, expected.ambiguity);
+  ASSERT_EQ(frame.need.size(), expected.need.size() * 4);
+  for (size_t i = 0; i < expected.need.size(); ++i)
+    ASSERT_EQ(glm::uvec4(frame.need[i * 4], frame.need[i * 4 + 1], frame.need[i * 4 + 2],
+                         frame.need[i * 4 + 3]),
+              expected.need[i]);
+}
+
+TEST(OracleApi, CacheStatesAreValidatedAndDriveTheLookup) {
+  test::ScratchDirectory dir;
+  writeSyntheticTexture(dir / "t.vt", kTexture);
+  const oracle::Texture texture = oracle::Texture::open(dir / "t.vt");
+  const oracle::Scene scene = publicScene("room", {64, 48});
+  oracle::CacheState rootOnly{false, 2, 2, {{0, 0, 0, 1, 1}}};
+  const oracle::Frame coarse = oracle::render(texture, scene, rootOnly, {});
+  const oracle::Frame fine = oracle::render(texture, scene, oracle::CacheState::everything(), {});
+  // Needbuffers do not depend on the cache; colours do (only the root's texels are there).
+  EXPECT_EQ(coarse.need, fine.need);
+  EXPECT_NE(coarse.color, fine.color);
+
+  const auto refused = [&](oracle::CacheState cache, const std::string& message) {
+    try {
+      (void)oracle::render(texture, scene, cache, {});
+      ADD_FAILURE() << "accepted: " << message;
+    } catch (const oracle::Error& e) {
+      EXPECT_THAT(e.what(), HasSubstr(message));
+    }
+  };
+  refused({false, 2, 2, {{1, 0, 0, 0, 0}}}, "root page (0) is not resident");
+  refused({false, 2, 2, {{0, 0, 0, 0, 0}, {1, 1, 0, 0, 0}}}, "already holds a page");
+  refused({false, 2, 2, {{0, 0, 0, 2, 0}}}, "lies outside the 2 x 2 frames");
+  refused({false, 2, 2, {{0, 0, 0, 0, 0}, {0, 0, 0, 1, 0}}}, "resident twice");
+  refused({false, 2, 2, {{0, 0, 0, 0, 0}, {6, 0, 0, 1, 0}}}, "not stored in the texture");
+  refused({false, 2, 2, {{0, 0, 0, 0, 0}, {2, 4, 0, 1, 0}}}, "does not exist");
+}
+
+TEST(OracleApi, ComparisonNamesExactlyTheChangedPixel) {
+  test::ScratchDirectory dir;
+  writeSyntheticTexture(dir / "t.vt", kTexture);
+  const oracle::Texture texture = oracle::Texture::open(dir / "t.vt");
+  const oracle::Frame frame = oracle::render(texture, publicScene("grazing", {80, 60}),
+                                             oracle::CacheState::everything(), {});
+  EXPECT_TRUE(oracle::compare(frame, frame.color, frame.need, oracle::Profile::kExact).passed());
+
+  std::vector<uint32_t> need = frame.need;
+  const size_t pixel = firstClearPixel(frame);
+  need[pixel * 4 + 2] += 1;  // another level
+  const oracle::Comparison c = oracle::compare(frame, frame.color, need, oracle::Profile::kExact);
+  EXPECT_FALSE(c.passed());
+  EXPECT_EQ(c.mismatched, 1u);
+  EXPECT_EQ(c.needMismatched, 1u);
+  ASSERT_EQ(c.mismatches.size(), 1u);
+  EXPECT_EQ(c.mismatches[0].x, static_cast<int>(pixel % 80));
+  EXPECT_EQ(c.mismatches[0].y, static_cast<int>(pixel / 80));
+  EXPECT_EQ(c.mismatches[0].actualNeed[2], frame.need[pixel * 4 + 2] + 1);
+
+  // A colour difference within the exact profile's bound of 4 passes; 5 does not.
+  std::vector<uint8_t> color = frame.color;
+  color[pixel * 4] =
+      static_cast<uint8_t>(color[pixel * 4] < 128 ? color[pixel * 4] + 4 : color[pixel * 4] - 4);
+  EXPECT_EQ(oracle::compare(frame, color, frame.need, oracle::Profile::kExact).withinBound, 1u);
+  EXPECT_EQ(oracle::compare(frame, color, frame.need, oracle::Profile::kLlvmpipe).mismatched, 1u);
+  EXPECT_THROW(
+      oracle::compare(frame, std::span(color).first(8), frame.need, oracle::Profile::kExact),
+      oracle::Error);
+}
+
+// A capture of the oracle's own frame, written and read back.
+struct CaptureFixture {
+  test::ScratchDirectory dir;
+  std::filesystem::path manifest;
+  oracle::Capture capture;
+
+  explicit CaptureFixture(oracle::NeedEncoding encoding) {
+    writeSyntheticTexture(dir / "t.vt", kTexture);
+    const oracle::Texture texture = oracle::Texture::open(dir / "t.vt");
+    capture.renderer = "test renderer";
+    capture.texture = dir / "t.vt";
+    capture.textureIdentity = texture.identity();
+    capture.scene = publicScene("minified", {72, 40});
+    capture.cache = {false, 4, 4, {{0, 0, 0, 3, 3}, {1, 0, 0, 0, 0}, {1, 1, 1, 2, 1}}};
+    capture.needEncoding = encoding;
+    const oracle::Frame frame =
+        oracle::render(texture, capture.scene, capture.cache,
+                       oracle::renderOptions(capture, oracle::Profile::kExact));
+    capture.color = frame.color;
+    capture.need = frame.need;
+    std::filesystem::create_directories(dir / "captures");
+    manifest = dir / "captures" / "frame0000.json";
+    oracle::writeCapture(manifest, capture);
+  }
+
+  nlohmann::json manifestJson() const {
+    std::ifstream in(manifest);
+    return nlohmann::json::parse(in);
+  }
+  void rewrite(const nlohmann::json& json) const { std::ofstream(manifest) << json.dump(2); }
+};
+
+TEST(OracleApi, CapturesRoundTripThroughTheirFiles) {
+  for (const oracle::NeedEncoding encoding :
+       {oracle::NeedEncoding::k32Bit, oracle::NeedEncoding::k8Bit}) {
+    SCOPED_TRACE(oracle::toString(encoding));
+    CaptureFixture f(encoding);
+    const oracle::Capture read = oracle::readCapture(f.manifest);
+    EXPECT_EQ(read.renderer, "test renderer");
+    EXPECT_EQ(std::filesystem::canonical(read.texture), std::filesystem::canonical(f.dir / "t.vt"));
+    EXPECT_EQ(f.manifestJson()["texture"]["file"], "../t.vt");
+    EXPECT_EQ(read.textureIdentity, f.capture.textureIdentity);
+    EXPECT_EQ(read.needEncoding, encoding);
+    EXPECT_EQ(read.scene.vertices.size(), f.capture.scene.vertices.size());
+    EXPECT_EQ(0, std::memcmp(read.scene.vertices.data(), f.capture.scene.vertices.data(),
+                             read.scene.vertices.size() * sizeof(oracle::ClipVertex)));
+    EXPECT_EQ(read.scene.indices, f.capture.scene.indices);
+    EXPECT_EQ(read.cache.pages.size(), 3u);
+    EXPECT_EQ(read.cache.pages[2].frameX, 2u);
+    EXPECT_EQ(read.color, f.capture.color);
+    EXPECT_EQ(read.need, f.capture.need);
+    const oracle::CaptureCheck check =
+        oracle::checkCapture(read, oracle::Texture::open(read.texture), oracle::Profile::kExact);
+    EXPECT_EQ(check.comparison.identical, 72u * 40u);
+  }
+}
+
+TEST(OracleApi, MalformedOrInconsistentCapturesAreRefusedWithTheFileNamed) {
+  const auto refused = [](const std::filesystem::path& manifest, const std::string& message) {
+    try {
+      (void)oracle::readCapture(manifest);
+      ADD_FAILURE() << "accepted: " << message;
+    } catch (const oracle::Error& e) {
+      EXPECT_THAT(e.what(), HasSubstr(message));
+    }
+  };
+  const auto edited = [&](auto edit, const std::string& message) {
+    CaptureFixture f(oracle::NeedEncoding::k32Bit);
+    nlohmann::json json = f.manifestJson();
+    edit(json, f);
+    f.rewrite(json);
+    SCOPED_TRACE(message);
+    refused(f.manifest, message);
+  };
+  using J = nlohmann::json;
+  using F = const CaptureFixture&;
+  edited([](J& j, F) { j["needbuffer_encoding"] = "need16"; },
+         "\"needbuffer_encoding\" is \"need16\", not one of need32, need8");
+  edited([](J& j, F) { j["viewport"]["height"] = 41; },
+         "image is 72 x 40 with 4 channels, the viewport 72 x 41 RGBA");
+  edited(
+      [](J&, F f) {
+        std::vector<std::byte> need = test::readBytes(f.dir / "captures" / "frame0000.need.u32");
+        need.resize(need.size() - 16);
+        test::writeBytes(f.dir / "captures" / "frame0000.need.u32", need);
+      },
+      "holds 46064 bytes, the manifest asks for 46080");
+  edited([](J& j, F) { j["version"] = 2; }, "has version 2; this oracle reads version 1");
+  edited([](J& j, F) { j.erase("filtering"); }, "manifest has no \"filtering\"");
+  edited([](J& j, F) { j["sampling"] = 3; }, "\"sampling\" is not a string");
+  edited([](J& j, F) { j["colour"] = "x.png"; }, "unknown field \"colour\"");
+  edited([](J& j, F) { j["texture"]["identity"] = "xyz"; }, "not 16 hexadecimal digits");
+  edited([](J& j, F) { j["geometry"]["vertices"] = "../../etc/passwd"; }, "without \"..\"");
+  edited([](J& j, F) { j["geometry"]["index_count"] = 7; }, "holds");
+  edited([](J& j, F) { j["geometry"]["vertex_count"] = uint64_t{1} << 40; }, "the limit is");
+  edited(
+      [](J& j, F) {
+        j["cache"]["pages"][0] = J::array({0, 0, 0});
+      },
+      "is not [level, px, py, frame_x, frame_y]");
+  edited([](J& j, F) { j["cache"]["frames_x"] = 0; }, "has no frames");
+  edited([](J&, F f) { std::filesystem::remove(f.dir / "captures" / "frame0000.color.png"); },
+         "frame0000.color.png");
+  {
+    CaptureFixture f(oracle::NeedEncoding::k32Bit);
+    std::ofstream(f.manifest) << "{\"format\": \"vt-capture\", ";
+    refused(f.manifest, "frame0000.json: [json.exception.parse_error");
+  }
+  {
+    // Indices that name no vertex.
+    CaptureFixture f(oracle::NeedEncoding::k32Bit);
+    std::vector<std::byte> indices = test::readBytes(f.dir / "captures" / "frame0000.indices.u32");
+    indices[0] = std::byte{0xff};
+    indices[1] = std::byte{0xff};
+    test::writeBytes(f.dir / "captures" / "frame0000.indices.u32", indices);
+    refused(f.manifest, "names no vertex");
+  }
+  {
+    // Another texture than the one the frame was drawn from.
+    CaptureFixture f(oracle::NeedEncoding::k32Bit);
+    SyntheticTexture other = kTexture;
+    other.description.levelCount = 5;
+    writeSyntheticTexture(f.dir / "t.vt", other);
+    const oracle::Capture capture = oracle::readCapture(f.manifest);
+    try {
+      (void)oracle::checkCapture(capture, oracle::Texture::open(capture.texture),
+                                 oracle::Profile::kExact);
+      ADD_FAILURE() << "accepted another texture";
+    } catch (const oracle::Error& e) {
+      EXPECT_THAT(e.what(), HasSubstr("does not match the capture's"));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace vt
