@@ -1,0 +1,135 @@
+// Captures round-trip: `vt fly --backend gl --capture` writes what the GL path drew, with its
+// cache state, and `vt crosscheck --captures` validates every frame against the oracle, reporting
+// to JUnit XML; a capture with one needbuffer pixel changed is reported with exactly that pixel.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "build/synthetic_texture.h"
+#include "cli/run_command.h"
+#include "openarena_data.h"
+#include "test_support.h"
+#include "vt/oracle.h"
+
+namespace vt {
+namespace {
+
+using ::testing::HasSubstr;
+
+nlohmann::json readJson(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+std::string readText(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+test::CommandResult crosscheck(const test::ScratchDirectory& dir, const std::string& out) {
+  return test::runCommand(VT_EXECUTABLE,
+                          {"crosscheck", "--captures", (dir / "captures").string(), "-o",
+                           (dir / out).string()},
+                          dir.path());
+}
+
+// Flies with the GL path, capturing every `every`-th frame, then checks the captures pass.
+void flyCaptureAndCheck(const test::ScratchDirectory& dir, std::vector<std::string> fly,
+                        size_t expectedCaptures) {
+  fly.insert(fly.end(), {"--backend", "gl", "--capture", (dir / "captures").string(), "-o",
+                         (dir / "fly").string()});
+  const test::CommandResult flown = test::runCommand(VT_EXECUTABLE, fly, dir.path());
+  ASSERT_EQ(flown.exitCode, 0) << flown.out << flown.err;
+  ASSERT_EQ(oracle::findCaptures(dir / "captures").size(), expectedCaptures);
+
+  const test::CommandResult checked = crosscheck(dir, "check");
+  std::cout << checked.out;
+  EXPECT_EQ(checked.exitCode, 0) << checked.out << checked.err;
+  EXPECT_THAT(checked.out, HasSubstr(" 0 mismatched, 0 of " + std::to_string(expectedCaptures) +
+                                     " captures unreadable: passed"));
+  const nlohmann::json summary = readJson(dir / "check" / "summary.json");
+  EXPECT_TRUE(summary["passed"].get<bool>());
+  EXPECT_EQ(summary["frames"].size(), expectedCaptures);
+  EXPECT_GT(summary["totals"]["identical"].get<uint64_t>(), 0u);
+  const std::string junit = readText(dir / "check" / "junit.xml");
+  EXPECT_THAT(junit, HasSubstr("tests=\"" + std::to_string(expectedCaptures) +
+                               "\" failures=\"0\" errors=\"0\""));
+  EXPECT_THAT(junit, HasSubstr("<testcase classname="));
+}
+
+TEST(CaptureCrosscheck, GlCapturesMatchTheOracleAndOneChangedNeedPixelIsReportedAlone) {
+  test::ScratchDirectory dir;
+  writeSyntheticTexture(
+      dir / "t.vt", {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
+  // A small LRU cache that keeps evicting: the captured cache states are partial.
+  ASSERT_NO_FATAL_FAILURE(flyCaptureAndCheck(dir,
+                                             {"fly", (dir / "t.vt").string(), "--size", "128x80",
+                                              "--budget", "4", "--cache-frames", "6",
+                                              "--capture-every", "10"},
+                                             6));
+  const nlohmann::json manifest = readJson(dir / "captures" / "frame0040.json");
+  EXPECT_FALSE(manifest["cache"]["all_resident"].get<bool>());
+  EXPECT_EQ(manifest["cache"]["pages"].size(), 36u);  // every frame of 6 x 6 taken
+
+  // Change the needbuffer of one pixel that the oracle does not flag.
+  const std::filesystem::path file = dir / "captures" / "frame0030.json";
+  oracle::Capture capture = oracle::readCapture(file);
+  const oracle::CaptureCheck check =
+      oracle::checkCapture(capture, oracle::Texture::open(capture.texture), oracle::Profile::kExact);
+  size_t pixel = 0;
+  while (check.oracle.ambiguity[pixel] != 0 || capture.color[pixel * 4 + 3] == 0) ++pixel;
+  capture.need[pixel * 4] ^= 1;  // the neighbouring page
+  oracle::writeCapture(file, capture);
+
+  const test::CommandResult checked = crosscheck(dir, "corrupted");
+  EXPECT_EQ(checked.exitCode, 1) << checked.out << checked.err;
+  EXPECT_THAT(checked.out, HasSubstr("frame0030"));
+  EXPECT_THAT(checked.out, HasSubstr(" 1 mismatched, 0 of 6 captures unreadable: FAILED"));
+  const nlohmann::json summary = readJson(dir / "corrupted" / "summary.json");
+  EXPECT_FALSE(summary["passed"].get<bool>());
+  for (const nlohmann::json& frame : summary["frames"]) {
+    const bool corrupted = frame["capture"] == "frame0030.json";
+    EXPECT_EQ(frame["mismatched"].get<uint64_t>(), corrupted ? 1u : 0u) << frame["capture"];
+    if (!corrupted) continue;
+    ASSERT_EQ(frame["mismatched_pixels"].size(), 1u);
+    const nlohmann::json& reported = frame["mismatched_pixels"][0];
+    EXPECT_EQ(reported["x"].get<size_t>(), pixel % 128);
+    EXPECT_EQ(reported["y"].get<size_t>(), pixel / 128);
+    EXPECT_EQ(reported["image_row"].get<size_t>(), 79 - pixel / 128);
+    EXPECT_EQ(reported["actual_need"][0].get<uint32_t>(), capture.need[pixel * 4]);
+  }
+  const std::string junit = readText(dir / "corrupted" / "junit.xml");
+  EXPECT_THAT(junit, HasSubstr("tests=\"6\" failures=\"1\" errors=\"0\""));
+  EXPECT_THAT(junit, HasSubstr("<failure message=\"1 mismatched pixels (1 in the needbuffer)\""));
+  EXPECT_THAT(junit, HasSubstr("pixel (" + std::to_string(pixel % 128) + ", " +
+                               std::to_string(pixel / 128) + ")"));
+
+  // A malformed capture is an error of its own test case; the others are still checked.
+  std::ofstream(dir / "captures" / "frame0050.json") << "{}";
+  const test::CommandResult broken = crosscheck(dir, "broken");
+  EXPECT_EQ(broken.exitCode, 1);
+  EXPECT_THAT(broken.err, HasSubstr("frame0050.json: manifest has no \"format\""));
+  EXPECT_THAT(readText(dir / "broken" / "junit.xml"),
+              HasSubstr("tests=\"6\" failures=\"1\" errors=\"1\""));
+}
+
+TEST(CaptureCrosscheck, Q3dm6ishGlCapturesMatchTheOracle) {
+  VT_REQUIRE_OPENARENA(packages);
+  test::ScratchDirectory dir;
+  ASSERT_NO_FATAL_FAILURE(test::retextureAndBuildQ3dm6ish(*packages, dir.path()));
+  // The first five keyframes of the viewpoint tour: a turn at the first spawn point, 97 frames.
+  nlohmann::json path = readJson(dir / "q3" / "q3dm6ish.path.json");
+  path["keyframes"].erase(path["keyframes"].begin() + 5, path["keyframes"].end());
+  std::ofstream(dir / "turn.json") << path.dump();
+  ASSERT_NO_FATAL_FAILURE(flyCaptureAndCheck(
+      dir,
+      {"fly", (dir / "q3.vt").string(), "--mesh", (dir / "q3" / "q3dm6ish.obj").string(), "--path",
+       (dir / "turn.json").string(), "--size", "200x120", "--capture-every", "12"},
+      9));
+}
+
+}  // namespace
+}  // namespace vt
