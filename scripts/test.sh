@@ -25,18 +25,26 @@ export VT_OPENARENA_DIR
 export LP_NUM_THREADS=${LP_NUM_THREADS:-2}
 export EGL_PLATFORM=surfaceless
 
-run_suite() {  # build folder, extra cmake arguments...
-  local folder=$1
-  shift
+run_suite() {  # build folder, tests to leave out (a ctest regex, or ''), extra cmake arguments...
+  local folder=$1 exclude=$2
+  shift 2
   echo "== configure and build $folder"
   cmake -S . -B "$folder" -G Ninja -DCMAKE_BUILD_TYPE=Release -DVT_WARNINGS_AS_ERRORS=ON \
     -DVT_BUILD_BENCHMARKS=ON "$@"
   cmake --build "$folder" --parallel "$jobs"
   echo "== test $folder"
-  ctest --test-dir "$folder" --output-on-failure --parallel "$jobs" --timeout 600
+  ctest --test-dir "$folder" --output-on-failure --parallel "$jobs" --timeout 600 \
+    ${exclude:+-E "$exclude"}
 }
 
-run_suite build
+run_suite build ''
+
+# Left out of the sanitizer pass, to keep CI within its time: the tests that retexture and build
+# q3dm6ish again for their own flights (one retexturing test of it stays), the SIGKILL tests
+# (they check files, not memory) and the demo. Each runs in the Release pass above; the parsers
+# they read with are fuzzed under AddressSanitizer.
+sanitizer_exclude='^(Q3dm6ish|GoldenBackend\.|CaptureCrosscheck\.Q3dm6ish|CrosscheckCommand\.Q3dm6ish|OpenArena/StoryboardPaths\.|OpenArenaMap\.OursWastes|CrashConsistency\.|DemoCommand\.)'
+
 if ((sanitizers)); then
   # libFuzzer on every input parser, 60 s each, two at a time (seeds from the Release vt above).
   VT_EXECUTABLE=build/src/vt bash scripts/fuzz.sh
@@ -58,5 +66,5 @@ if ((sanitizers)); then
   # Leak checking stays on for our code (the GL tests turn it off: tests/CMakeLists.txt says why).
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-  run_suite build-sanitize -DVT_SANITIZE=ON -DVT_BUILD_BENCHMARKS=OFF
+  run_suite build-sanitize "$sanitizer_exclude" -DVT_SANITIZE=ON -DVT_BUILD_BENCHMARKS=OFF
 fi

@@ -41,6 +41,8 @@ TEST(FlyBackend, GlAndOracleStreamTheSamePagesWithDistanceReducedNeedbuffersAndA
                                           "plain",
                                           "--need-scale",
                                           needScale,
+                                          "--readback",
+                                          readback,
                                           "-o",
                                           out},
                                          dir.path());
