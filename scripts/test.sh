@@ -43,7 +43,7 @@ run_suite build ''
 # q3dm6ish again for their own flights (one retexturing test of it stays), the SIGKILL tests
 # (they check files, not memory) and the demo. Each runs in the Release pass above; the parsers
 # they read with are fuzzed under AddressSanitizer.
-sanitizer_exclude='^(Q3dm6ish|GoldenBackend\.|CaptureCrosscheck\.Q3dm6ish|CrosscheckCommand\.Q3dm6ish|OpenArena/StoryboardPaths\.|OpenArenaMap\.OursWastes|CrashConsistency\.|DemoCommand\.)'
+sanitizer_exclude='^(Q3dm6ish|GoldenBackend\.TheGlPathPassesQ3dm6ish|CaptureCrosscheck\.Q3dm6ish|CrosscheckCommand\.Q3dm6ish|OpenArena/StoryboardPaths\.|OpenArenaMap\.OursWastes|CrashConsistency\.|DemoCommand\.)'
 
 if ((sanitizers)); then
   # libFuzzer on every input parser, 60 s each, two at a time (seeds from the Release vt above).
