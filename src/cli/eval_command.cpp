@@ -23,6 +23,7 @@
 #include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/json_text.h"
+#include "common/posix_file.h"
 #include "common/progress_bar.h"
 #include "eval/evaluation.h"
 #include "eval/evaluation_report.h"
@@ -193,6 +194,8 @@ void addEvalCommand(CLI::App& app) {
                 }
     }
 
+    // The results replace the output folder: refuse one with other files before flying.
+    TemporaryFolder::requireReplaceable(o->output, "summary.json");
     EvaluationOptions options;
     options.settings.viewport = parseSize(o->scene.size);
     options.settings.need8 = reader.description().finestLevel() <= 12;

@@ -1,10 +1,12 @@
 #include "common/posix_file.h"
 
 #include <fcntl.h>
+#include <stdio.h>  // renameat2
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -133,6 +135,86 @@ void TemporaryFile::commit() {
   file_.sync();
   if (::rename(file_.path().c_str(), destination_.c_str()) != 0)
     throwSystemError(destination_, "cannot rename " + file_.path().string() + " to it");
+  committed_ = true;
+  syncDirectory(destination_);
+}
+
+namespace {
+
+// The folder itself when `destination` ends in a separator or is ".".
+std::filesystem::path folderPath(const std::filesystem::path& destination) {
+  std::filesystem::path path = std::filesystem::absolute(destination).lexically_normal();
+  if (!path.has_filename()) path = path.parent_path();
+  return path;
+}
+
+}  // namespace
+
+void TemporaryFolder::requireReplaceable(const std::filesystem::path& destination,
+                                         const std::string& marker) {
+  const std::filesystem::path folder = folderPath(destination);
+  std::error_code error;
+  if (!std::filesystem::exists(folder, error)) return;
+  if (!std::filesystem::is_directory(folder))
+    throw InputError(destination, "is a file, not a folder for the output");
+  if (!std::filesystem::is_empty(folder) && !std::filesystem::exists(folder / marker))
+    throw InputError(destination, "holds files but no " + marker +
+                                      ": not a previous output; give a new or empty folder (its "
+                                      "content would be replaced)");
+}
+
+TemporaryFolder::TemporaryFolder(const std::filesystem::path& destination,
+                                 const std::string& marker)
+    : destination_(folderPath(destination)) {
+  requireReplaceable(destination, marker);
+  std::filesystem::create_directories(destination_.parent_path());
+  std::string name = ".";  // built by appends: GCC 12 warns falsely on "." + std::string
+  name.append(destination_.filename().string()).append(".tmp-XXXXXX");
+  std::string folder = (destination_.parent_path() / name).string();
+  if (::mkdtemp(folder.data()) == nullptr)
+    throwSystemError(destination, "cannot create a temporary folder next to it");
+  path_ = folder;
+  // mkdtemp creates the folder 0700; give it the permissions an ordinary new folder would get.
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  ::chmod(path_.c_str(), 0777 & ~mask);
+}
+
+TemporaryFolder::~TemporaryFolder() {
+  std::error_code ignored;
+  if (!committed_) std::filesystem::remove_all(path_, ignored);
+}
+
+void TemporaryFolder::commit() {
+  const int fd = ::open(path_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd >= 0) {
+    ::fsync(fd);
+    ::close(fd);
+  }
+  std::error_code error;
+  if (std::filesystem::exists(destination_, error)) {
+    // Swap, so the destination is never missing; the previous output then lies at path_.
+    if (::renameat2(AT_FDCWD, path_.c_str(), AT_FDCWD, destination_.c_str(), RENAME_EXCHANGE) !=
+        0) {
+      if (errno != EINVAL && errno != ENOSYS)
+        throwSystemError(destination_, "cannot exchange it with " + path_.string());
+      // A file system without the exchange: move the previous folder aside first.
+      std::string aside = ".";
+      aside.append(destination_.filename().string()).append(".tmp-XXXXXX");
+      std::string previous = (destination_.parent_path() / aside).string();
+      if (::mkdtemp(previous.data()) == nullptr ||
+          ::rename(destination_.c_str(), previous.c_str()) != 0 ||
+          ::rename(path_.c_str(), destination_.c_str()) != 0)
+        throwSystemError(destination_, "cannot replace it with " + path_.string());
+      path_ = previous;
+    }
+    committed_ = true;
+    syncDirectory(destination_);
+    std::filesystem::remove_all(path_, error);
+    return;
+  }
+  if (::rename(path_.c_str(), destination_.c_str()) != 0)
+    throwSystemError(destination_, "cannot rename " + path_.string() + " to it");
   committed_ = true;
   syncDirectory(destination_);
 }

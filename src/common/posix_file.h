@@ -59,6 +59,35 @@ class TemporaryFile {
   bool committed_ = false;
 };
 
+// A new folder next to `destination` ("<parent>/.<name>.tmp-XXXXXX") that takes its place on
+// commit(), for outputs of several files (evaluation results, golden sets): readers of
+// `destination` see the previous folder or the complete new one, never a mix. commit() exchanges
+// the two atomically (renameat2 with RENAME_EXCHANGE, or a plain rename when there was none) and
+// then removes the previous folder. Destroyed before commit(), it removes the new folder.
+//
+// Replacing a folder removes what it held, so a destination that exists must be an empty folder
+// or a previous output of the same kind, recognised by `marker`, a file every such output holds:
+// anything else is refused with InputError before any work is done.
+class TemporaryFolder {
+ public:
+  // Throws InputError when `destination` is a file, or a folder that is neither empty nor holds
+  // `marker`: for commands that check their output folder before long work.
+  static void requireReplaceable(const std::filesystem::path& destination,
+                                 const std::string& marker);
+
+  TemporaryFolder(const std::filesystem::path& destination, const std::string& marker);
+  TemporaryFolder(const TemporaryFolder&) = delete;
+  TemporaryFolder& operator=(const TemporaryFolder&) = delete;
+  ~TemporaryFolder();
+
+  const std::filesystem::path& path() const { return path_; }
+  void commit();
+
+ private:
+  std::filesystem::path destination_, path_;
+  bool committed_ = false;
+};
+
 }  // namespace vt
 
 namespace vt {

@@ -151,10 +151,13 @@ LinePlot qualityPlot(const std::string& title, const std::string& measure, const
 
 }  // namespace
 
-void writeEvaluation(const std::filesystem::path& folder, const EvaluationDescription& description,
-                     const CameraPath& path, const reference::RenderSettings& settings,
-                     const Evaluation& evaluation) {
-  std::filesystem::create_directories(folder);
+void writeEvaluation(const std::filesystem::path& destination,
+                     const EvaluationDescription& description, const CameraPath& path,
+                     const reference::RenderSettings& settings, const Evaluation& evaluation) {
+  // Written whole into a temporary folder that then replaces `folder`: a previous evaluation
+  // there stays complete until the new one is.
+  TemporaryFolder staging(destination, "summary.json");
+  const std::filesystem::path& folder = staging.path();
   writeFileAtomically(folder / "frames.csv", framesCsv(evaluation));
   const nlohmann::json summary = summaryJson(description, path, settings, evaluation);
   writeFileAtomically(folder / "summary.json", summary.dump(2) + "\n");
@@ -177,6 +180,7 @@ void writeEvaluation(const std::filesystem::path& folder, const EvaluationDescri
                                                             : &FrameQuality::ssim,
                                                     figure.runs));
   }
+  staging.commit();
 }
 
 }  // namespace vt

@@ -104,15 +104,17 @@ std::vector<Recorded> flyAndRecord(const VirtualTextureReader& reader, const Mes
 
 }  // namespace
 
-void generateGolden(const GoldenRequest& request, const std::filesystem::path& folder) {
+void generateGolden(const GoldenRequest& request, const std::filesystem::path& destination) {
   if (request.every < 1) throw std::invalid_argument("golden: --every must be at least 1");
   const VirtualTextureReader reader(request.texture);
   const Mesh mesh = loadObjMesh(request.mesh);
   const CameraPath path = CameraPath::load(request.path);
+  // The set is written into a temporary folder that replaces `destination` once complete.
+  TemporaryFolder staging(destination, "golden.json");
+  const std::filesystem::path& folder = staging.path();
   const std::vector<Recorded> recorded =
       flyAndRecord(reader, mesh, path, request.configuration, request.viewport, request.profile,
                    request.every, false);
-  std::filesystem::create_directories(folder);
   nlohmann::json frames = nlohmann::json::array();
   for (const Recorded& r : recorded) {
     writeColorImage(folder / imageName(r.frame), request.viewport, r.color);
@@ -138,6 +140,7 @@ void generateGolden(const GoldenRequest& request, const std::filesystem::path& f
                                  {"every", request.every},
                                  {"frames", frames}};
   writeFileAtomically(folder / "golden.json", golden.dump(1) + "\n");
+  staging.commit();
 }
 
 bool GoldenCheck::passed() const {
@@ -150,7 +153,7 @@ bool GoldenCheck::passed() const {
 GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesystem::path& texture,
                         const std::filesystem::path& mesh, const std::filesystem::path& path,
                         bool gl, reference::PrecisionProfile glProfile,
-                        const std::filesystem::path& report) {
+                        const std::filesystem::path& reportFolder) {
   const std::filesystem::path manifest = folder / "golden.json";
   // Whole numbers only: a float converted to int out of its range is undefined.
   const auto whole = [](const nlohmann::json& value, const char* what) {
@@ -195,12 +198,13 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
   GoldenCheck check;
   check.backend = gl ? "gl" : "oracle";
   check.profile = gl ? glProfile : profile;
+  TemporaryFolder staging(reportFolder, "check.json");  // replaces the report once complete
+  const std::filesystem::path& report = staging.path();
   const std::vector<Recorded> recorded =
       flyAndRecord(reader, loadObjMesh(mesh), CameraPath::load(path), configuration, viewport,
                    check.profile, every, gl);
   const bool exact = !gl || glProfile == reference::PrecisionProfile::kLlvmpipe;
   const int bound = exact ? 0 : reference::colorBound(glProfile);
-  std::filesystem::create_directories(report);
   nlohmann::json frames = nlohmann::json::array();
   for (const auto& expected : golden["frames"]) {
     GoldenFrameCheck frame;
@@ -254,6 +258,7 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
                                      {"frames", frames}}
                               .dump(2) +
                           "\n");
+  staging.commit();
   return check;
 }
 

@@ -1,11 +1,12 @@
 #pragma once
-// Crash consistency of a command that writes one output file (README, "Hardening"): the command
-// is killed with SIGKILL at random moments, and after each kill its output path must hold the
-// previous complete file byte for byte (nothing, when there was none) or the complete new file,
-// never a partial one. Files the killed command leaves beside it must carry the temporary name
-// (".<output name>.tmp-XXXXXX<extension>", common/posix_file.h) and must not pass for a complete
-// output unless they are one. `vt build` is checked here; `vt eval` results and golden images
-// fit the same helper: a command line, its output and how a complete output is recognised.
+// Crash consistency of a command that writes one output, a file or a folder of files (README,
+// "Hardening"): the command is killed with SIGKILL at random moments, and after each kill its
+// output path must hold the previous complete output byte for byte (nothing, when there was
+// none) or the complete new output, never a partial one; for a folder, every file of it together
+// (never some files new and some old or missing). What the killed command leaves beside it must
+// carry the temporary name (".<output name>.tmp-XXXXXX...", common/posix_file.h) and, for a
+// deterministic command, must not pass for a complete output unless it is one. Used for
+// `vt build` (a file), `vt eval` results and `vt golden generate` sets (folders).
 
 #include <fcntl.h>
 #include <signal.h>
@@ -17,6 +18,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 #include <random>
 #include <set>
@@ -38,6 +40,10 @@ struct CrashTarget {
   // Whether the uninterrupted command writes the same bytes every time; if not, a complete new
   // output is recognised by `accepts` alone.
   bool deterministic = true;
+  bool folder = false;  // the output is a folder of files
+  // Files of a folder output whose bytes differ from run to run (run times): compared by
+  // presence only; `accepts` must check that they belong with the rest.
+  std::set<std::string> variableFiles;
 };
 
 struct CrashRun {
@@ -56,9 +62,24 @@ struct CrashReport {
 
 namespace crash {
 
-inline std::optional<std::vector<std::byte>> contents(const std::filesystem::path& path) {
+// The output's bytes: a file's, or a folder's files (name, size, bytes each, by name), the
+// bytes of `variable` files left out.
+inline std::optional<std::vector<std::byte>> contents(const std::filesystem::path& path,
+                                                      const std::set<std::string>& variable = {}) {
   if (!std::filesystem::exists(path)) return std::nullopt;
-  return readBytes(path);
+  if (!std::filesystem::is_directory(path)) return readBytes(path);
+  std::map<std::string, std::vector<std::byte>> files;
+  for (const auto& entry : std::filesystem::directory_iterator(path)) {
+    const std::string name = entry.path().filename().string();
+    files[name] = variable.contains(name) ? std::vector<std::byte>{} : readBytes(entry.path());
+  }
+  std::vector<std::byte> bytes;
+  for (const auto& [name, data] : files) {
+    const std::string header = name + '\0' + std::to_string(data.size()) + '\0';
+    for (const char c : header) bytes.push_back(static_cast<std::byte>(c));
+    bytes.insert(bytes.end(), data.begin(), data.end());
+  }
+  return bytes;
 }
 
 inline std::set<std::filesystem::path> filesIn(const std::filesystem::path& folder) {
@@ -102,12 +123,27 @@ inline std::pair<bool, int> runAndKill(const CrashTarget& target, std::chrono::m
   return {false, 0};
 }
 
+// Puts `bytes` (from contents()) back at `output`, or removes it.
 inline void restore(const std::filesystem::path& output,
-                    const std::optional<std::vector<std::byte>>& bytes) {
-  if (bytes)
-    writeBytes(output, *bytes);
-  else
-    std::filesystem::remove(output);
+                    const std::optional<std::vector<std::byte>>& bytes, bool folder) {
+  std::filesystem::remove_all(output);
+  if (!bytes) return;
+  if (!folder) return writeBytes(output, *bytes);
+  std::filesystem::create_directories(output);
+  const auto field = [&](size_t& at) {
+    std::string text;
+    while (static_cast<char>((*bytes)[at]) != '\0') text += static_cast<char>((*bytes)[at++]);
+    ++at;
+    return text;
+  };
+  for (size_t at = 0; at < bytes->size();) {
+    const std::string name = field(at);
+    const size_t size = std::stoull(field(at));
+    writeBytes(output / name,
+               std::vector<std::byte>(bytes->begin() + static_cast<std::ptrdiff_t>(at),
+                                      bytes->begin() + static_cast<std::ptrdiff_t>(at + size)));
+    at += size;
+  }
 }
 
 }  // namespace crash
@@ -115,7 +151,8 @@ inline void restore(const std::filesystem::path& output,
 // Runs the command once to completion (it must exit 0), then `kills` times killed after a
 // random moment (std::mt19937 of `seed`): the even-numbered kills anywhere in that run's
 // duration, the odd-numbered ones while it was writing (from the moment a new file appeared
-// beside the output; process start-up can take much of a short run). The output path is
+// beside the output or a file of a folder output changed; process start-up can take much of a
+// short run). The output path is
 // restored to its state before each run. The output's folder must hold nothing else that changes
 // meanwhile, and `scratch` (for the command's log) must be another folder.
 inline CrashReport killAtRandomMoments(const CrashTarget& target, int kills, uint32_t seed,
@@ -124,24 +161,40 @@ inline CrashReport killAtRandomMoments(const CrashTarget& target, int kills, uin
   CrashReport report;
   const std::filesystem::path folder = target.output.parent_path(), log = scratch / "crash.log";
   const std::string temporaryPrefix = "." + target.output.filename().string() + ".tmp-";
-  const std::optional<std::vector<std::byte>> previous = crash::contents(target.output);
+  const std::optional<std::vector<std::byte>> saved = crash::contents(target.output),
+                                              previous = crash::contents(target.output,
+                                                                         target.variableFiles);
   const std::set<std::filesystem::path> before = crash::filesIn(folder);
 
+  // What shows that the command writes: a new entry beside the output or, for a folder, a file
+  // of the folder changed (a command that writes into the folder in place).
+  const auto signature = [&] {
+    std::vector<std::string> entries;
+    for (const std::filesystem::path& file : crash::filesIn(folder)) entries.push_back(file);
+    std::error_code error;
+    if (target.folder)
+      for (const auto& entry : std::filesystem::directory_iterator(target.output, error))
+        entries.push_back(entry.path().string() + '@' +
+                          std::to_string(entry.last_write_time(error).time_since_epoch().count()));
+    return entries;
+  };
+  const std::vector<std::string> initial = signature();
   const auto start = Clock::now();
   std::optional<double> writingFrom;
   const auto [finished, exitCode] = crash::runAndKill(target, std::chrono::hours(1), log, [&] {
-    if (!writingFrom && crash::filesIn(folder).size() > before.size())
+    if (!writingFrom && signature() != initial)
       writingFrom = std::chrono::duration<double>(Clock::now() - start).count();
   });
   report.fullRunSeconds = std::chrono::duration<double>(Clock::now() - start).count();
   report.writingFromSeconds = writingFrom.value_or(0.0);
-  const std::optional<std::vector<std::byte>> complete = crash::contents(target.output);
+  const std::optional<std::vector<std::byte>> complete =
+      crash::contents(target.output, target.variableFiles);
   if (!finished || exitCode != 0 || !complete || !target.accepts(target.output)) {
     report.problems.push_back("the uninterrupted run failed (exit " + std::to_string(exitCode) +
                               "): " + slurp(log));
     return report;
   }
-  crash::restore(target.output, previous);
+  crash::restore(target.output, saved, target.folder);
 
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> anytime(0.0, report.fullRunSeconds),
@@ -158,7 +211,8 @@ inline CrashReport killAtRandomMoments(const CrashTarget& target, int kills, uin
       report.problems.push_back(where + "the command failed (exit " + std::to_string(code) + ")");
 
     // The output path: the previous file, or the complete new one.
-    const std::optional<std::vector<std::byte>> now = crash::contents(target.output);
+    const std::optional<std::vector<std::byte>> now =
+        crash::contents(target.output, target.variableFiles);
     if (now == previous) {
       run.outcome = previous ? "previous file" : "no file";
     } else if (now && (target.deterministic ? now == complete : target.accepts(target.output))) {
@@ -179,11 +233,14 @@ inline CrashReport killAtRandomMoments(const CrashTarget& target, int kills, uin
       const std::string name = file.filename().string();
       if (!name.starts_with(temporaryPrefix))
         report.problems.push_back(where + "left " + name + ", not named as a temporary file");
-      if (target.accepts(file) && (!target.deterministic || crash::contents(file) != complete))
+      // (A command whose output differs from run to run may leave a complete one, renamed no
+      // more; `accepts` alone must tell complete from partial.)
+      if (target.deterministic && target.accepts(file) &&
+          crash::contents(file, target.variableFiles) != complete)
         report.problems.push_back(where + "left " + name + ", which passes for a complete output");
-      std::filesystem::remove(file);
+      std::filesystem::remove_all(file);
     }
-    crash::restore(target.output, previous);
+    crash::restore(target.output, saved, target.folder);
     report.runs.push_back(run);
   }
   return report;

@@ -1,18 +1,24 @@
 // `vt build` killed with SIGKILL at random moments (crash_consistency.h): its output path holds
 // the previous texture or the complete new one, never a partial file `vt info` accepts, and what
 // a kill leaves beside it is a hidden temporary file that `vt info` rejects (its header is
-// written last) or, killed between the header and the rename, the complete texture.
+// written last) or, killed between the header and the rename, the complete texture. The same for
+// the folders `vt eval` and `vt golden generate` write: the previous folder or the complete new
+// one, every file of it.
 
 #include "cli/crash_consistency.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <vector>
 
+#include "build/synthetic_texture.h"
 #include "cli/run_command.h"
 #include "common/image_file.h"
+#include "eval/box_room_scene.h"
 #include "test_support.h"
 
 namespace vt {
@@ -92,6 +98,91 @@ TEST_F(CrashConsistency, KilledBuildLeavesThePreviousTextureOrTheCompleteNewOne)
 
 TEST_F(CrashConsistency, KilledFirstBuildLeavesNoTextureOrTheCompleteOne) {
   const test::CrashReport report = test::killAtRandomMoments(buildTarget(), 6, 7, dir_ / "log");
+  expectConsistent(report, 6);
+}
+
+// A texture and the box room's files for the folder outputs.
+class FolderCrashConsistency : public CrashConsistency {
+ protected:
+  void SetUp() override {
+    CrashConsistency::SetUp();
+    writeSyntheticTexture(
+        dir_ / "t.vt",
+        {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
+    test::writeBoxRoomScene(dir_.path());
+  }
+
+  // Runs `args` to completion: the previous output at the path.
+  void runOnce(const std::vector<std::string>& args) {
+    const test::CommandResult result = test::runCommand(VT_EXECUTABLE, args, dir_.path());
+    ASSERT_EQ(result.exitCode, 0) << result.out << result.err;
+  }
+};
+
+TEST_F(FolderCrashConsistency, KilledEvalLeavesThePreviousResultsOrTheCompleteNewOnes) {
+  const std::filesystem::path output = dir_ / "out" / "eval";
+  const auto eval = [&](const std::string& heuristics) {
+    return std::vector<std::string>{"eval",        (dir_ / "t.vt").string(),
+                                    "--mesh",      (dir_ / "room.obj").string(),
+                                    "--path",      (dir_ / "path.json").string(),
+                                    "--size",      "64x40",
+                                    "--heuristic", heuristics,
+                                    "--budget",    "3",
+                                    "--jobs",      "1",
+                                    "-o",          output.string()};
+  };
+  ASSERT_NO_FATAL_FAILURE(runOnce(eval("pixelsum")));
+  test::CrashTarget target;
+  target.program = VT_EXECUTABLE;
+  target.args = eval("pixelsum,distance,pixelsum*noisevalue");
+  target.output = output;
+  target.folder = true;
+  // The summaries hold run times; the other files are compared byte for byte.
+  target.variableFiles = {"summary.json", "summary.md"};
+  // Complete: every file of the results, the summary naming the runs frames.csv holds.
+  target.accepts = [](const std::filesystem::path& folder) {
+    for (const char* file :
+         {"frames.csv", "summary.json", "summary.md", "ssim.png", "wssim.png", "rmse.png"})
+      if (!std::filesystem::exists(folder / file)) return false;
+    std::ifstream summaryFile(folder / "summary.json");
+    const nlohmann::json summary = nlohmann::json::parse(summaryFile, nullptr, false);
+    std::ifstream frames(folder / "frames.csv");
+    std::string line, lastLine;
+    while (std::getline(frames, line)) lastLine = line;  // "configuration,frame,...": the last run
+    return summary.is_object() && summary.contains("runs") && !lastLine.empty() &&
+           std::to_string(summary["runs"].size() - 1) == lastLine.substr(0, lastLine.find(','));
+  };
+  const test::CrashReport report = test::killAtRandomMoments(target, 6, 11, dir_ / "log");
+  expectConsistent(report, 6);
+}
+
+TEST_F(FolderCrashConsistency, KilledGoldenGenerateLeavesThePreviousSetOrTheCompleteNewOne) {
+  const std::filesystem::path output = dir_ / "out" / "golden";
+  const auto generate = [&](const std::string& every) {
+    return std::vector<std::string>{"golden",
+                                    "generate",
+                                    (dir_ / "t.vt").string(),
+                                    "--mesh",
+                                    (dir_ / "room.obj").string(),
+                                    "--path",
+                                    (dir_ / "path.json").string(),
+                                    "--size",
+                                    "64x40",
+                                    "--every",
+                                    every,
+                                    "-o",
+                                    output.string()};
+  };
+  ASSERT_NO_FATAL_FAILURE(runOnce(generate("5")));
+  test::CrashTarget target;
+  target.program = VT_EXECUTABLE;
+  target.args = generate("3");
+  target.output = output;
+  target.folder = true;
+  target.accepts = [](const std::filesystem::path& folder) {
+    return std::filesystem::exists(folder / "golden.json");
+  };
+  const test::CrashReport report = test::killAtRandomMoments(target, 6, 12, dir_ / "log");
   expectConsistent(report, 6);
 }
 

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "cli/run_command.h"
 #include "common/error.h"
 #include "test_support.h"
 
@@ -45,6 +46,51 @@ TEST(TemporaryFile, MissingFolderIsAnInputError) {
   EXPECT_THAT([&] { TemporaryFile temporary(dir / "no" / "out.bin"); },
               ::testing::ThrowsMessage<InputError>(
                   ::testing::HasSubstr("cannot create a temporary file in")));
+}
+
+TEST(TemporaryFolder, CommitReplacesAPreviousOutputWhole) {
+  test::ScratchDirectory dir;
+  std::filesystem::create_directories(dir / "out");
+  writeFileAtomically(dir / "out" / "summary.json", "old");
+  writeFileAtomically(dir / "out" / "only-old.csv", "old");
+  {
+    TemporaryFolder staging(dir / "out", "summary.json");
+    EXPECT_EQ(staging.path().parent_path(), std::filesystem::absolute(dir.path()));
+    EXPECT_THAT(staging.path().filename().string(), ::testing::StartsWith(".out.tmp-"));
+    writeFileAtomically(staging.path() / "summary.json", "new");
+    // Until the commit, readers see the previous output whole.
+    EXPECT_EQ(test::slurp(dir / "out" / "summary.json"), "old");
+    staging.commit();
+  }
+  EXPECT_EQ(test::slurp(dir / "out" / "summary.json"), "new");
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "only-old.csv"));
+  EXPECT_EQ(entries(dir.path()), 1u);  // the previous folder is gone, nothing left beside
+}
+
+TEST(TemporaryFolder, AbandonedFolderIsRemovedAndTheDestinationKept) {
+  test::ScratchDirectory dir;
+  {
+    TemporaryFolder staging(dir / "out", "golden.json");
+    writeFileAtomically(staging.path() / "golden.json", "partial");
+  }
+  EXPECT_EQ(entries(dir.path()), 0u);
+}
+
+TEST(TemporaryFolder, RefusesFoldersThatAreNotAPreviousOutput) {
+  test::ScratchDirectory dir;
+  std::filesystem::create_directories(dir / "home");
+  writeFileAtomically(dir / "home" / "thesis.tex", "precious");
+  try {
+    TemporaryFolder staging(dir / "home", "summary.json");
+    ADD_FAILURE() << "accepted a folder of other files";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("holds files but no summary.json"));
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir / "home" / "thesis.tex"));
+  writeFileAtomically(dir / "file", "x");
+  EXPECT_THROW(TemporaryFolder::requireReplaceable(dir / "file", "summary.json"), InputError);
+  std::filesystem::create_directories(dir / "empty");
+  TemporaryFolder::requireReplaceable(dir / "empty", "summary.json");  // an empty folder is fine
 }
 
 TEST(PosixFile, ShortReadIsAnError) {

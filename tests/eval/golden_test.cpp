@@ -11,32 +11,13 @@
 
 #include "build/synthetic_texture.h"
 #include "common/error.h"
-#include "scene/box_room.h"
+#include "eval/box_room_scene.h"
 #include "test_support.h"
 
 namespace vt {
 namespace {
 
 using ::testing::HasSubstr;
-
-// The box room as an OBJ file, and a short turn inside it.
-void writeScene(const std::filesystem::path& folder) {
-  const Mesh room = boxRoom();
-  std::ofstream obj(folder / "room.obj");
-  for (const glm::vec3& p : room.positions) obj << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
-  for (const glm::vec2& t : room.uvs) obj << "vt " << t.x << ' ' << t.y << '\n';
-  for (size_t i = 0; i + 2 < room.indices.size(); i += 3) {
-    obj << 'f';
-    for (size_t k = 0; k < 3; ++k)
-      obj << ' ' << room.indices[i + k] + 1 << '/' << room.indices[i + k] + 1;
-    obj << '\n';
-  }
-  std::ofstream(folder / "path.json") << R"({"start": {"position": [6, 1.6, 4.5], "yaw": 60,
-    "pitch": -5, "fov": 70}, "storyboard": [
-    {"name": "turn", "kind": "slow rotation", "yaw": 30, "frames": 20},
-    {"name": "stop", "kind": "fast rotation that stops", "yaw": -40, "frames": 2},
-    {"kind": "hold", "frames": 6}]})";
-}
 
 struct Fixture {
   test::ScratchDirectory dir;
@@ -45,7 +26,7 @@ struct Fixture {
     writeSyntheticTexture(
         dir / "t.vt",
         {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
-    writeScene(dir.path());
+    test::writeBoxRoomScene(dir.path());
     request.texture = dir / "t.vt";
     request.mesh = dir / "room.obj";
     request.path = dir / "path.json";
