@@ -28,14 +28,18 @@ nlohmann::json pixelJson(const oracle::PixelDifference& d, int height) {
 }
 
 std::string pixelLine(const oracle::PixelDifference& d, int height) {
+  // Built by appends: GCC 12 warns falsely on "literal" + std::string.
   const auto four = [](const auto& v) {
-    return "(" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " + std::to_string(v[2]) +
-           ", " + std::to_string(v[3]) + ")";
+    std::string text = "(";
+    for (int k = 0; k < 4; ++k) text.append(k ? ", " : "").append(std::to_string(v[k]));
+    return text.append(")");
   };
-  return "pixel (" + std::to_string(d.x) + ", " + std::to_string(d.y) + ") [image row " +
-         std::to_string(height - 1 - d.y) + "]: needbuffer " + four(d.actualNeed) + ", oracle " +
-         four(d.expectedNeed) + "; colour " + four(d.actualColor) + ", oracle " +
-         four(d.expectedColor);
+  std::string line = "pixel (";
+  line.append(std::to_string(d.x)).append(", ").append(std::to_string(d.y));
+  line.append(") [image row ").append(std::to_string(height - 1 - d.y));
+  line.append("]: needbuffer ").append(four(d.actualNeed)).append(", oracle ");
+  line.append(four(d.expectedNeed)).append("; colour ").append(four(d.actualColor));
+  return line.append(", oracle ").append(four(d.expectedColor));
 }
 
 }  // namespace
@@ -112,12 +116,16 @@ bool crosscheckCaptures(const CapturesCheckOptions& options) {
           testCase.details.append(pixelLine(c.mismatches[k], v.height)).append("\n");
       }
     } catch (const std::exception& e) {
+      // Named by the capture, unless the reader named it (or its data file) already.
+      std::string message = e.what();
+      if (!message.starts_with((manifest.parent_path() / manifest.stem()).string()))
+        message = std::string(manifest.string()).append(": ").append(e.what());
       ++errors;
       testCase.outcome = JUnitCase::Outcome::kError;
-      testCase.message = e.what();
-      frames.push_back({{"capture", manifest.filename().string()}, {"error", e.what()}});
+      testCase.message = message;
+      frames.push_back({{"capture", manifest.filename().string()}, {"error", message}});
       std::fflush(stdout);
-      std::cerr << "vt crosscheck: " << e.what() << "\n";
+      std::cerr << "vt crosscheck: " << message << "\n";
     }
     testCase.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     cases.push_back(testCase);
