@@ -7,6 +7,7 @@
 // VT_OPENARENA_DIR); skipped without it, except in CI.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -226,8 +227,10 @@ const LoadedMap& loadMap(const std::filesystem::path& packages, const std::strin
   static std::map<std::string, std::unique_ptr<LoadedMap>> maps;
   std::unique_ptr<LoadedMap>& loaded = maps[map];
   if (!loaded) {
+    // One folder per process: ctest runs the suite's tests as processes side by side.
     const std::filesystem::path images =
-        std::filesystem::temp_directory_path() / ("vt-storyboard-images-" + map);
+        std::filesystem::temp_directory_path() /
+        ("vt-storyboard-images-" + map + "-" + std::to_string(::getpid()));
     const TexturedScene scene = loadQuake3Map(PackageFiles::fromFolders({packages}), map, images);
     std::filesystem::remove_all(images);
     std::vector<Triangle> triangles = loaderTriangles(scene);
