@@ -4,6 +4,7 @@
 // (the shared library hides the internal exception types; callers catch Error).
 
 #include <memory>
+#include <optional>
 #include <utility>
 
 #include "format/virtual_texture_reader.h"
@@ -21,6 +22,11 @@ struct Texture::Impl {
   explicit Impl(const std::filesystem::path& path) : reader(path), everything(reader) {}
   VirtualTextureReader reader;
   reference::ResidentTexture everything;  // pages decoded on first use, kept
+};
+
+struct PreparedCache::Impl {
+  const Texture::Impl& texture;
+  std::optional<reference::CacheState> state;  // none: every page resident
 };
 
 // Runs `work`, turning every exception but Error into Error with the same message.

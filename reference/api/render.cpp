@@ -1,5 +1,6 @@
 #include "vt/oracle/render.h"
 
+#include "common/resource_limits.h"
 #include "reference/api/api_internal.h"
 #include "reference/precision_profile.h"
 
@@ -105,13 +106,26 @@ Frame publicFrame(reference::Frame&& frame) {
   return result;
 }
 
-Frame render(const Texture& texture, const Scene& scene, const CacheState& cache,
+PreparedCache::PreparedCache(const Texture& texture, const CacheState& state)
+    : impl_(translatingErrors([&] {
+        auto impl = std::make_unique<Impl>(Impl{texture.impl(), std::nullopt});
+        if (!state.allResident) impl->state = internalCache(texture.impl().reader, state);
+        return impl;
+      })) {}
+PreparedCache::PreparedCache(PreparedCache&&) noexcept = default;
+PreparedCache& PreparedCache::operator=(PreparedCache&&) noexcept = default;
+PreparedCache::~PreparedCache() = default;
+
+Frame render(const Texture& texture, const Scene& scene, const PreparedCache& cache,
              const RenderOptions& options) {
   return translatingErrors([&] {
+    if (&cache.impl().texture != &texture.impl())
+      throw Error("render: the cache state was prepared for another texture");
     const Viewport v = scene.viewport;
-    if (v.width < 1 || v.height < 1 || v.width > 16384 || v.height > 16384)
+    if (v.width < 1 || v.height < 1 || uint64_t(v.width) > kMaxViewportSide ||
+        uint64_t(v.height) > kMaxViewportSide)
       throw Error("scene: viewport " + std::to_string(v.width) + " x " + std::to_string(v.height) +
-                  " is not within 1..16384 per side");
+                  " is not within 1.." + std::to_string(kMaxViewportSide) + " per side");
     const VirtualTextureReader& reader = texture.impl().reader;
     if (options.needEncoding == NeedEncoding::k8Bit && reader.description().finestLevel() > 12)
       throw Error(reader.path().string() + ": the 8-bit needbuffer names pages of at most 12 " +
@@ -119,10 +133,15 @@ Frame render(const Texture& texture, const Scene& scene, const CacheState& cache
                   std::to_string(reader.description().finestLevel()));
     const ClipSpaceMesh mesh = internalMesh(scene);
     const reference::RenderSettings settings = internalSettings(v, options);
-    if (cache.allResident)
+    if (!cache.impl().state)
       return publicFrame(reference::renderFrame(mesh, texture.impl().everything, settings));
-    return publicFrame(reference::renderFrame(mesh, internalCache(reader, cache), settings));
+    return publicFrame(reference::renderFrame(mesh, *cache.impl().state, settings));
   });
+}
+
+Frame render(const Texture& texture, const Scene& scene, const CacheState& cache,
+             const RenderOptions& options) {
+  return render(texture, scene, PreparedCache(texture, cache), options);
 }
 
 }  // namespace vt::oracle

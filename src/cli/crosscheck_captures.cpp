@@ -7,8 +7,8 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "cli/comparison_report.h"
 #include "cli/junit_report.h"
-#include "common/image_file.h"
 #include "common/posix_file.h"
 #include "vt/oracle.h"
 
@@ -53,7 +53,7 @@ bool crosscheckCaptures(const CapturesCheckOptions& options) {
   std::map<std::filesystem::path, std::unique_ptr<oracle::Texture>> textures;
   std::vector<JUnitCase> cases;
   nlohmann::json frames = nlohmann::json::array();
-  uint64_t totals[5] = {0, 0, 0, 0, 0};  // pixels, identical, flagged, within bound, mismatched
+  ComparisonTotals totals;
   size_t errors = 0;
   std::printf("crosscheck of %zu captures in %s\n", manifests.size(),
               options.captures.string().c_str());
@@ -73,41 +73,21 @@ bool crosscheckCaptures(const CapturesCheckOptions& options) {
           oracle::checkCapture(capture, *texture, profile, options.threads);
       const oracle::Comparison& c = check.comparison;
       const oracle::Viewport v = capture.scene.viewport;
-      writeImage8(options.output / (name + "-color-difference.png"), static_cast<uint32_t>(v.width),
-                  static_cast<uint32_t>(v.height), 4,
-                  std::as_bytes(std::span(c.colorDifferenceImage)));
-      writeImage8(options.output / (name + "-classes.png"), static_cast<uint32_t>(v.width),
-                  static_cast<uint32_t>(v.height), 4,
-                  std::as_bytes(std::span(c.classificationImage)));
+      writeComparisonImages(options.output, name, v, c);
       nlohmann::json mismatches = nlohmann::json::array();
       for (const oracle::PixelDifference& d : c.mismatches)
         mismatches.push_back(pixelJson(d, v.height));
-      frames.push_back({{"capture", manifest.filename().string()},
-                        {"renderer", capture.renderer},
-                        {"profile", oracle::toString(profile)},
-                        {"needbuffer_encoding", oracle::toString(capture.needEncoding)},
-                        {"filtering", oracle::toString(capture.filtering)},
-                        {"sampling", oracle::toString(capture.sampling)},
-                        {"pixels", c.pixels},
-                        {"identical", c.identical},
-                        {"flagged", c.flagged},
-                        {"within_bound", c.withinBound},
-                        {"mismatched", c.mismatched},
-                        {"needbuffer_mismatched", c.needMismatched},
-                        {"max_color_difference", c.maxColorDifference},
-                        {"mean_color_difference", c.meanColorDifference},
-                        {"mismatched_pixels", mismatches}});
-      const uint64_t counts[5] = {c.pixels, c.identical, c.flagged, c.withinBound, c.mismatched};
-      for (int k = 0; k < 5; ++k) totals[k] += counts[k];
-      std::printf(
-          "  %-12s %-9s %8llu pixels: %8llu identical, %6llu flagged, %6llu within "
-          "bound, %6llu mismatched; colour max %d, mean %.4f\n",
-          name.c_str(), oracle::toString(profile).c_str(),
-          static_cast<unsigned long long>(c.pixels), static_cast<unsigned long long>(c.identical),
-          static_cast<unsigned long long>(c.flagged),
-          static_cast<unsigned long long>(c.withinBound),
-          static_cast<unsigned long long>(c.mismatched), c.maxColorDifference,
-          c.meanColorDifference);
+      nlohmann::json frame = {{"capture", manifest.filename().string()},
+                              {"renderer", capture.renderer},
+                              {"profile", oracle::toString(profile)},
+                              {"needbuffer_encoding", oracle::toString(capture.needEncoding)},
+                              {"filtering", oracle::toString(capture.filtering)},
+                              {"sampling", oracle::toString(capture.sampling)}};
+      frame.update(comparisonJson(c));
+      frame["mismatched_pixels"] = mismatches;
+      frames.push_back(frame);
+      totals.add(c);
+      printComparison(name, oracle::toString(profile), c);
       if (!c.passed()) {
         testCase.outcome = JUnitCase::Outcome::kFailed;
         testCase.message = std::to_string(c.mismatched) + " mismatched pixels (" +
@@ -131,29 +111,20 @@ bool crosscheckCaptures(const CapturesCheckOptions& options) {
     cases.push_back(testCase);
   }
 
-  const bool passed = totals[4] == 0 && errors == 0;
-  nlohmann::json summary = {{"captures", options.captures.string()},
-                            {"profile", options.profile},
-                            {"frames", frames},
-                            {"totals",
-                             {{"captures", manifests.size()},
-                              {"unreadable", errors},
-                              {"pixels", totals[0]},
-                              {"identical", totals[1]},
-                              {"flagged", totals[2]},
-                              {"within_bound", totals[3]},
-                              {"mismatched", totals[4]}}},
-                            {"passed", passed}};
+  const bool passed = totals.mismatched == 0 && errors == 0;
+  nlohmann::json totalsJson = totals.json();
+  totalsJson["captures"] = manifests.size();
+  totalsJson["unreadable"] = errors;
+  const nlohmann::json summary = {{"captures", options.captures.string()},
+                                  {"profile", options.profile},
+                                  {"frames", frames},
+                                  {"totals", totalsJson},
+                                  {"passed", passed}};
   writeFileAtomically(options.output / "summary.json", summary.dump(2) + "\n");
   writeJUnitReport(options.output / "junit.xml", "vt crosscheck " + options.captures.string(),
                    cases);
-  std::printf(
-      "crosscheck: %llu of %llu pixels identical, %llu flagged, %llu within bound, %llu "
-      "mismatched, %zu of %zu captures unreadable: %s\n",
-      static_cast<unsigned long long>(totals[1]), static_cast<unsigned long long>(totals[0]),
-      static_cast<unsigned long long>(totals[2]), static_cast<unsigned long long>(totals[3]),
-      static_cast<unsigned long long>(totals[4]), errors, manifests.size(),
-      passed ? "passed" : "FAILED");
+  std::printf("crosscheck: %s, %zu of %zu captures unreadable: %s\n", totals.line().c_str(), errors,
+              manifests.size(), passed ? "passed" : "FAILED");
   std::fflush(stdout);
   return passed;
 }

@@ -1,6 +1,6 @@
 // vt crosscheck TEXTURE: renders named scenes, or frames of a flythrough of an OBJ scene, with the
-// CPU oracle and with OpenGL from the same cache state and compares them pixel by pixel
-// (reference/frame_comparison.h). Writes difference images and summary.json; exits 1 when any pixel
+// CPU oracle (through its public API, <vt/oracle.h>) and with OpenGL from the same cache state and
+// compares them pixel by pixel. Writes difference images and summary.json; exits 1 when any pixel
 // is mismatched without the oracle's flag.
 
 #include <chrono>
@@ -13,13 +13,14 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include "cli/comparison_report.h"
 #include "cli/crosscheck_captures.h"
+#include "cli/oracle_conversions.h"
 #include "cli/size_argument.h"
 #include "common/error.h"
-#include "common/image_file.h"
+#include "common/posix_file.h"
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
-#include "reference/frame_comparison.h"
 #include "scene/camera_path.h"
 #include "scene/obj_mesh.h"
 #include "scene/test_scenes.h"
@@ -125,9 +126,12 @@ void addCrosscheckCommand(CLI::App& app) {
       settings.profile = reference::parsePrecisionProfile(o->profile);
 
     const VirtualTextureReader reader(o->texture);
-    // Every stored page, or the coarsest levels that fit into an 8192^2 cache texture.
+    // Every stored page, or the coarsest levels that fit into an 8192^2 cache texture: uploaded
+    // for GL, and the same pages in the same frames prepared for the oracle's API.
     const reference::CacheState cache = reference::cacheOfLevels(reader, -1, 8192);
     GlFrameRenderer gl(cache);
+    const oracle::Texture texture = oracle::Texture::open(o->texture);
+    const oracle::PreparedCache prepared(texture, publicCacheState(cache));
     const std::filesystem::path folder = o->output;
     std::filesystem::create_directories(folder);
 
@@ -146,69 +150,38 @@ void addCrosscheckCommand(CLI::App& app) {
                            {"GALLIUM_OVERRIDE_CPU_CAPS", environment("GALLIUM_OVERRIDE_CPU_CAPS")},
                            {"cpu_fma", static_cast<bool>(__builtin_cpu_supports("fma"))}};
     summary["frames"] = nlohmann::json::array();
-    uint64_t totals[5] = {0, 0, 0, 0, 0};
-    const auto width = static_cast<uint32_t>(settings.viewport.width),
-               height = static_cast<uint32_t>(settings.viewport.height);
+    ComparisonTotals totals;
     std::cout << "crosscheck on " << renderer << ", profile "
-              << reference::toString(settings.profile) << ", " << width << " x " << height << "\n";
+              << reference::toString(settings.profile) << ", " << settings.viewport.width << " x "
+              << settings.viewport.height << "\n";
     for (const NamedScene& scene : views) {
       const std::string& name = scene.name;
       const ClipSpaceMesh mesh = toClipSpace(scene.mesh, scene.camera, settings.viewport);
+      const oracle::Scene publicMesh = publicScene(mesh, settings.viewport);
       for (const Mode& mode : modes) {
         settings.exactFilter = mode.exactFilter;
         settings.trilinear = mode.trilinear;
         settings.need8 = mode.need8;
-        const reference::Frame oracle = reference::renderFrame(mesh, cache, settings);
+        const oracle::RenderOptions options = publicRenderOptions(settings);
+        const oracle::Frame expected = oracle::render(texture, publicMesh, prepared, options);
         const GlFrame frame = gl.render(mesh, settings);
-        const reference::FrameComparison c =
-            reference::compareFrames(oracle, frame.color, frame.need, settings.profile);
-        const std::string stem = name + "-" + mode.name;
-        writeImage8(folder / (stem + "-color-difference.png"), width, height, 4,
-                    std::as_bytes(std::span(c.colorDifferenceImage)));
-        writeImage8(folder / (stem + "-classes.png"), width, height, 4,
-                    std::as_bytes(std::span(c.classificationImage)));
-        summary["frames"].push_back({{"scene", name},
-                                     {"mode", mode.name},
-                                     {"pixels", c.pixels},
-                                     {"identical", c.identical},
-                                     {"flagged", c.flagged},
-                                     {"within_bound", c.withinBound},
-                                     {"mismatched", c.mismatched},
-                                     {"needbuffer_mismatched", c.needMismatched},
-                                     {"max_color_difference", c.maxColorDifference},
-                                     {"mean_color_difference", c.meanColorDifference}});
-        totals[0] += c.pixels;
-        totals[1] += c.identical;
-        totals[2] += c.flagged;
-        totals[3] += c.withinBound;
-        totals[4] += c.mismatched;
-        std::printf(
-            "  %-9s %-28s %8llu pixels: %8llu identical, %6llu flagged, %6llu within bound, %6llu "
-            "mismatched; "
-            "colour max %d, mean %.4f\n",
-            name.c_str(), mode.name, static_cast<unsigned long long>(c.pixels),
-            static_cast<unsigned long long>(c.identical),
-            static_cast<unsigned long long>(c.flagged),
-            static_cast<unsigned long long>(c.withinBound),
-            static_cast<unsigned long long>(c.mismatched), c.maxColorDifference,
-            c.meanColorDifference);
+        const oracle::Comparison c =
+            oracle::compare(expected, frame.color, flatNeed(frame.need), options.profile);
+        writeComparisonImages(folder, name + "-" + mode.name, publicMesh.viewport, c);
+        nlohmann::json record = {{"scene", name}, {"mode", mode.name}};
+        record.update(comparisonJson(c));
+        summary["frames"].push_back(record);
+        totals.add(c);
+        printComparison(name, mode.name, c);
       }
     }
-    summary["totals"] = {{"pixels", totals[0]},
-                         {"identical", totals[1]},
-                         {"flagged", totals[2]},
-                         {"within_bound", totals[3]},
-                         {"mismatched", totals[4]}};
-    summary["passed"] = totals[4] == 0;
-    { std::ofstream(folder / "summary.json") << summary.dump(2) << '\n'; }
-    std::printf(
-        "crosscheck: %llu of %llu pixels identical, %llu flagged, %llu within bound, %llu "
-        "mismatched: %s\n",
-        static_cast<unsigned long long>(totals[1]), static_cast<unsigned long long>(totals[0]),
-        static_cast<unsigned long long>(totals[2]), static_cast<unsigned long long>(totals[3]),
-        static_cast<unsigned long long>(totals[4]), totals[4] == 0 ? "passed" : "FAILED");
+    summary["totals"] = totals.json();
+    summary["passed"] = totals.mismatched == 0;
+    writeFileAtomically(folder / "summary.json", summary.dump(2) + "\n");
+    std::printf("crosscheck: %s: %s\n", totals.line().c_str(),
+                totals.mismatched == 0 ? "passed" : "FAILED");
     std::fflush(stdout);
-    if (totals[4] != 0)
+    if (totals.mismatched != 0)
       throw InputError(o->texture, "crosscheck found unflagged mismatches (see " +
                                        (folder / "summary.json").string() + ")");
   });

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "cli/oracle_conversions.h"
 #include "vt/oracle/capture.h"
 
 namespace vt {
@@ -13,12 +14,7 @@ void writeFlightCapture(const std::filesystem::path& folder, const FlightCapture
   capture.renderer = renderer;
   capture.texture = reader.path();
   capture.textureIdentity = reader.identity();
-  capture.scene.viewport = {settings.viewport.width, settings.viewport.height};
-  capture.scene.vertices.reserve(view.mesh.vertices.size());
-  for (const ClipVertex& v : view.mesh.vertices)
-    capture.scene.vertices.push_back(
-        {v.position.x, v.position.y, v.position.z, v.position.w, v.uv.x, v.uv.y});
-  capture.scene.indices = view.mesh.indices;
+  capture.scene = publicScene(view.mesh, settings.viewport);
 
   // The cache state as the runtime holds it: each resident page in its frame.
   const PageCache& cache = view.runtime.pageCache();
@@ -31,16 +27,12 @@ void writeFlightCapture(const std::filesystem::path& folder, const FlightCapture
     capture.cache.pages.push_back({page.level, page.x, page.y, frame.x, frame.y});
   }
 
-  capture.needEncoding =
-      settings.need8 ? oracle::NeedEncoding::k8Bit : oracle::NeedEncoding::k32Bit;
-  capture.filtering =
-      settings.trilinear ? oracle::Filtering::kTrilinear : oracle::Filtering::kBilinear;
-  capture.sampling =
-      settings.exactFilter ? oracle::Sampling::kTexelFetch : oracle::Sampling::kHardwareLinear;
+  const oracle::RenderOptions options = publicRenderOptions(settings);
+  capture.needEncoding = options.needEncoding;
+  capture.filtering = options.filtering;
+  capture.sampling = options.sampling;
   capture.color.assign(view.color.begin(), view.color.end());
-  capture.need.reserve(view.need.size() * 4);
-  for (const glm::uvec4& v : view.need)
-    capture.need.insert(capture.need.end(), {v.x, v.y, v.z, v.w});
+  capture.need = flatNeed(view.need);
 
   char name[32];
   std::snprintf(name, sizeof name, "frame%04d.json", view.frame);

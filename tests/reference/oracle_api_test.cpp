@@ -103,6 +103,17 @@ TEST(OracleApi, CacheStatesAreValidatedAndDriveTheLookup) {
   refused({false, 2, 2, {{0, 0, 0, 0, 0}, {0, 0, 0, 1, 0}}}, "resident twice");
   refused({false, 2, 2, {{0, 0, 0, 0, 0}, {6, 0, 0, 1, 0}}}, "not stored in the texture");
   refused({false, 2, 2, {{0, 0, 0, 0, 0}, {2, 4, 0, 1, 0}}}, "does not exist");
+
+  // A prepared state draws the same frame as the state it was prepared from, for its own texture.
+  const oracle::PreparedCache prepared(texture, rootOnly);
+  EXPECT_EQ(oracle::render(texture, scene, prepared, {}).color, coarse.color);
+  const oracle::Texture other = oracle::Texture::open(dir / "t.vt");
+  try {
+    (void)oracle::render(other, scene, prepared, {});
+    ADD_FAILURE() << "rendered with a cache prepared for another texture";
+  } catch (const oracle::Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("prepared for another texture"));
+  }
 }
 
 TEST(OracleApi, ComparisonNamesExactlyTheChangedPixel) {

@@ -8,6 +8,7 @@
 // element py * width + px.
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -71,9 +72,29 @@ struct Frame {
   std::vector<uint8_t> ambiguity;  // Ambiguity bits
 };
 
-// Throws Error when a page of `cache` is not stored in `texture`, frames overlap or lie outside
-// the grid, the root is not resident, or the 8-bit encoding cannot name the texture's pages.
+// A cache state with its pages read from the texture and its indirection table derived, for
+// rendering many frames from one state (reading the pages is most of a small frame's time).
+// Throws Error when a page is not stored in the texture, frames overlap or lie outside the grid,
+// or the root is not resident. Keeps a reference to `texture`, which must outlive it.
+class VT_ORACLE_API PreparedCache {
+ public:
+  PreparedCache(const Texture& texture, const CacheState& state);
+  PreparedCache(PreparedCache&&) noexcept;
+  PreparedCache& operator=(PreparedCache&&) noexcept;
+  ~PreparedCache();
+
+  struct Impl;
+  const Impl& impl() const { return *impl_; }
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+// Throws Error as PreparedCache does, or when the 8-bit encoding cannot name the texture's pages
+// (more than 12 levels below the root) or the viewport is not 1..16384 pixels per side.
 VT_ORACLE_API Frame render(const Texture& texture, const Scene& scene, const CacheState& cache,
+                           const RenderOptions& options);
+VT_ORACLE_API Frame render(const Texture& texture, const Scene& scene, const PreparedCache& cache,
                            const RenderOptions& options);
 
 }  // namespace vt::oracle
