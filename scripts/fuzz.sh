@@ -16,7 +16,7 @@ seconds=${VT_FUZZ_SECONDS:-60}
 parallel=${VT_FUZZ_PARALLEL:-2}
 vt=${VT_EXECUTABLE:-build/src/vt}
 folder=build-fuzz
-all_targets=(vt_file bsp pk3 obj layout camera_path needbuffer)
+all_targets=(vt_file bsp pk3 obj layout camera_path needbuffer capture)
 targets=("${@:-${all_targets[@]}}")
 [[ -x "$vt" ]] || { echo "fuzz: $vt is missing: build the Release vt first" >&2; exit 1; }
 openarena=${VT_OPENARENA_DIR:-$(bash scripts/fetch-openarena.sh)}
@@ -51,6 +51,7 @@ python3 scripts/fuzz-seeds.py "$openarena" "$folder/inputs/q3" "$textures" "$see
 # The stored regression inputs seed their targets too.
 for target in "${targets[@]}"; do
   if [[ -d tests/fuzz/regressions/$target ]]; then
+    mkdir -p "$seeds/$target"
     cp tests/fuzz/regressions/"$target"/* "$seeds/$target/"
   fi
 done

@@ -43,6 +43,10 @@ void cameraPath(Input input);
 // encoding and statistics, bytes 1-2 the width, the rest are RGBA32UI pixels.
 void needBuffer(Input input);
 
+// A capture manifest (<vt/oracle/capture.h>) next to fixed data files (capture_fuzz.cpp), read,
+// drawn and compared by the oracle.
+void captureManifest(Input input);
+
 struct Target {
   const char* name;  // the folder of its regression inputs and the program fuzz_<name>
   void (*run)(Input);
@@ -56,6 +60,7 @@ inline constexpr Target kTargets[] = {
     {"layout", &layoutFile},
     {"camera_path", &cameraPath},
     {"needbuffer", &needBuffer},
+    {"capture", &captureManifest},
 };
 
 }  // namespace vt::fuzz
