@@ -165,7 +165,7 @@ void TemporaryFolder::requireReplaceable(const std::filesystem::path& destinatio
 
 TemporaryFolder::TemporaryFolder(const std::filesystem::path& destination,
                                  const std::string& marker)
-    : destination_(folderPath(destination)) {
+    : destination_(folderPath(destination)), marker_(marker) {
   requireReplaceable(destination, marker);
   std::filesystem::create_directories(destination_.parent_path());
   std::string name = ".";  // built by appends: GCC 12 warns falsely on "." + std::string
@@ -210,6 +210,8 @@ void TemporaryFolder::commit() {
     }
     committed_ = true;
     syncDirectory(destination_);
+    // The marker first: a removal cut short leaves a folder that is no longer taken for an output.
+    std::filesystem::remove(path_ / marker_, error);
     std::filesystem::remove_all(path_, error);
     return;
   }

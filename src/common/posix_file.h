@@ -85,6 +85,7 @@ class TemporaryFolder {
 
  private:
   std::filesystem::path destination_, path_;
+  std::string marker_;
   bool committed_ = false;
 };
 

@@ -233,10 +233,13 @@ inline CrashReport killAtRandomMoments(const CrashTarget& target, int kills, uin
       const std::string name = file.filename().string();
       if (!name.starts_with(temporaryPrefix))
         report.problems.push_back(where + "left " + name + ", not named as a temporary file");
-      // (A command whose output differs from run to run may leave a complete one, renamed no
-      // more; `accepts` alone must tell complete from partial.)
-      if (target.deterministic && target.accepts(file) &&
-          crash::contents(file, target.variableFiles) != complete)
+      // A complete output may be left: the new one killed before its rename, or a folder's
+      // previous one, exchanged out of place and killed while being removed. (A command whose
+      // output differs from run to run may leave either; `accepts` alone must tell complete from
+      // partial.)
+      const std::optional<std::vector<std::byte>> left =
+          crash::contents(file, target.variableFiles);
+      if (target.deterministic && target.accepts(file) && left != complete && left != previous)
         report.problems.push_back(where + "left " + name + ", which passes for a complete output");
       std::filesystem::remove_all(file);
     }
