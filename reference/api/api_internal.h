@@ -42,6 +42,7 @@ auto translatingErrors(Work&& work) -> decltype(work()) {
 }
 
 reference::PrecisionProfile internalProfile(Profile profile);
+Profile publicProfile(reference::PrecisionProfile profile);
 reference::RenderSettings internalSettings(Viewport viewport, const RenderOptions& options);
 ClipSpaceMesh internalMesh(const Scene& scene);
 reference::CacheState internalCache(const VirtualTextureReader& reader, const CacheState& cache);

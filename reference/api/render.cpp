@@ -26,8 +26,8 @@ Profile parseProfile(const std::string& name) {
 
 std::string toString(Profile profile) { return reference::toString(internalProfile(profile)); }
 
-Profile profileForRenderer(const std::string& glRenderer) {
-  switch (reference::profileForRenderer(glRenderer)) {
+Profile publicProfile(reference::PrecisionProfile profile) {
+  switch (profile) {
     case reference::PrecisionProfile::kLlvmpipe:
       return Profile::kLlvmpipe;
     case reference::PrecisionProfile::kNvidia:
@@ -35,6 +35,10 @@ Profile profileForRenderer(const std::string& glRenderer) {
     default:
       return Profile::kExact;
   }
+}
+
+Profile profileForRenderer(const std::string& glRenderer) {
+  return publicProfile(reference::profileForRenderer(glRenderer));
 }
 
 std::string toString(NeedEncoding encoding) {

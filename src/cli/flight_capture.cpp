@@ -16,16 +16,7 @@ void writeFlightCapture(const std::filesystem::path& folder, const FlightCapture
   capture.textureIdentity = reader.identity();
   capture.scene = publicScene(view.mesh, settings.viewport);
 
-  // The cache state as the runtime holds it: each resident page in its frame.
-  const PageCache& cache = view.runtime.pageCache();
-  capture.cache.allResident = false;
-  capture.cache.framesX = cache.framesX();
-  capture.cache.framesY = cache.framesY();
-  for (const uint64_t index : cache.residentPages()) {
-    const PageId page = fromAbsoluteIndex(index);
-    const FrameId frame = *cache.frameOf(index);
-    capture.cache.pages.push_back({page.level, page.x, page.y, frame.x, frame.y});
-  }
+  capture.cache = publicCacheState(view.runtime.cacheState());  // as the frame was drawn
 
   const oracle::RenderOptions options = publicRenderOptions(settings);
   capture.needEncoding = options.needEncoding;

@@ -1,5 +1,7 @@
 #include "cli/oracle_conversions.h"
 
+#include "reference/api/api_internal.h"
+
 namespace vt {
 
 oracle::Scene publicScene(const ClipSpaceMesh& mesh, Viewport viewport) {
@@ -23,10 +25,7 @@ oracle::CacheState publicCacheState(const reference::CacheState& cache) {
 
 oracle::RenderOptions publicRenderOptions(const reference::RenderSettings& settings) {
   oracle::RenderOptions options;
-  options.profile =
-      settings.profile == reference::PrecisionProfile::kLlvmpipe ? oracle::Profile::kLlvmpipe
-      : settings.profile == reference::PrecisionProfile::kNvidia ? oracle::Profile::kNvidia
-                                                                 : oracle::Profile::kExact;
+  options.profile = oracle::publicProfile(settings.profile);
   options.needEncoding =
       settings.need8 ? oracle::NeedEncoding::k8Bit : oracle::NeedEncoding::k32Bit;
   options.filtering =

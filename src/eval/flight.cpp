@@ -36,8 +36,10 @@ class FrameDrawer {
   // full-size, else in a pass of its own); `delayed`: the main pass under asynchronous readback.
   void draw(const Camera& camera, uint64_t frame, std::vector<uint8_t>* color,
             std::vector<glm::uvec4>& need, std::vector<float>* depth, bool delayed) {
-    if (needScaleLog2_ == 0)
-      return pass(camera, settings_.viewport, 0, glm::vec2(0.0f), color, &need, depth, delayed);
+    if (needScaleLog2_ == 0) {
+      pass(camera, settings_.viewport, 0, glm::vec2(0.0f), color, &need, depth, delayed);
+      return;
+    }
     pass(camera, needViewport(), needScaleLog2_, needJitter(frame, needScaleLog2_), nullptr, &need,
          depth, delayed);
     if (color) pass(camera, settings_.viewport, 0, glm::vec2(0.0f), color, nullptr, nullptr, false);
@@ -46,28 +48,18 @@ class FrameDrawer {
   // The camera at the screen's resolution with a full-size needbuffer, synchronously: what a
   // capture records. Leaves the delayed readback of the main pass alone.
   void capture(const Camera& camera, int frame, const FlightOptions& options) {
-    reference::RenderSettings settings = settings_;
-    settings.needScaleLog2 = 0;
-    const ClipSpaceMesh clip = toClipSpace(mesh_, camera, settings.viewport);
     std::vector<uint8_t> color;
     std::vector<glm::uvec4> need;
-    if (gl_) {
-      gl_->uploadCache();
-      GlFrame drawn = gl_->render(clip, settings);
-      color = std::move(drawn.color);
-      need = std::move(drawn.need);
-    } else {
-      reference::Frame drawn = reference::renderFrame(clip, runtime_.cacheState(), settings);
-      color = std::move(drawn.color);
-      need = std::move(drawn.need);
-    }
+    const ClipSpaceMesh clip =
+        pass(camera, settings_.viewport, 0, glm::vec2(0.0f), &color, &need, nullptr, false);
     options.capture(FlightCaptureView{frame, clip, color, need, runtime_});
   }
 
  private:
-  void pass(const Camera& camera, Viewport viewport, int scaleLog2, glm::vec2 jitter,
-            std::vector<uint8_t>* color, std::vector<glm::uvec4>* need, std::vector<float>* depth,
-            bool delayed) {
+  // Returns the clip-space mesh it drew.
+  ClipSpaceMesh pass(const Camera& camera, Viewport viewport, int scaleLog2, glm::vec2 jitter,
+                     std::vector<uint8_t>* color, std::vector<glm::uvec4>* need,
+                     std::vector<float>* depth, bool delayed) {
     reference::RenderSettings settings = settings_;
     settings.viewport = viewport;
     settings.needScaleLog2 = scaleLog2;
@@ -80,13 +72,13 @@ class FrameDrawer {
         if (color) *color = gl_->readColor();
         *need = previous ? std::move(previous->need) : std::vector<glm::uvec4>{};
         if (depth) *depth = previous ? std::move(previous->depth) : std::vector<float>{};
-        return;
+        return clip;
       }
       GlFrame frame = gl_->render(clip, settings, readDepth);
       if (color) *color = std::move(frame.color);
       if (need) *need = std::move(frame.need);
       if (depth) *depth = std::move(frame.depth);
-      return;
+      return clip;
     }
     reference::Frame frame = reference::renderFrame(clip, runtime_.cacheState(), settings);
     if (color) *color = std::move(frame.color);
@@ -96,6 +88,7 @@ class FrameDrawer {
     }
     if (need) *need = std::move(frame.need);
     if (depth) *depth = std::move(frame.depth);
+    return clip;
   }
 
   const Mesh& mesh_;
