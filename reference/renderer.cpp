@@ -3,7 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <thread>
+
+#ifdef __SSE4_1__
+#include <smmintrin.h>
+#endif
 
 #include "reference/cache_state.h"
 #include "reference/parallel_for.h"
@@ -20,6 +25,21 @@ using shader::vec4;
 // An RGBA8 texel as texelFetch returns it: llvmpipe multiplies by 1/255 (a float constant) rather
 // than dividing by 255.
 vec4 unorm8ToFloat(glm::u8vec4 t) { return vec4(t) * (1.0f / 255.0f); }
+
+// The same for four bytes in memory, in one vector conversion where the CPU has SSE4.1 (the same
+// values: every byte converts exactly, and each lane multiplies by the same float).
+vec4 unorm8ToFloat(const uint8_t* texel) {
+#ifdef __SSE4_1__
+  int32_t packed;
+  std::memcpy(&packed, texel, sizeof packed);
+  const __m128 converted = _mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(packed)));
+  vec4 result;
+  _mm_storeu_ps(&result.x, _mm_mul_ps(converted, _mm_set1_ps(1.0f / 255.0f)));
+  return result;
+#else
+  return unorm8ToFloat(glm::u8vec4(texel[0], texel[1], texel[2], texel[3]));
+#endif
+}
 
 // GL_LINEAR at a texel position (centres at +0.5), clamp to edge, over a texture of `size`
 // texels, given as the shader hands it: divided by the size into [0, 1] first.
@@ -118,15 +138,19 @@ class CacheBackend {
     return uvec4(e.x, e.y, e.z, e.w);
   }
 
-  glm::u8vec4 fetch8(ivec2 texel) const {
+  const uint8_t* texelAt(ivec2 texel) const {
     const int x = std::clamp(texel.x, 0, static_cast<int>(state_->widthTexels) - 1);
     const int y = std::clamp(texel.y, 0, static_cast<int>(state_->heightTexels) - 1);
-    const uint8_t* t = state_->texels.data() +
-                       (static_cast<size_t>(y) * state_->widthTexels + static_cast<size_t>(x)) * 4;
+    return state_->texels.data() +
+           (static_cast<size_t>(y) * state_->widthTexels + static_cast<size_t>(x)) * 4;
+  }
+
+  glm::u8vec4 fetch8(ivec2 texel) const {
+    const uint8_t* t = texelAt(texel);
     return {t[0], t[1], t[2], t[3]};
   }
 
-  vec4 vtFetchCacheTexel(ivec2 texel) { return unorm8ToFloat(fetch8(texel)); }
+  vec4 vtFetchCacheTexel(ivec2 texel) { return unorm8ToFloat(texelAt(texel)); }
 
   vec4 vtSampleCacheLinear(vec2 texel) {
     return sampleLinear(
@@ -174,9 +198,26 @@ bool nearInteger(float x) {
 
 namespace {
 
+// Sizes every channel for `viewport` without clearing: the tiles write every pixel. A frame of
+// the same size keeps its buffers, so a renderer drawing frame after frame allocates nothing.
+void sizeFrame(Frame& frame, Viewport viewport, bool debug) {
+  frame.viewport = viewport;
+  const size_t pixels = static_cast<size_t>(viewport.width) * static_cast<size_t>(viewport.height);
+  frame.color.resize(pixels * 4);
+  frame.need.resize(pixels);
+  frame.depth.resize(pixels);
+  frame.ambiguity.resize(pixels);
+  frame.triangle.resize(pixels);
+  const size_t debugPixels = debug ? pixels : 0;
+  frame.uv.resize(debugPixels);
+  frame.derivatives.resize(debugPixels);
+  frame.lod.resize(debugPixels);
+  frame.residentLevel.resize(debugPixels);
+}
+
 template <class Backend, class Source>
-Frame render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescription& d,
-             glm::vec2 cacheSize, const RenderSettings& settings) {
+void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescription& d,
+            glm::vec2 cacheSize, const RenderSettings& settings, Frame& frame) {
   const Viewport viewport = settings.viewport;
   // The thread limit covers everything: setup, Embree's scene build and the tiles.
   const ThreadLimit parallelism(settings.threads);
@@ -194,21 +235,9 @@ Frame render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDesc
   parameters.needScaleLog2 = settings.needScaleLog2;
   parameters.cacheSize = cacheSize;
 
-  Frame frame;
-  frame.viewport = viewport;
-  const size_t pixels = static_cast<size_t>(viewport.width) * static_cast<size_t>(viewport.height);
-  frame.color.assign(pixels * 4, 0);
-  frame.need.assign(pixels, needClearValue(settings.need8));
-  frame.depth.assign(pixels, 1.0f);
-  frame.ambiguity.assign(pixels, 0);
-  frame.triangle.assign(pixels, -1);
   const bool debug = settings.debugChannels;
-  if (debug) {
-    frame.uv.assign(pixels, vec2(0.0f));
-    frame.derivatives.assign(pixels, vec4(0.0f));
-    frame.lod.assign(pixels, 0.0f);
-    frame.residentLevel.assign(pixels, -1);
-  }
+  sizeFrame(frame, viewport, debug);
+  const glm::uvec4 noNeed = needClearValue(settings.need8);
 
   constexpr int kTile = 16;
   const int tilesX = (viewport.width + kTile - 1) / kTile,
@@ -240,7 +269,20 @@ Frame render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDesc
                       static_cast<size_t>(px);
                   const PixelHit hit =
                       hits[static_cast<size_t>((px - bx) + Visibility::kBlock * (py - by))];
-                  if (hit.triangle < 0) continue;
+                  if (hit.triangle < 0) {
+                    for (int c = 0; c < 4; ++c) frame.color[index * 4 + static_cast<size_t>(c)] = 0;
+                    frame.need[index] = noNeed;
+                    frame.depth[index] = 1.0f;
+                    frame.ambiguity[index] = 0;
+                    frame.triangle[index] = -1;
+                    if (debug) {
+                      frame.uv[index] = vec2(0.0f);
+                      frame.derivatives[index] = vec4(0.0f);
+                      frame.lod[index] = 0.0f;
+                      frame.residentLevel[index] = -1;
+                    }
+                    continue;
+                  }
                   const SetupTriangle& t = triangles[static_cast<size_t>(hit.triangle)];
                   int slot = 0;
                   while (slot < slots && quadTriangle[static_cast<size_t>(slot)] != hit.triangle)
@@ -275,6 +317,7 @@ Frame render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDesc
                     frame.residentLevel[index] = static_cast<int8_t>(f.residentLevel);
                   }
 
+                  frame.ambiguity[index] = 0;
                   if (settings.profile == PrecisionProfile::kLlvmpipe)
                     continue;  // exact: nothing to flag
                   uint8_t reasons = 0;
@@ -303,23 +346,36 @@ Frame render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDesc
               }
           }
       });
-  return frame;
 }
 
 }  // namespace
 
+void renderFrame(const ClipSpaceMesh& mesh, const ResidentTexture& texture,
+                 const RenderSettings& settings, Frame& frame) {
+  const float side = static_cast<float>(texture.description().storedPageSide());
+  render<ResidentBackend>(mesh, texture, texture.description(), glm::vec2(side), settings, frame);
+}
+
+void renderFrame(const ClipSpaceMesh& mesh, const CacheState& cache, const RenderSettings& settings,
+                 Frame& frame) {
+  render<CacheBackend>(
+      mesh, cache, cache.description,
+      glm::vec2(static_cast<float>(cache.widthTexels), static_cast<float>(cache.heightTexels)),
+      settings, frame);
+}
+
 Frame renderFrame(const ClipSpaceMesh& mesh, const ResidentTexture& texture,
                   const RenderSettings& settings) {
-  const float side = static_cast<float>(texture.description().storedPageSide());
-  return render<ResidentBackend>(mesh, texture, texture.description(), glm::vec2(side), settings);
+  Frame frame;
+  renderFrame(mesh, texture, settings, frame);
+  return frame;
 }
 
 Frame renderFrame(const ClipSpaceMesh& mesh, const CacheState& cache,
                   const RenderSettings& settings) {
-  return render<CacheBackend>(
-      mesh, cache, cache.description,
-      glm::vec2(static_cast<float>(cache.widthTexels), static_cast<float>(cache.heightTexels)),
-      settings);
+  Frame frame;
+  renderFrame(mesh, cache, settings, frame);
+  return frame;
 }
 
 }  // namespace vt::reference

@@ -26,8 +26,8 @@ struct RenderSettings {
   PrecisionProfile profile = PrecisionProfile::kExact;
   DepthFormat depthFormat = DepthFormat::kDepth32F;
   bool trilinear = true;
-  bool exactFilter = true;     // texel fetches and float filtering; false: the sampler's GL_LINEAR
-  bool need8 = false;          // 8-bit needbuffer (textures up to 4096 pages per side)
+  bool exactFilter = true;  // texel fetches and float filtering; false: the sampler's GL_LINEAR
+  bool need8 = false;       // 8-bit needbuffer (textures up to 4096 pages per side)
   // A reduced needbuffer: the viewport is 1/2^k of the screen per axis, and the LOD compensates
   // (virtual_texture_types.glsl). 0: full resolution.
   int needScaleLog2 = 0;
@@ -45,5 +45,12 @@ Frame renderFrame(const ClipSpaceMesh& mesh, const ResidentTexture& texture,
 // A given cache state, as the GL renderer holds it.
 Frame renderFrame(const ClipSpaceMesh& mesh, const CacheState& cache,
                   const RenderSettings& settings);
+
+// The same, into `frame`: every pixel of every channel is written, and a frame of the same
+// viewport keeps its buffers (a flight or a benchmark drawing frame after frame allocates once).
+void renderFrame(const ClipSpaceMesh& mesh, const ResidentTexture& texture,
+                 const RenderSettings& settings, Frame& frame);
+void renderFrame(const ClipSpaceMesh& mesh, const CacheState& cache, const RenderSettings& settings,
+                 Frame& frame);
 
 }  // namespace vt::reference

@@ -174,6 +174,42 @@ TEST_F(Oracle, SameBytesForOneTwoAndEightThreads) {
   }
 }
 
+TEST_F(Oracle, AReusedFrameHoldsExactlyWhatAFreshOneHolds) {
+  // A frame that held a full-screen quad, with debug channels and an 8-bit needbuffer, and bytes
+  // no render writes: rendered again with a scene that leaves most pixels empty, every channel
+  // must equal a fresh frame's, background pixels included.
+  RenderSettings first;
+  first.debugChannels = true;
+  first.need8 = true;
+  first.viewport = {123, 77};
+  Frame reused = renderFrame(screenQuad(), *texture_, first);
+  std::fill(reused.color.begin(), reused.color.end(), uint8_t{0x5a});
+  std::fill(reused.ambiguity.begin(), reused.ambiguity.end(), uint8_t{0xff});
+  std::fill(reused.residentLevel.begin(), reused.residentLevel.end(), int8_t{7});
+
+  ClipSpaceMesh small = fan(5);
+  for (ClipVertex& v : small.vertices) v.position *= glm::vec4(0.2f, 0.2f, 1.0f, 1.0f);
+  for (const bool debug : {true, false}) {
+    RenderSettings second;
+    second.debugChannels = debug;
+    second.profile = PrecisionProfile::kNvidia;  // the ambiguity mask is written too
+    second.viewport = first.viewport;
+    renderFrame(small, *texture_, second, reused);
+    const Frame fresh = renderFrame(small, *texture_, second);
+    EXPECT_EQ(reused.color, fresh.color);
+    EXPECT_EQ(reused.need, fresh.need);
+    EXPECT_EQ(reused.depth, fresh.depth);
+    EXPECT_EQ(reused.ambiguity, fresh.ambiguity);
+    EXPECT_EQ(reused.triangle, fresh.triangle);
+    EXPECT_EQ(reused.uv, fresh.uv);
+    EXPECT_EQ(reused.derivatives, fresh.derivatives);
+    EXPECT_EQ(reused.lod, fresh.lod);
+    EXPECT_EQ(reused.residentLevel, fresh.residentLevel);
+    EXPECT_EQ(reused.residentLevel.size(), debug ? fresh.triangle.size() : 0u);
+    EXPECT_GT(std::count(fresh.triangle.begin(), fresh.triangle.end(), -1), 1000);
+  }
+}
+
 TEST_F(Oracle, TriangleCrossingTheNearPlaneIsClippedNotDropped) {
   ClipSpaceMesh mesh;
   // One vertex behind the eye (w < 0, z < -w): the clipper keeps the visible part.
