@@ -259,7 +259,7 @@ void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescr
               for (int qx = bx; qx < std::min(bx + Visibility::kBlock, viewport.width); qx += 2) {
                 std::array<int32_t, 4> quadTriangle{-1, -1, -1, -1};
                 std::array<std::array<Attributes, 4>, 4>
-                    quadAttributes{};  // [slot][pixel of the quad]
+                    quadAttributes;  // [slot][pixel of the quad]; slots below `slots` are set
                 int slots = 0;
                 for (int k = 0; k < 4; ++k) {
                   const int px = qx + (k & 1), py = qy + (k >> 1);
