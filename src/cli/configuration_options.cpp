@@ -36,7 +36,7 @@ struct ConfigurationOptions::Values {
                       hotSpot = "shifted", needScale = "1", readback = "sync";
   uint32_t budget = 10, latency = 0, lockedLevels = 0, initialLevels = 3, frames = 16;
   float noiseThreshold = -1.0f;
-  bool noiseSkipping = false, preloadVisible = false;
+  bool noiseSkipping = false, preloadVisible = false, trilinearParents = false;
 };
 
 ConfigurationOptions::ConfigurationOptions(CLI::App* command)
@@ -80,6 +80,8 @@ ConfigurationOptions::ConfigurationOptions(CLI::App* command)
       ->capture_default_str();
   command->add_flag("--preload-visible", v.preloadVisible,
                     "Also load the pages the first frame needs before it (4.2.1)");
+  command->add_flag("--trilinear-parents", v.trilinearParents,
+                    "A needed page's parent, which trilinear filtering reads, counts as needed");
   command->add_option("--cache-frames", v.frames, "The cache holds N x N frames")
       ->capture_default_str();
   command
@@ -120,6 +122,7 @@ FlightConfiguration ConfigurationOptions::configuration() const {
   if (given("--preload-visible")) options["preload_visible"] = v.preloadVisible;
   if (given("--need-scale")) options["need_scale"] = std::stoi(v.needScale);
   if (given("--readback")) options["readback"] = v.readback;
+  if (given("--trilinear-parents")) options["trilinear_parents"] = v.trilinearParents;
   return FlightConfiguration::fromJson(options, base);
 }
 

@@ -113,7 +113,8 @@ void addEvalCommand(CLI::App& app) {
     FlightSceneArguments scene;
     std::string configs, output = "eval", title;
     std::string heuristics = "pixelsum", budgets = "5,10", ancestors = "none", locked = "0",
-                needScales = "1", lookAheads = "none", hotSpot = "shifted", profile = "exact";
+                needScales = "1", lookAheads = "none", hotSpot = "shifted", profile = "exact",
+                parents = "off";
     uint32_t cacheFrames = 16, initialLevels = 3;
     bool preloadVisible = false, noiseSkipping = false;
     unsigned jobs = 0;
@@ -136,6 +137,10 @@ void addEvalCommand(CLI::App& app) {
       ->add_option("--need-scale", o->needScales, "Needbuffer scales 1, 2, 4, 8; comma-separated")
       ->capture_default_str();
   command->add_option("--lookahead", o->lookAheads, "none, plain, stopfix; comma-separated")
+      ->capture_default_str();
+  command
+      ->add_option("--trilinear-parents", o->parents,
+                   "off, on: whether a needed page's parent counts as needed; comma-separated")
       ->capture_default_str();
   command->add_option("--hotspot", o->hotSpot, "HotSpot centre: fixed, shifted, sliding")
       ->capture_default_str();
@@ -161,7 +166,7 @@ void addEvalCommand(CLI::App& app) {
     std::vector<EvaluationFigure> figures;
     if (!o->configs.empty()) {
       for (const char* list : {"--heuristic", "--budget", "--ancestors", "--locked-levels",
-                               "--need-scale", "--lookahead"})
+                               "--need-scale", "--lookahead", "--trilinear-parents"})
         if (command->count(list) > 0)
           throw std::invalid_argument(std::string("give either --configs or ") + list);
       ConfigurationsFile loaded = loadConfigurations(o->configs);
@@ -179,19 +184,25 @@ void addEvalCommand(CLI::App& app) {
           for (const std::string& ancestors : splitList(o->ancestors))
             for (const std::string& locked : splitList(o->locked))
               for (const std::string& scale : splitList(o->needScales))
-                for (const std::string& lookAhead : splitList(o->lookAheads)) {
-                  nlohmann::json settings = {
-                      {"heuristic", heuristic}, {"ancestors", ancestors}, {"lookahead", lookAhead}};
-                  try {
-                    settings["budget"] = std::stoll(budget);
-                    settings["locked_levels"] = std::stoll(locked);
-                    settings["need_scale"] = std::stoll(scale);
-                  } catch (const std::exception&) {
-                    throw std::invalid_argument("not a whole number in '" + budget + "', '" +
-                                                locked + "' or '" + scale + "'");
+                for (const std::string& lookAhead : splitList(o->lookAheads))
+                  for (const std::string& parents : splitList(o->parents)) {
+                    if (parents != "off" && parents != "on")
+                      throw std::invalid_argument("--trilinear-parents takes off and on, not '" +
+                                                  parents + "'");
+                    nlohmann::json settings = {{"heuristic", heuristic},
+                                               {"ancestors", ancestors},
+                                               {"lookahead", lookAhead},
+                                               {"trilinear_parents", parents == "on"}};
+                    try {
+                      settings["budget"] = std::stoll(budget);
+                      settings["locked_levels"] = std::stoll(locked);
+                      settings["need_scale"] = std::stoll(scale);
+                    } catch (const std::exception&) {
+                      throw std::invalid_argument("not a whole number in '" + budget + "', '" +
+                                                  locked + "' or '" + scale + "'");
+                    }
+                    configurations.push_back(FlightConfiguration::fromJson(settings, base));
                   }
-                  configurations.push_back(FlightConfiguration::fromJson(settings, base));
-                }
     }
 
     // The results replace the output folder: refuse one with other files before flying.

@@ -108,6 +108,7 @@ RuntimeOptions runtimeOptions(const VirtualTextureReader& reader,
   options.priority.heuristic = configuration.heuristic;
   options.priority.ancestors = configuration.ancestors;
   options.priority.noiseValueSkipping = configuration.noiseSkipping;
+  options.trilinearParents = configuration.trilinearParents;
   double meanNoise = 0.0;
   for (const float n : reader.noiseValues()) meanNoise += n;
   meanNoise /= static_cast<double>(std::max<size_t>(1, reader.noiseValues().size()));
@@ -118,7 +119,8 @@ RuntimeOptions runtimeOptions(const VirtualTextureReader& reader,
 }
 
 // The initial cache state (thesis 4.2.1): levels 0..K-1 and, when asked, every page the first
-// frame needs, found by drawing it with every page resident.
+// frame needs, found by drawing it with every page resident (with trilinear parents, and their
+// parents).
 std::vector<uint64_t> initialPages(const VirtualTextureReader& reader, const Mesh& mesh,
                                    const CameraPath& path, const FlightConfiguration& c,
                                    const reference::RenderSettings& settings) {
@@ -130,6 +132,15 @@ std::vector<uint64_t> initialPages(const VirtualTextureReader& reader, const Mes
     const reference::Frame first = reference::renderFrame(
         toClipSpace(mesh, path.at(0), settings.viewport), everything, settings);
     const std::vector<uint64_t> visible = neededPages(first.need, settings.need8).pages;
+    if (c.trilinearParents) {  // the coarser level of each visible page's blend, first
+      std::vector<uint64_t> parents;
+      for (const uint64_t page : visible)
+        if (levelOfAbsoluteIndex(page) > 0)
+          parents.push_back(absoluteIndex(parent(fromAbsoluteIndex(page))));
+      std::sort(parents.begin(), parents.end());
+      parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
+      pages.insert(pages.end(), parents.begin(), parents.end());
+    }
     pages.insert(pages.end(), visible.begin(), visible.end());
   }
   return pages;

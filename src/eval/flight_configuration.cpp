@@ -57,6 +57,7 @@ std::string FlightConfiguration::label() const {
   if (lockedLevels > 0) add("locked=", std::to_string(lockedLevels));
   if (needScaleLog2 > 0) add("need=1/", std::to_string(1 << needScaleLog2));
   if (asyncReadback) add("", "async");
+  if (trilinearParents) add("", "parents");
   if (latency > 0) add("latency=", std::to_string(latency));
   return text;
 }
@@ -76,7 +77,8 @@ nlohmann::json FlightConfiguration::toJson() const {
           {"initial_levels", initialLevels},
           {"preload_visible", preloadVisible},
           {"need_scale", 1 << needScaleLog2},
-          {"readback", asyncReadback ? "async" : "sync"}};
+          {"readback", asyncReadback ? "async" : "sync"},
+          {"trilinear_parents", trilinearParents}};
 }
 
 FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
@@ -131,6 +133,8 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
       if (!value.is_number_integer())
         throw std::invalid_argument("'need_scale' must be 1, 2, 4 or 8");
       c.needScaleLog2 = parseNeedScale(std::to_string(value.get<int64_t>()));
+    } else if (key == "trilinear_parents") {
+      c.trilinearParents = flag();
     } else if (key == "readback") {
       const std::string mode = text();
       if (mode != "sync" && mode != "async")

@@ -6,7 +6,7 @@
 // The JSON form uses the names of `vt fly`'s options, e.g.
 //   { "name": "HotSpot x NoiseValue, LookAhead", "heuristic": "hotspot*noisevalue",
 //     "lookahead": "stopfix", "budget": 5, "ancestors": "extern", "noise_skipping": true,
-//     "locked_levels": 4, "need_scale": 4 }
+//     "locked_levels": 4, "need_scale": 4, "trilinear_parents": true }
 // Keys left out keep their defaults (below, or the defaults given to fromJson); unknown keys and
 // values out of range are errors.
 
@@ -26,14 +26,16 @@ struct FlightConfiguration {
   float noiseThreshold = -1.0f;  // NoiseValueSkipping; negative: the texture's mean NoiseValue
   LookAhead lookAhead = LookAhead::kNone;
   HotSpotMode hotSpot = HotSpotMode::kShifted;
-  uint32_t budget = 10;         // pages streamed per frame
-  uint32_t latency = 0;         // frames between a request and its page's arrival
-  uint32_t cacheFrames = 16;    // the cache holds cacheFrames x cacheFrames frames
-  uint32_t lockedLevels = 0;    // levels 0..K-1 never leave the cache (4.3.1)
-  uint32_t initialLevels = 3;   // levels 0..K-1 loaded before the first frame (4.2.1)
-  bool preloadVisible = false;  // and the pages the first frame needs (4.2.1)
-  int needScaleLog2 = 0;        // needbuffer at 1/2^k of the screen per axis, jittered
-  bool asyncReadback = false;   // the analysis sees the previous frame's needbuffer
+  uint32_t budget = 10;           // pages streamed per frame
+  uint32_t latency = 0;           // frames between a request and its page's arrival
+  uint32_t cacheFrames = 16;      // the cache holds cacheFrames x cacheFrames frames
+  uint32_t lockedLevels = 0;      // levels 0..K-1 never leave the cache (4.3.1)
+  uint32_t initialLevels = 3;     // levels 0..K-1 loaded before the first frame (4.2.1)
+  bool preloadVisible = false;    // and the pages the first frame needs (4.2.1)
+  int needScaleLog2 = 0;          // needbuffer at 1/2^k of the screen per axis, jittered
+  bool asyncReadback = false;     // the analysis sees the previous frame's needbuffer
+  bool trilinearParents = false;  // the parent of a needed page counts as needed too: trilinear
+                                  // filtering reads it (runtime/virtual_texture_runtime.h)
 
   std::string label() const;  // the name, or a short description of the settings
   nlohmann::json toJson() const;

@@ -3,6 +3,31 @@
 #include <algorithm>
 
 namespace vt {
+namespace {
+
+// Adds to every page of level m > 0 in `analysis` its parent, the coarser level that trilinear
+// filtering blends in, needed by the same pixels with the same weights. Children are visited in
+// page order, so the sums are the same bytes on every run.
+void addTrilinearParents(NeedBufferAnalysis& analysis) {
+  std::vector<uint64_t> children;
+  children.reserve(analysis.pages.size());
+  for (const auto& [absolute, statistics] : analysis.pages)
+    if (levelOfAbsoluteIndex(absolute) > 0) children.push_back(absolute);
+  std::sort(children.begin(), children.end());
+  std::vector<std::pair<uint64_t, PageStatistics>> parents;
+  parents.reserve(children.size());
+  for (const uint64_t child : children)
+    parents.emplace_back(absoluteIndex(parent(fromAbsoluteIndex(child))), analysis.pages[child]);
+  for (const auto& [up, child] : parents) {
+    PageStatistics& total = analysis.pages[up];
+    total.pixels += child.pixels;
+    total.depthSum += child.depthSum;
+    total.centreWeight += child.centreWeight;
+    total.hotSpotWeight += child.hotSpotWeight;
+  }
+}
+
+}  // namespace
 
 VirtualTextureRuntime::VirtualTextureRuntime(const VirtualTextureReader& reader,
                                              const RuntimeOptions& options)
@@ -119,10 +144,18 @@ std::vector<StreamRequest> VirtualTextureRuntime::analyze(
     } else {
       ++statistics.misses;
     }
+    if (options_.trilinearParents && levelOfAbsoluteIndex(page) > 0) {
+      const uint64_t up = absoluteIndex(parent(fromAbsoluteIndex(page)));
+      if (pageCache_.contains(up)) residentNeeded.push_back(up);
+    }
   }
-  // Touch in page order: the LRU order, and so every later eviction, is deterministic.
+  // Touch in page order, each page once: the LRU order, and so every later eviction, is
+  // deterministic.
   std::sort(residentNeeded.begin(), residentNeeded.end());
+  residentNeeded.erase(std::unique(residentNeeded.begin(), residentNeeded.end()),
+                       residentNeeded.end());
   for (const uint64_t page : residentNeeded) pageCache_.touch(page);
+  if (options_.trilinearParents) addTrilinearParents(combined);
 
   PriorityOptions priority = options_.priority;
   priority.seed = frameNumber;

@@ -24,6 +24,11 @@ struct RuntimeOptions {
   uint32_t lockedLevels = 0;  // levels 0 .. lockedLevels - 1 never leave the cache; the root
                               // (level 0) never does in any case: every lookup falls back to it
   PriorityOptions priority;
+  // Trilinear filtering blends the needed level with the next coarser one, so a pixel that needs
+  // page p (level m > 0) also reads p's parent. The needbuffer names p only (thesis 3.2.3.2);
+  // with this option the analysis counts the parent as needed by the same pixels: a resident
+  // parent is kept fresh in the LRU order, a missing one is requested. Off: the thesis's runtime.
+  bool trilinearParents = false;
   bool keepAnalysis = false;  // keep each frame's analysis for priorityTerms (inspection)
 };
 
@@ -59,8 +64,8 @@ class VirtualTextureRuntime {
   };
 
   // Analyzes a drawn frame (needbuffer, and depth when the heuristic needs it), touches the
-  // resident needed pages (LRU), and returns the requests, most important first. Statistics
-  // describe the drawn frame only.
+  // resident needed pages (LRU; with trilinearParents their resident parents too), and returns
+  // the requests, most important first. Statistics describe the drawn frame's needbuffer only.
   std::vector<StreamRequest> analyze(std::span<const glm::uvec4> need, std::span<const float> depth,
                                      int width, int height, bool need8, uint64_t frameNumber,
                                      FrameStatistics& statistics,

@@ -71,6 +71,40 @@ TEST(Evaluation, EveryPageResidentDrawsTheReferenceImageAndNoBudgetStreamsNothin
             flightTotals(evaluation.runs[1].result)["mean_ssim"].get<double>());
 }
 
+// Trilinear filtering reads the needed page's parent too. With every page the first frame names
+// preloaded, and their parents, the first frame is the reference (up to the cache's rounding, as
+// above); without the parents it is not. In a cache too small for the turn, keeping the parents
+// in use resident wins over the whole flight.
+TEST(Evaluation, TrilinearParentsCompleteTheFirstFrameAndHelpASmallCache) {
+  Fixture f;
+  const VirtualTextureReader reader(f.texture);
+  FlightConfiguration plain;
+  plain.preloadVisible = true;
+  plain.initialLevels = 1;
+  plain.budget = 4;
+  FlightConfiguration parents = plain;
+  parents.trilinearParents = true;
+  FlightConfiguration smallPlain = plain, smallParents = parents;
+  smallPlain.cacheFrames = smallParents.cacheFrames = 6;
+  const Evaluation e = evaluate(reader, boxRoom(), boxRoomPath(),
+                                {plain, parents, smallPlain, smallParents}, smallScreen(reader, 2));
+  const FlightFrame& plainFirst = e.runs[0].result.frames.front();
+  const FlightFrame& parentsFirst = e.runs[1].result.frames.front();
+  EXPECT_EQ(plainFirst.statistics.misses, 0u);
+  EXPECT_EQ(parentsFirst.statistics.misses, 0u);
+  EXPECT_LT(parentsFirst.quality->rmse, 0.05);
+  EXPECT_GT(parentsFirst.quality->ssim, 1.0 - 1e-4);
+  EXPECT_GT(plainFirst.quality->rmse, 10 * parentsFirst.quality->rmse);
+  const auto meanSsim = [&](size_t run) {
+    return flightTotals(e.runs[run].result)["mean_ssim"].get<double>();
+  };
+  std::printf(
+      "first frame RMSE %.4f / %.4f; 6 x 6 frames: mean SSIM %.5f / %.5f (plain / "
+      "parents)\n",
+      plainFirst.quality->rmse, parentsFirst.quality->rmse, meanSsim(2), meanSsim(3));
+  EXPECT_GT(meanSsim(3), meanSsim(2));
+}
+
 TEST(Evaluation, PerFrameResultsAreTheSameForOneJobOrSeveral) {
   Fixture f;
   const VirtualTextureReader reader(f.texture);
@@ -134,10 +168,12 @@ TEST(FlightConfiguration, ReadsTheOptionNamesAndRejectsUnknownKeysAndBadValues) 
   const FlightConfiguration c = FlightConfiguration::fromJson(
       nlohmann::json::parse(R"({"heuristic": "hotspot*noisevalue", "lookahead": "stopfix",
         "budget": 5, "ancestors": "extern", "noise_skipping": true, "locked_levels": 4,
-        "need_scale": 4, "readback": "async"})"),
+        "need_scale": 4, "readback": "async", "trilinear_parents": true})"),
       {});
   EXPECT_EQ(c.label(),
-            "hotspot*noisevalue 5/frame lookahead=stopfix extern skipping locked=4 need=1/4 async");
+            "hotspot*noisevalue 5/frame lookahead=stopfix extern skipping locked=4 need=1/4 async "
+            "parents");
+  EXPECT_TRUE(c.trilinearParents);
   const FlightConfiguration back = FlightConfiguration::fromJson(c.toJson(), {});
   EXPECT_EQ(back.toJson(), c.toJson());
   const auto error = [](const char* text) {
@@ -154,6 +190,8 @@ TEST(FlightConfiguration, ReadsTheOptionNamesAndRejectsUnknownKeysAndBadValues) 
   EXPECT_THAT(error(R"({"need_scale": 3})"), HasSubstr("need"));
   EXPECT_THAT(error(R"({"lookahead": "far"})"), HasSubstr("lookahead 'far'"));
   EXPECT_THAT(error(R"([1])"), HasSubstr("must be a JSON object"));
+  EXPECT_THAT(error(R"({"trilinear_parents": "yes"})"),
+              HasSubstr("'trilinear_parents' must be true or false"));
 }
 
 }  // namespace

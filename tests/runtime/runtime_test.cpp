@@ -173,5 +173,52 @@ TEST_F(Runtime, ThreadedStreamerLinkSendsNoFasterThanItsBandwidth) {
   EXPECT_EQ(streamer.takeStreamed().size(), 5u);
 }
 
+// A needbuffer of 4 x 4 pixels that all need page (1, 1) of level 2.
+std::vector<glm::uvec4> needingOnePage() { return std::vector<glm::uvec4>(16, {1, 1, 2, 1}); }
+
+TEST_F(Runtime, TrilinearParentsRequestsTheParentOfANeededPage) {
+  const uint64_t child = absoluteIndex(PageId{1, 1, 2}), up = absoluteIndex(PageId{0, 0, 1});
+  for (const bool parents : {false, true}) {
+    RuntimeOptions options;
+    options.trilinearParents = parents;
+    VirtualTextureRuntime runtime(*reader_, options);
+    FrameStatistics statistics;
+    const std::vector<StreamRequest> requests =
+        runtime.analyze(needingOnePage(), {}, 4, 4, false, 0, statistics);
+    std::set<uint64_t> requested;
+    for (const StreamRequest& r : requests) requested.insert(r.page);
+    const std::set<uint64_t> expected =
+        parents ? std::set<uint64_t>{child, up} : std::set<uint64_t>{child};
+    EXPECT_EQ(requested, expected);
+    // The statistics still describe the needbuffer: one page, one miss.
+    EXPECT_EQ(statistics.neededPages, 1u);
+    EXPECT_EQ(statistics.misses, 1u);
+    EXPECT_EQ(statistics.requested, parents ? 2u : 1u);
+  }
+}
+
+TEST_F(Runtime, TrilinearParentsKeepsAParentInUseFromEviction) {
+  // Four frames: the root, the needed page, its parent and one more. Pages nobody needs arrive
+  // frame after frame; the LRU frame goes to each. The parent, never named by the needbuffer, is
+  // the least recently used page unless the analysis touches it.
+  const uint64_t child = absoluteIndex(PageId{1, 1, 2}), up = absoluteIndex(PageId{0, 0, 1});
+  for (const bool parents : {false, true}) {
+    RuntimeOptions options;
+    options.framesX = options.framesY = 2;
+    options.trilinearParents = parents;
+    VirtualTextureRuntime runtime(*reader_, options);
+    runtime.preload(std::vector<uint64_t>{up, child});
+    for (uint64_t frame = 0; frame < 4; ++frame) {
+      FrameStatistics statistics;
+      runtime.analyze(needingOnePage(), {}, 4, 4, false, frame, statistics);
+      const uint64_t other = absoluteIndex(PageId{static_cast<uint32_t>(frame), 7, 3});
+      runtime.apply({StreamedPage{other, reader_->readPage(fromAbsoluteIndex(other))}});
+      EXPECT_TRUE(runtime.pageCache().contains(child));
+    }
+    EXPECT_EQ(runtime.pageCache().contains(up), parents) << "trilinear parents " << parents;
+    expectConsistent(runtime);
+  }
+}
+
 }  // namespace
 }  // namespace vt
