@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 #include <utility>
 
 #include "format/virtual_texture_reader.h"
@@ -47,5 +48,9 @@ reference::RenderSettings internalSettings(Viewport viewport, const RenderOption
 ClipSpaceMesh internalMesh(const Scene& scene);
 reference::CacheState internalCache(const VirtualTextureReader& reader, const CacheState& cache);
 Frame publicFrame(reference::Frame&& frame);
+// A clip-space mesh as the API's scene, and a needbuffer as four values per pixel: the
+// conversions the implementation and the command line share.
+Scene publicScene(const ClipSpaceMesh& mesh, vt::Viewport viewport);
+std::vector<uint32_t> flatNeed(std::span<const glm::uvec4> need);
 
 }  // namespace vt::oracle

@@ -98,13 +98,18 @@ reference::CacheState internalCache(const VirtualTextureReader& reader, const Ca
   return reference::placePages(reader, placed, cache.framesX, cache.framesY);
 }
 
+std::vector<uint32_t> flatNeed(std::span<const glm::uvec4> need) {
+  std::vector<uint32_t> flat;
+  flat.reserve(need.size() * 4);
+  for (const glm::uvec4& v : need) flat.insert(flat.end(), {v.x, v.y, v.z, v.w});
+  return flat;
+}
+
 Frame publicFrame(reference::Frame&& frame) {
   Frame result;
   result.viewport = {frame.viewport.width, frame.viewport.height};
   result.color = std::move(frame.color);
-  result.need.reserve(frame.need.size() * 4);
-  for (const glm::uvec4& v : frame.need)
-    result.need.insert(result.need.end(), {v.x, v.y, v.z, v.w});
+  result.need = flatNeed(frame.need);
   result.depth = std::move(frame.depth);
   result.ambiguity = std::move(frame.ambiguity);
   return result;

@@ -6,6 +6,15 @@
 
 namespace vt::oracle {
 
+Scene publicScene(const ClipSpaceMesh& mesh, vt::Viewport viewport) {
+  Scene scene{{viewport.width, viewport.height}, {}, mesh.indices};
+  scene.vertices.reserve(mesh.vertices.size());
+  for (const vt::ClipVertex& v : mesh.vertices)
+    scene.vertices.push_back(
+        {v.position.x, v.position.y, v.position.z, v.position.w, v.uv.x, v.uv.y});
+  return scene;
+}
+
 Scene sceneFromObj(const std::filesystem::path& obj, const Camera& camera, Viewport viewport) {
   return translatingErrors([&] {
     vt::Camera internal;
@@ -15,16 +24,8 @@ Scene sceneFromObj(const std::filesystem::path& obj, const Camera& camera, Viewp
     internal.fovYDegrees = camera.fovYDegrees;
     internal.nearPlane = camera.nearPlane;
     internal.farPlane = camera.farPlane;
-    const ClipSpaceMesh clip =
-        toClipSpace(loadObjMesh(obj), internal, {viewport.width, viewport.height});
-    Scene scene;
-    scene.viewport = viewport;
-    scene.vertices.reserve(clip.vertices.size());
-    for (const vt::ClipVertex& v : clip.vertices)
-      scene.vertices.push_back(
-          {v.position.x, v.position.y, v.position.z, v.position.w, v.uv.x, v.uv.y});
-    scene.indices = clip.indices;
-    return scene;
+    const vt::Viewport size{viewport.width, viewport.height};
+    return publicScene(toClipSpace(loadObjMesh(obj), internal, size), size);
   });
 }
 

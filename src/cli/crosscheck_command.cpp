@@ -157,7 +157,7 @@ void addCrosscheckCommand(CLI::App& app) {
     for (const NamedScene& scene : views) {
       const std::string& name = scene.name;
       const ClipSpaceMesh mesh = toClipSpace(scene.mesh, scene.camera, settings.viewport);
-      const oracle::Scene publicMesh = publicScene(mesh, settings.viewport);
+      const oracle::Scene publicMesh = oracle::publicScene(mesh, settings.viewport);
       for (const Mode& mode : modes) {
         settings.exactFilter = mode.exactFilter;
         settings.trilinear = mode.trilinear;
@@ -166,7 +166,7 @@ void addCrosscheckCommand(CLI::App& app) {
         const oracle::Frame expected = oracle::render(texture, publicMesh, prepared, options);
         const GlFrame frame = gl.render(mesh, settings);
         const oracle::Comparison c =
-            oracle::compare(expected, frame.color, flatNeed(frame.need), options.profile);
+            oracle::compare(expected, frame.color, oracle::flatNeed(frame.need), options.profile);
         writeComparisonImages(folder, name + "-" + mode.name, publicMesh.viewport, c);
         nlohmann::json record = {{"scene", name}, {"mode", mode.name}};
         record.update(comparisonJson(c));

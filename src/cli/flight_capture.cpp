@@ -14,7 +14,7 @@ void writeFlightCapture(const std::filesystem::path& folder, const FlightCapture
   capture.renderer = renderer;
   capture.texture = reader.path();
   capture.textureIdentity = reader.identity();
-  capture.scene = publicScene(view.mesh, settings.viewport);
+  capture.scene = oracle::publicScene(view.mesh, settings.viewport);
 
   capture.cache = publicCacheState(view.runtime.cacheState());  // as the frame was drawn
 
@@ -23,7 +23,7 @@ void writeFlightCapture(const std::filesystem::path& folder, const FlightCapture
   capture.filtering = options.filtering;
   capture.sampling = options.sampling;
   capture.color.assign(view.color.begin(), view.color.end());
-  capture.need = flatNeed(view.need);
+  capture.need = oracle::flatNeed(view.need);
 
   char name[32];
   std::snprintf(name, sizeof name, "frame%04d.json", view.frame);

@@ -1,17 +1,6 @@
 #include "cli/oracle_conversions.h"
 
-#include "reference/api/api_internal.h"
-
 namespace vt {
-
-oracle::Scene publicScene(const ClipSpaceMesh& mesh, Viewport viewport) {
-  oracle::Scene scene{{viewport.width, viewport.height}, {}, mesh.indices};
-  scene.vertices.reserve(mesh.vertices.size());
-  for (const ClipVertex& v : mesh.vertices)
-    scene.vertices.push_back(
-        {v.position.x, v.position.y, v.position.z, v.position.w, v.uv.x, v.uv.y});
-  return scene;
-}
 
 oracle::CacheState publicCacheState(const reference::CacheState& cache) {
   oracle::CacheState state{false, cache.framesX, cache.framesY, {}};
@@ -34,13 +23,6 @@ oracle::RenderOptions publicRenderOptions(const reference::RenderSettings& setti
       settings.exactFilter ? oracle::Sampling::kTexelFetch : oracle::Sampling::kHardwareLinear;
   options.threads = settings.threads;
   return options;
-}
-
-std::vector<uint32_t> flatNeed(std::span<const glm::uvec4> need) {
-  std::vector<uint32_t> flat;
-  flat.reserve(need.size() * 4);
-  for (const glm::uvec4& v : need) flat.insert(flat.end(), {v.x, v.y, v.z, v.w});
-  return flat;
 }
 
 }  // namespace vt

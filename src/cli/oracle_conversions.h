@@ -1,11 +1,9 @@
 #pragma once
 // The command line's frames, meshes and cache states in the terms of the oracle's public API
-// (<vt/oracle.h>), which the commands that compare renderers go through.
+// (<vt/oracle.h>), which the commands that compare renderers go through. Meshes and needbuffers
+// convert with the API implementation's own oracle::publicScene and oracle::flatNeed.
 
-#include <glm/glm.hpp>
-#include <span>
-#include <vector>
-
+#include "reference/api/api_internal.h"
 #include "reference/cache_state.h"
 #include "reference/renderer.h"
 #include "scene/clip_space_mesh.h"
@@ -13,11 +11,8 @@
 
 namespace vt {
 
-oracle::Scene publicScene(const ClipSpaceMesh& mesh, Viewport viewport);
 // Each resident page in the frame its indirection entry names.
 oracle::CacheState publicCacheState(const reference::CacheState& cache);
 oracle::RenderOptions publicRenderOptions(const reference::RenderSettings& settings);
-// Four values per pixel.
-std::vector<uint32_t> flatNeed(std::span<const glm::uvec4> need);
 
 }  // namespace vt

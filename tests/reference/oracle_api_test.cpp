@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "build/synthetic_texture.h"
+#include "reference/api/api_internal.h"
 #include "reference/renderer.h"
 #include "scene/test_scenes.h"
 #include "test_support.h"
@@ -24,13 +25,8 @@ const SyntheticTexture kTexture{{.pageSize = 32, .border = 2, .levelCount = 6, .
 
 oracle::Scene publicScene(const std::string& name, oracle::Viewport viewport) {
   const NamedScene scene = testScene(name);
-  const ClipSpaceMesh clip =
-      toClipSpace(scene.mesh, scene.camera, {viewport.width, viewport.height});
-  oracle::Scene result{viewport, {}, clip.indices};
-  for (const vt::ClipVertex& v : clip.vertices)
-    result.vertices.push_back(
-        {v.position.x, v.position.y, v.position.z, v.position.w, v.uv.x, v.uv.y});
-  return result;
+  const Viewport size{viewport.width, viewport.height};
+  return oracle::publicScene(toClipSpace(scene.mesh, scene.camera, size), size);
 }
 
 // The first pixel with geometry that the oracle did not flag as ambiguous.
