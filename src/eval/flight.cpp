@@ -135,8 +135,7 @@ std::vector<uint64_t> initialPages(const VirtualTextureReader& reader, const Mes
     if (c.trilinearParents) {  // the coarser level of each visible page's blend, first
       std::vector<uint64_t> parents;
       for (const uint64_t page : visible)
-        if (levelOfAbsoluteIndex(page) > 0)
-          parents.push_back(absoluteIndex(parent(fromAbsoluteIndex(page))));
+        if (levelOfAbsoluteIndex(page) > 0) parents.push_back(parentIndex(page));
       std::sort(parents.begin(), parents.end());
       parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
       pages.insert(pages.end(), parents.begin(), parents.end());

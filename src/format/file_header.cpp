@@ -190,7 +190,7 @@ std::optional<std::string> findIndexProblem(std::span<const uint64_t> storedPage
     if (page >= totalPages)
       return "entry " + std::to_string(k) + " (p_abs " + std::to_string(page) +
              ") is beyond the texture's " + std::to_string(totalPages) + " pages";
-    const uint64_t parentPage = absoluteIndex(parent(fromAbsoluteIndex(page)));
+    const uint64_t parentPage = parentIndex(page);
     if (!std::binary_search(storedPages.begin(), storedPages.begin() + k, parentPage))
       return "entry " + std::to_string(k) + " (p_abs " + std::to_string(page) +
              ") is stored without its parent (p_abs " + std::to_string(parentPage) + ")";

@@ -82,6 +82,11 @@ constexpr PageId fromAbsoluteIndex(uint64_t absolute) {
 // The page of level m-1 that covers the same texture area (thesis 3.1.1.2). Level 0 has none.
 constexpr PageId parent(PageId page) { return {page.x / 2, page.y / 2, page.level - 1}; }
 
+// The absolute index of the parent of absolute page p (level > 0).
+constexpr uint64_t parentIndex(uint64_t absolute) {
+  return absoluteIndex(parent(fromAbsoluteIndex(absolute)));
+}
+
 // The four pages of level m+1 inside this page, in enumeration order:
 // (2x, 2y), (2x+1, 2y), (2x, 2y+1), (2x+1, 2y+1).
 constexpr std::array<PageId, 4> children(PageId page) {

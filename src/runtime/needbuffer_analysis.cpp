@@ -24,11 +24,7 @@ NeedBufferAnalysis analyzeNeedBuffer(std::span<const glm::uvec4> need, std::span
   const auto flush = [&] {
     if (run.pixels == 0) return;
     if (const auto page = decodeNeed(runValue, options.need8)) {
-      PageStatistics& total = analysis.pages[absoluteIndex(*page)];
-      total.pixels += run.pixels;
-      total.depthSum += run.depthSum;
-      total.centreWeight += run.centreWeight;
-      total.hotSpotWeight += run.hotSpotWeight;
+      analysis.pages[absoluteIndex(*page)] += run;
       analysis.coveredPixels += run.pixels;
     }
     run = PageStatistics{};

@@ -27,6 +27,15 @@ struct PageStatistics {
   double hotSpotWeight = 0.0;
 
   double meanDepth() const { return pixels ? depthSum / static_cast<double>(pixels) : 0.0; }
+
+  // The statistics of both sets of pixels.
+  PageStatistics& operator+=(const PageStatistics& other) {
+    pixels += other.pixels;
+    depthSum += other.depthSum;
+    centreWeight += other.centreWeight;
+    hotSpotWeight += other.hotSpotWeight;
+    return *this;
+  }
 };
 
 struct AnalysisOptions {

@@ -7,23 +7,17 @@ namespace {
 
 // Adds to every page of level m > 0 in `analysis` its parent, the coarser level that trilinear
 // filtering blends in, needed by the same pixels with the same weights. Children are visited in
-// page order, so the sums are the same bytes on every run.
+// page order, so the sums are the same bytes on every run; a parent's index is below its
+// children's, so each page passes on its own statistics before its children add theirs.
 void addTrilinearParents(NeedBufferAnalysis& analysis) {
   std::vector<uint64_t> children;
   children.reserve(analysis.pages.size());
   for (const auto& [absolute, statistics] : analysis.pages)
     if (levelOfAbsoluteIndex(absolute) > 0) children.push_back(absolute);
   std::sort(children.begin(), children.end());
-  std::vector<std::pair<uint64_t, PageStatistics>> parents;
-  parents.reserve(children.size());
-  for (const uint64_t child : children)
-    parents.emplace_back(absoluteIndex(parent(fromAbsoluteIndex(child))), analysis.pages[child]);
-  for (const auto& [up, child] : parents) {
-    PageStatistics& total = analysis.pages[up];
-    total.pixels += child.pixels;
-    total.depthSum += child.depthSum;
-    total.centreWeight += child.centreWeight;
-    total.hotSpotWeight += child.hotSpotWeight;
+  for (const uint64_t child : children) {
+    const PageStatistics own = analysis.pages[child];
+    analysis.pages[parentIndex(child)] += own;
   }
 }
 
@@ -125,12 +119,8 @@ std::vector<StreamRequest> VirtualTextureRuntime::analyze(
     AnalysisOptions predicted = analysisOptions;
     predicted.depth = false;
     for (const auto& [page, s] :
-         analyzeNeedBuffer(prediction.lookAheadNeed, {}, width, height, predicted).pages) {
-      PageStatistics& total = combined.pages[page];
-      total.pixels += s.pixels;
-      total.centreWeight += s.centreWeight;
-      total.hotSpotWeight += s.hotSpotWeight;
-    }
+         analyzeNeedBuffer(prediction.lookAheadNeed, {}, width, height, predicted).pages)
+      combined.pages[page] += s;
   }
 
   statistics.coveredPixels = analysis.coveredPixels;
@@ -145,8 +135,7 @@ std::vector<StreamRequest> VirtualTextureRuntime::analyze(
       ++statistics.misses;
     }
     if (options_.trilinearParents && levelOfAbsoluteIndex(page) > 0) {
-      const uint64_t up = absoluteIndex(parent(fromAbsoluteIndex(page)));
-      if (pageCache_.contains(up)) residentNeeded.push_back(up);
+      if (pageCache_.contains(parentIndex(page))) residentNeeded.push_back(parentIndex(page));
     }
   }
   // Touch in page order, each page once: the LRU order, and so every later eviction, is
