@@ -117,6 +117,17 @@ class FolderCrashConsistency : public CrashConsistency {
     const test::CommandResult result = test::runCommand(VT_EXECUTABLE, args, dir_.path());
     ASSERT_EQ(result.exitCode, 0) << result.out << result.err;
   }
+
+  // vt with `args`, to be killed while it writes the folder `output`.
+  static test::CrashTarget folderTarget(std::vector<std::string> args,
+                                        const std::filesystem::path& output) {
+    test::CrashTarget target;
+    target.program = VT_EXECUTABLE;
+    target.args = std::move(args);
+    target.output = output;
+    target.folder = true;
+    return target;
+  }
 };
 
 TEST_F(FolderCrashConsistency, KilledEvalLeavesThePreviousResultsOrTheCompleteNewOnes) {
@@ -132,11 +143,7 @@ TEST_F(FolderCrashConsistency, KilledEvalLeavesThePreviousResultsOrTheCompleteNe
                                     "-o",          output.string()};
   };
   ASSERT_NO_FATAL_FAILURE(runOnce(eval("pixelsum")));
-  test::CrashTarget target;
-  target.program = VT_EXECUTABLE;
-  target.args = eval("pixelsum,distance,pixelsum*noisevalue");
-  target.output = output;
-  target.folder = true;
+  test::CrashTarget target = folderTarget(eval("pixelsum,distance,pixelsum*noisevalue"), output);
   // The summaries hold run times; the other files are compared byte for byte.
   target.variableFiles = {"summary.json", "summary.md"};
   // Complete: every file of the results, the summary naming the runs frames.csv holds.
@@ -174,11 +181,7 @@ TEST_F(FolderCrashConsistency, KilledGoldenGenerateLeavesThePreviousSetOrTheComp
                                     output.string()};
   };
   ASSERT_NO_FATAL_FAILURE(runOnce(generate("5")));
-  test::CrashTarget target;
-  target.program = VT_EXECUTABLE;
-  target.args = generate("3");
-  target.output = output;
-  target.folder = true;
+  test::CrashTarget target = folderTarget(generate("3"), output);
   target.accepts = [](const std::filesystem::path& folder) {
     return std::filesystem::exists(folder / "golden.json");
   };
