@@ -6,25 +6,19 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "reference/result_set.h"
 #include "scene/clip_space_mesh.h"
 
 namespace vt::reference {
-
-// Why a pixel's result could differ on the target within the profile's documented precision.
-enum AmbiguityReason : uint8_t {
-  kNearEdge = 1 << 0,        // pixel centre within 1/256 pixel of an edge of the shown triangle
-  kNearlyCoplanar = 1 << 1,  // another covering triangle's depth within the depth tolerance
-  kPageBoundary = 1 << 2,    // s * 2^m or t * 2^m within 4 ulps of an integer
-  kLevelBoundary = 1 << 3,   // lod within 2^-12 of an integer (the needed level could change)
-  kNearZeroW = 1 << 4,       // |w| below 1e-6 at a quad pixel
-};
 
 struct Frame {
   Viewport viewport;
   std::vector<uint8_t> color;      // RGBA8; (0, 0, 0, 0) where no geometry
   std::vector<glm::uvec4> need;    // needbuffer; the encoding's "no geometry" value elsewhere
   std::vector<float> depth;        // window depth as stored; 1.0 where no geometry
-  std::vector<uint8_t> ambiguity;  // AmbiguityReason bits
+  // Under a model that leaves a parameter free, every pixel's result set; empty under a pinned
+  // model, where each pixel's set is the one value above.
+  ResultSets sets;
   std::vector<int32_t> triangle;   // index of the mesh triangle shown, -1 where none
   // Debug channels, filled only when RenderSettings::debugChannels is set (empty otherwise):
   // texture coordinates, their fine derivatives, the lod, the resident level.

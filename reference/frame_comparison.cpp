@@ -1,24 +1,166 @@
 #include "reference/frame_comparison.h"
 
 #include <algorithm>
-#include <array>
+#include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <stdexcept>
 
-namespace vt::reference {
+#include "shader/needbuffer.h"
 
-int colorBound(PrecisionProfile profile) { return profile == PrecisionProfile::kLlvmpipe ? 0 : 4; }
+namespace vt::reference {
+namespace {
+
+int bitOf(uint8_t reason) { return std::countr_zero(static_cast<unsigned>(reason)); }
+
+// The observed needbuffer value as a page, or none for "no geometry". A value that names no page
+// of the texture (a page beyond its level, as a missing clamp of s = 1.0 writes) is still read as
+// the page it names, so that it lies outside every set by that many pages.
+std::optional<PageId> observedPage(glm::uvec4 need, bool need8) {
+  if (const std::optional<PageId> page = decodeNeed(need, need8)) return page;
+  if (need == needClearValue(need8)) return std::nullopt;
+  if (need8) {
+    if (glm::any(glm::greaterThan(need, glm::uvec4(255))) || need.z > kMaxLevel)
+      return std::nullopt;
+    return PageId{need.x + (need.w & 15u) * 256u, need.y + (need.w >> 4) * 256u, need.z};
+  }
+  if (need.w == 0 || need.z > kMaxLevel) return std::nullopt;
+  return PageId{need.x, need.y, need.z};
+}
+
+int pageOf(float coordinate, int level) {
+  const int last = (1 << level) - 1;
+  const double scaled = std::floor(static_cast<double>(coordinate) * std::ldexp(1.0, level));
+  return static_cast<int>(std::clamp(scaled, 0.0, static_cast<double>(last)));
+}
+
+// Pages by which `page` lies outside the alternative's range at its level (0: inside).
+double pagesOutside(const Alternative& a, const PageId& page) {
+  const int m = static_cast<int>(page.level);
+  const auto outside = [](int v, int lo, int hi) {
+    return v < lo ? lo - v : (v > hi ? v - hi : 0);
+  };
+  return std::max(outside(static_cast<int>(page.x), pageOf(a.uvLo.x, m), pageOf(a.uvHi.x, m)),
+                  outside(static_cast<int>(page.y), pageOf(a.uvLo.y, m), pageOf(a.uvHi.y, m)));
+}
+
+double colourOutside(glm::u8vec4 lo, glm::u8vec4 hi, const uint8_t* color) {
+  double worst = 0;
+  for (int c = 0; c < 4; ++c) {
+    const int v = color[c];
+    worst =
+        std::max(worst, static_cast<double>(v < lo[c] ? lo[c] - v : (v > hi[c] ? v - hi[c] : 0)));
+  }
+  return worst;
+}
+
+struct Verdict {
+  bool explained = false;
+  int reason = 0;  // bit number
+  double widenBy = 0;
+};
+
+// How far a failed verdict is from holding, across reasons whose units differ: a colour off with
+// the needbuffer right is nearer than a page off, a page off nearer than a level off, a level off
+// nearer than another triangle or none.
+int distanceRank(int reason) {
+  switch (reason) {
+    case 4:
+      return 0;  // filter
+    case 2:
+      return 1;  // attributes
+    case 3:
+      return 2;  // lod
+    default:
+      return 3;  // coverage, depth
+  }
+}
+
+// Whether the alternative holds the observed value; if not, what would have to widen.
+Verdict judge(const Alternative& a, std::optional<PageId> page, const uint8_t* color,
+              glm::uvec4 need, glm::uvec4 oracleNeed, bool need8) {
+  if (a.triangle < 0) {
+    if (page) return {false, bitOf(kReasonCoverage), 1};
+    const bool clear = need == needClearValue(need8) && color[0] == 0 && color[1] == 0 &&
+                       color[2] == 0 && color[3] == 0;
+    return clear ? Verdict{true, 0, 0} : Verdict{false, bitOf(kReasonCoverage), 1};
+  }
+  if (!page) return {false, bitOf(kReasonCoverage), 1};
+  if (page->level < a.levelLo || page->level > a.levelHi) {
+    const double levels =
+        page->level < a.levelLo ? a.levelLo - page->level : page->level - a.levelHi;
+    return {false, bitOf(kReasonLod), levels};
+  }
+  if (const double pages = pagesOutside(a, *page); pages > 0)
+    return {false, bitOf(kReasonAttributes), pages};
+  if (const double units = colourOutside(a.colorLo, a.colorHi, color); units > 0)
+    return {false, bitOf(kReasonFilter), units};
+  // Inside: the narrowest reason that admits it.
+  if (a.reasons != 0) return {true, bitOf(a.reasons), 0};
+  if (need != oracleNeed)
+    return {true,
+            page->level != decodeNeed(oracleNeed, need8).value_or(*page).level
+                ? bitOf(kReasonLod)
+                : bitOf(kReasonAttributes),
+            0};
+  if (colourOutside(a.filterLo, a.filterHi, color) == 0) return {true, bitOf(kReasonFilter), 0};
+  return {true, bitOf(kReasonAttributes), 0};
+}
+
+// The oracle's one value as an alternative (a pinned model): the page range of its need and its
+// colour.
+Alternative pointAlternative(const Frame& oracle, size_t i, bool need8) {
+  Alternative a;
+  const std::optional<PageId> page = decodeNeed(oracle.need[i], need8);
+  if (!page) return a;  // triangle -1: clear
+  // A frame built from images alone (the public API's) has no triangle image: any covered pixel
+  // counts as triangle 0, which only the clear alternative tells apart.
+  a.triangle = i < oracle.triangle.size() && oracle.triangle[i] >= 0 ? oracle.triangle[i] : 0;
+  a.levelLo = a.levelHi = static_cast<uint8_t>(page->level);
+  const float scale = std::ldexp(1.0f, -static_cast<int>(page->level));
+  a.uvLo = glm::vec2(static_cast<float>(page->x) * scale, static_cast<float>(page->y) * scale);
+  a.uvHi = a.uvLo;
+  const uint8_t* c = &oracle.color[i * 4];
+  a.colorLo = a.colorHi = a.filterLo = a.filterHi = glm::u8vec4(c[0], c[1], c[2], c[3]);
+  return a;
+}
+
+}  // namespace
+
+const char* widthUnit(int reason) {
+  static const char* const kUnits[kResultReasons] = {"triangle", "triangle", "pages", "levels",
+                                                     "1/255"};
+  return reason >= 0 && reason < kResultReasons ? kUnits[reason] : "";
+}
+
+glm::u8vec3 reasonShade(int reason) {
+  switch (reason) {
+    case 0:
+      return {60, 120, 255};  // coverage: blue
+    case 1:
+      return {0, 220, 220};  // depth: cyan
+    case 2:
+      return {0, 200, 0};  // attributes: green
+    case 3:
+      return {255, 220, 0};  // lod: yellow
+    case 4:
+      return {180, 0, 255};  // filter: violet
+    default:
+      return {255, 0, 0};  // unexplained: red
+  }
+}
 
 FrameComparison compareFrames(const Frame& oracle, std::span<const uint8_t> color,
-                              std::span<const glm::uvec4> need, PrecisionProfile profile) {
+                              std::span<const glm::uvec4> need, bool need8) {
   const size_t pixels = oracle.need.size();
   if (color.size() != pixels * 4 || need.size() != pixels)
     throw std::invalid_argument("compareFrames: frames of different sizes");
+  if (!oracle.sets.empty() && oracle.sets.offsets.size() != pixels + 1)
+    throw std::invalid_argument("compareFrames: result sets of another size");
   FrameComparison result;
   result.pixels = pixels;
   result.colorDifferenceImage.assign(pixels * 4, 255);
   result.classificationImage.assign(pixels * 4, 255);
-  const int bound = colorBound(profile);
   const int width = oracle.viewport.width, height = oracle.viewport.height;
   uint64_t differenceSum = 0;
   for (int py = 0; py < height; ++py)
@@ -38,28 +180,64 @@ FrameComparison compareFrames(const Frame& oracle, std::span<const uint8_t> colo
               static_cast<uint8_t>(std::min(255, difference * 16));
       }
       result.maxColorDifference = std::max(result.maxColorDifference, largest);
-      const bool needSame = need[i] == oracle.need[i];
-      std::array<uint8_t, 3> shade{0, 0, 0};
-      if (needSame && largest == 0) {
+      const bool isAmbiguous = ambiguous(oracle.sets, i);
+      result.ambiguous += isAmbiguous;
+      glm::u8vec3 shade = isAmbiguous ? glm::u8vec3(64, 64, 64) : glm::u8vec3(0, 0, 0);
+      if (need[i] == oracle.need[i] && largest == 0) {
         ++result.identical;
-      } else if (oracle.ambiguity[i] != 0) {
-        ++result.flagged;
-        shade = {255, 220, 0};
-      } else if (needSame && largest <= bound) {
-        ++result.withinBound;
-        shade = {0, 200, 0};
       } else {
-        ++result.mismatched;
-        result.needMismatched += !needSame;
-        if (result.mismatchedPixels.size() < kListedMismatches)
-          result.mismatchedPixels.push_back(i);
-        shade = {255, 0, 0};
+        const std::optional<PageId> page = observedPage(need[i], need8);
+        Verdict best{false, -1, std::numeric_limits<double>::infinity()};
+        const auto consider = [&](const Alternative& a) {
+          const Verdict v = judge(a, page, &color[i * 4], need[i], oracle.need[i], need8);
+          if (v.explained && !best.explained) best = v;
+          if (!best.explained &&
+              (best.reason < 0 || distanceRank(v.reason) < distanceRank(best.reason) ||
+               (distanceRank(v.reason) == distanceRank(best.reason) && v.widenBy < best.widenBy)))
+            best = v;
+        };
+        if (oracle.sets.empty()) {
+          consider(pointAlternative(oracle, i, need8));
+        } else {
+          for (uint32_t k = oracle.sets.offsets[i]; k < oracle.sets.offsets[i + 1]; ++k)
+            consider(oracle.sets.alternatives[k]);
+        }
+        const size_t r = static_cast<size_t>(std::max(best.reason, 0));
+        if (best.explained) {
+          ++result.explained;
+          ++result.explainedBy[r];
+          shade = reasonShade(static_cast<int>(r));
+        } else {
+          ++result.unexplained;
+          ++result.unexplainedBy[r];
+          result.widenBy[r] = std::max(result.widenBy[r], best.widenBy);
+          result.needMismatched += need[i] != oracle.need[i];
+          if (result.unexplainedPixels.size() < kListedMismatches)
+            result.unexplainedPixels.push_back({i, static_cast<int>(r), best.widenBy});
+          shade = reasonShade(-1);
+        }
       }
-      for (size_t c = 0; c < 3; ++c) result.classificationImage[out + c] = shade[c];
+      for (size_t c = 0; c < 3; ++c)
+        result.classificationImage[out + c] = shade[static_cast<int>(c)];
     }
   result.meanColorDifference =
       pixels ? static_cast<double>(differenceSum) / static_cast<double>(pixels * 4) : 0.0;
   return result;
+}
+
+void accumulate(FrameComparison& total, const FrameComparison& frame) {
+  total.pixels += frame.pixels;
+  total.identical += frame.identical;
+  total.explained += frame.explained;
+  total.unexplained += frame.unexplained;
+  total.ambiguous += frame.ambiguous;
+  total.needMismatched += frame.needMismatched;
+  for (size_t r = 0; r < kResultReasons; ++r) {
+    total.explainedBy[r] += frame.explainedBy[r];
+    total.unexplainedBy[r] += frame.unexplainedBy[r];
+    total.widenBy[r] = std::max(total.widenBy[r], frame.widenBy[r]);
+  }
+  total.maxColorDifference = std::max(total.maxColorDifference, frame.maxColorDifference);
 }
 
 }  // namespace vt::reference

@@ -13,9 +13,7 @@ namespace vt::reference {
 PrecisionProfile parsePrecisionProfile(const std::string& name) {
   if (name == "exact") return PrecisionProfile::kExact;
   if (name == "llvmpipe") return PrecisionProfile::kLlvmpipe;
-  if (name == "nvidia") return PrecisionProfile::kNvidia;
-  throw std::invalid_argument("precision profile '" + name +
-                              "' is not one of exact, llvmpipe, nvidia");
+  throw std::invalid_argument("precision profile '" + name + "' is not one of exact, llvmpipe");
 }
 
 std::string toString(PrecisionProfile profile) {
@@ -24,8 +22,6 @@ std::string toString(PrecisionProfile profile) {
       return "exact";
     case PrecisionProfile::kLlvmpipe:
       return "llvmpipe";
-    case PrecisionProfile::kNvidia:
-      return "nvidia";
   }
   return "unknown";
 }
@@ -69,11 +65,6 @@ float llvmpipeExp2(float x) {
   const int exponent = static_cast<int>(ip);
   if (exponent >= 128) return std::numeric_limits<float>::infinity();
   return poly * std::bit_cast<float>(static_cast<uint32_t>(exponent + 127) << 23);
-}
-
-PrecisionProfile profileForRenderer(const std::string& glRenderer) {
-  if (glRenderer.find("llvmpipe") == std::string::npos) return PrecisionProfile::kNvidia;
-  return __builtin_cpu_supports("fma") ? PrecisionProfile::kLlvmpipe : PrecisionProfile::kExact;
 }
 
 float profileLog2(PrecisionProfile profile, float x) {

@@ -1,6 +1,6 @@
 #pragma once
-// Precision profiles: what one GL implementation computes, so that the oracle matches it bit for
-// bit or states a bound. Every assumption of the oracle about arithmetic lives here.
+// The oracle's arithmetic: how it computes the one value at the centre of every pixel's result set
+// (precision_model.h says how far another implementation may stray from it).
 //
 //   exact     IEEE float in the order the source states it, no fused multiply-add, denormals
 //             kept, log2 from the C library (glibc's log2f).
@@ -8,15 +8,12 @@
 //             evaluation fma(dqdy, y, fma(dqdx, x, q0)), window z with fma, log2 and exp2 as
 //             llvmpipe's polynomials, denormals flushed to zero in fragment arithmetic. Pin
 //             GALLIUM_OVERRIDE_CPU_CAPS to match a CPU without FMA (then use `exact` planes).
-//   nvidia    NVIDIA hardware: the `exact` arithmetic, compared with bounds: 8 fractional bits of
-//             bilinear weight, log2 within 2^-22 absolute; pixels whose result could change
-//             within these bounds are flagged as ambiguous.
 
 #include <string>
 
 namespace vt::reference {
 
-enum class PrecisionProfile { kExact, kLlvmpipe, kNvidia };
+enum class PrecisionProfile { kExact, kLlvmpipe };
 
 PrecisionProfile parsePrecisionProfile(const std::string& name);  // throws std::invalid_argument
 std::string toString(PrecisionProfile profile);
@@ -29,10 +26,6 @@ bool flushesDenormals(PrecisionProfile profile);
 // llvmpipe's log2 and exp2 (DESIGN section 7, rule 8), bit for bit.
 float llvmpipeLog2(float x);
 float llvmpipeExp2(float x);
-
-// The profile that describes a GL implementation, from its GL_RENDERER: llvmpipe on a CPU with FMA
-// (exact, with the same arithmetic, where llvmpipe runs without FMA), nvidia for anything else.
-PrecisionProfile profileForRenderer(const std::string& glRenderer);
 
 // The profile's log2.
 float profileLog2(PrecisionProfile profile, float x);

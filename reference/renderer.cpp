@@ -12,6 +12,7 @@
 
 #include "reference/cache_state.h"
 #include "reference/parallel_for.h"
+#include "reference/result_set_builder.h"
 #include "shader/shader_cpp.h"
 
 namespace vt::reference {
@@ -164,22 +165,17 @@ class CacheBackend {
   PrecisionProfile profile_;
 };
 
-// Rule 6: a plane at integer pixel coordinates.
-float evaluate(const Plane& plane, int px, int py, bool fused) {
-  const float x = static_cast<float>(px), y = static_cast<float>(py);
-  return fused ? std::fma(plane.dady, y, std::fma(plane.dadx, x, plane.a0))
-               : plane.dady * y + (plane.dadx * x + plane.a0);
-}
-
 struct Attributes {
   vec2 uv;
   float w;
 };
 
 Attributes attributesAt(const SetupTriangle& t, int px, int py, bool fused) {
-  const float q = evaluate(t.oneOverW, px, py, fused);
+  const float q = evaluatePlane(t.oneOverW, px, py, fused);
   const float recip = 1.0f / q;
-  return {vec2(evaluate(t.s, px, py, fused) * recip, evaluate(t.t, px, py, fused) * recip), recip};
+  return {
+      vec2(evaluatePlane(t.s, px, py, fused) * recip, evaluatePlane(t.t, px, py, fused) * recip),
+      recip};
 }
 
 uint8_t toUnorm8(float c) {
@@ -188,15 +184,50 @@ uint8_t toUnorm8(float c) {
   return static_cast<uint8_t>(std::nearbyint(clamped * 255.0f));
 }
 
-bool nearInteger(float x) {
-  const float nearest = std::nearbyint(x);
-  return std::fabs(x - nearest) <=
-         4.0f * std::nextafter(std::fabs(x), INFINITY) - 4.0f * std::fabs(x);
-}
-
 }  // namespace
 
 namespace {
+
+// A backend as the result sets read the cache: the indirection entry, then texels of that page.
+template <class Backend>
+class BackendTexels : public TexelSource {
+ public:
+  explicit BackendTexels(Backend& backend) : backend_(backend) {}
+  glm::uvec4 entry(glm::ivec2 page, int level) override {
+    return backend_.vtFetchIndirection(page, level);
+  }
+  glm::u8vec4 texel(glm::ivec2 position) override { return backend_.fetch8(position); }
+
+ private:
+  Backend& backend_;
+};
+
+// The alternatives one tile found, pixel by pixel, to be gathered in pixel order.
+struct TileSets {
+  std::vector<std::pair<size_t, uint32_t>> pixels;  // pixel index, number of alternatives
+  std::vector<Alternative> alternatives;
+};
+
+// Gathers the tiles' alternatives into one set per pixel, in pixel order.
+ResultSets gatherSets(std::vector<TileSets>& tiles, size_t pixels) {
+  ResultSets sets;
+  std::vector<uint32_t> counts(pixels, 0);
+  for (const TileSets& tile : tiles)
+    for (const auto& [pixel, count] : tile.pixels) counts[pixel] = count;
+  sets.offsets.resize(pixels + 1);
+  sets.offsets[0] = 0;
+  for (size_t i = 0; i < pixels; ++i) sets.offsets[i + 1] = sets.offsets[i] + counts[i];
+  sets.alternatives.resize(sets.offsets[pixels]);
+  for (const TileSets& tile : tiles) {
+    size_t next = 0;
+    for (const auto& [pixel, count] : tile.pixels) {
+      std::copy_n(tile.alternatives.begin() + static_cast<std::ptrdiff_t>(next), count,
+                  sets.alternatives.begin() + sets.offsets[pixel]);
+      next += count;
+    }
+  }
+  return sets;
+}
 
 // Sizes every channel for `viewport` without clearing: the tiles write every pixel. A frame of
 // the same size keeps its buffers, so a renderer drawing frame after frame allocates nothing.
@@ -206,7 +237,6 @@ void sizeFrame(Frame& frame, Viewport viewport, bool debug) {
   frame.color.resize(pixels * 4);
   frame.need.resize(pixels);
   frame.depth.resize(pixels);
-  frame.ambiguity.resize(pixels);
   frame.triangle.resize(pixels);
   const size_t debugPixels = debug ? pixels : 0;
   frame.uv.resize(debugPixels);
@@ -223,7 +253,18 @@ void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescr
   const ThreadLimit parallelism(settings.threads);
   const bool fused = usesFusedPlanes(settings.profile);
   const std::vector<SetupTriangle> triangles = setupTriangles(mesh, viewport, fused);
-  const Visibility visibility(triangles, viewport, settings.depthFormat, fused);
+  // Under a model with free parameters, a coarser sub-pixel grid may cover centres one pixel
+  // beyond those the 8-bit grid covers.
+  const PrecisionModel* model =
+      settings.model && !settings.model->pinned() ? settings.model.get() : nullptr;
+  const Visibility visibility(triangles, viewport, settings.depthFormat, fused, model ? 1 : 0);
+  SetShading shading;
+  shading.pageSize = static_cast<int>(d.pageSize);
+  shading.border = static_cast<int>(d.border);
+  shading.finestLevel = static_cast<int>(d.finestLevel());
+  shading.trilinear = settings.trilinear;
+  shading.exactFilter = settings.exactFilter;
+  shading.needScaleLog2 = settings.needScaleLog2;
 
   shader::VtParameters parameters{};
   parameters.pageSize = static_cast<int>(d.pageSize);
@@ -242,12 +283,27 @@ void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescr
   constexpr int kTile = 16;
   const int tilesX = (viewport.width + kTile - 1) / kTile,
             tilesY = (viewport.height + kTile - 1) / kTile;
+  std::vector<TileSets> tileSets(model ? static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY)
+                                       : 0);
   parallelFor(
       static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY), settings.threads,
       [&](size_t tileIndex) {
         const int tile = static_cast<int>(tileIndex);
         const DenormalMode denormals(settings.profile);
         shader::ShaderLogic<Backend> shader(&texture, settings.profile);
+        BackendTexels<shader::ShaderLogic<Backend>> texels(shader);
+        std::vector<int32_t> candidates;
+        // The pixel's result set under the model, after the oracle's own value.
+        const auto addSet = [&](int px, int py, const OracleFragment& own) {
+          TileSets& sets = tileSets[tileIndex];
+          const size_t before = sets.alternatives.size();
+          visibility.candidates(px, py, candidates);
+          appendResultSet(*model, shading, triangles, candidates, px, py, viewport,
+                          settings.depthFormat, own, texels, sets.alternatives);
+          sets.pixels.emplace_back(static_cast<size_t>(py) * static_cast<size_t>(viewport.width) +
+                                       static_cast<size_t>(px),
+                                   static_cast<uint32_t>(sets.alternatives.size() - before));
+        };
         const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
         // Block by block (one Embree packet of 4 x 4 rays), quad by quad: a triangle's planes are
         // evaluated once at the quad's four pixels (helpers included) and serve every pixel of the
@@ -273,8 +329,8 @@ void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescr
                     for (int c = 0; c < 4; ++c) frame.color[index * 4 + static_cast<size_t>(c)] = 0;
                     frame.need[index] = noNeed;
                     frame.depth[index] = 1.0f;
-                    frame.ambiguity[index] = 0;
                     frame.triangle[index] = -1;
+                    if (model) addSet(px, py, OracleFragment{});
                     if (debug) {
                       frame.uv[index] = vec2(0.0f);
                       frame.derivatives[index] = vec4(0.0f);
@@ -317,38 +373,30 @@ void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescr
                     frame.residentLevel[index] = static_cast<int8_t>(f.residentLevel);
                   }
 
-                  frame.ambiguity[index] = 0;
-                  if (settings.profile == PrecisionProfile::kLlvmpipe)
-                    continue;  // exact: nothing to flag
-                  uint8_t reasons = 0;
-                  for (const Edge& e : t.edges) {
-                    const double length =
-                        std::sqrt(static_cast<double>(e.a) * e.a + static_cast<double>(e.b) * e.b);
-                    if (std::fabs(static_cast<double>(e.at(px, py))) <= length)
-                      reasons |= kNearEdge;
-                  }
-                  // Depths within 4 ulps (32F) or 2 units of Z24: another implementation may pick
-                  // the other.
-                  const float depthTolerance =
-                      settings.depthFormat == DepthFormat::kDepth24
-                          ? 2.0f / 16777215.0f
-                          : 4.0f * (std::nextafter(hit.depth, 2.0f) - hit.depth);
-                  if (hit.runnerUpDepth - hit.depth <= depthTolerance) reasons |= kNearlyCoplanar;
-                  const float scale = static_cast<float>(1 << f.neededLevel);
-                  if (nearInteger(here.uv.x * scale) || nearInteger(here.uv.y * scale))
-                    reasons |= kPageBoundary;
-                  if (std::fabs(f.lod - std::nearbyint(f.lod)) <= 1.0f / 4096.0f)
-                    reasons |= kLevelBoundary;
-                  for (const Attributes& a : {here, left, right, below, above})
-                    if (!(a.w > 0.0f && a.w < 1e30f)) reasons |= kNearZeroW;
-                  frame.ambiguity[index] = reasons;
+                  if (model)
+                    addSet(px, py,
+                           OracleFragment{
+                               hit.triangle,
+                               glm::u8vec4(frame.color[index * 4], frame.color[index * 4 + 1],
+                                           frame.color[index * 4 + 2], frame.color[index * 4 + 3]),
+                               here.uv, f.neededLevel, f.lod});
                 }
               }
           }
       });
+  if (model)
+    frame.sets = gatherSets(
+        tileSets, static_cast<size_t>(viewport.width) * static_cast<size_t>(viewport.height));
+  else
+    frame.sets = ResultSets{};
 }
 
 }  // namespace
+
+void applyModel(RenderSettings& settings, const PrecisionModel& model) {
+  settings.profile = model.arithmetic;
+  settings.model = std::make_shared<const PrecisionModel>(model);
+}
 
 void renderFrame(const ClipSpaceMesh& mesh, const ResidentTexture& texture,
                  const RenderSettings& settings, Frame& frame) {

@@ -11,9 +11,11 @@
 // logic (src/shader/virtual_texture.glsl) then computes the LOD, the needbuffer and the colour.
 
 #include <glm/glm.hpp>
+#include <memory>
 
 #include "reference/cache_state.h"
 #include "reference/frame.h"
+#include "reference/precision_model.h"
 #include "reference/precision_profile.h"
 #include "reference/texture_source.h"
 #include "reference/visibility.h"
@@ -23,7 +25,10 @@ namespace vt::reference {
 
 struct RenderSettings {
   Viewport viewport{640, 360};
-  PrecisionProfile profile = PrecisionProfile::kExact;
+  PrecisionProfile profile = PrecisionProfile::kExact;  // the oracle's arithmetic
+  // The model the frame will be judged under (precision_model.h); its arithmetic must be
+  // `profile`. When it leaves any parameter free the frame carries every pixel's result set.
+  std::shared_ptr<const PrecisionModel> model = nullptr;
   DepthFormat depthFormat = DepthFormat::kDepth32F;
   bool trilinear = true;
   bool exactFilter = true;  // texel fetches and float filtering; false: the sampler's GL_LINEAR
@@ -36,6 +41,9 @@ struct RenderSettings {
 };
 
 using vt::needClearValue;
+
+// Settings for rendering under `model`: its arithmetic and the model itself.
+void applyModel(RenderSettings& settings, const PrecisionModel& model);
 
 // Every page resident (golden images): each lookup finds the page itself or, on a sparse
 // texture, its nearest stored ancestor.

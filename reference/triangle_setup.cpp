@@ -131,7 +131,11 @@ bool setupOne(WindowVertex v0, WindowVertex v1, WindowVertex v2, Viewport viewpo
               SetupTriangle& out) {
   int64_t area = (v0.xf - v1.xf) * (v2.yf - v0.yf) - (v2.xf - v0.xf) * (v0.yf - v1.yf);
   if (area == 0) return false;
-  if (area < 0) std::swap(v0, v1);
+  if (area < 0) {
+    std::swap(v0, v1);
+    const uint8_t e = out.outerEdges;
+    out.outerEdges = static_cast<uint8_t>((e & 4u) | ((e & 1u) << 1) | ((e & 2u) >> 1));
+  }
 
   const float dx01 = v0.x - v1.x, dy01 = v0.y - v1.y;
   const float dx20 = v2.x - v0.x, dy20 = v2.y - v0.y;
@@ -146,6 +150,10 @@ bool setupOne(WindowVertex v0, WindowVertex v1, WindowVertex v2, Viewport viewpo
   out.t = plane(v0.uv.y * v0.oow, v1.uv.y * v1.oow, v2.uv.y * v2.oow);
   out.z = plane(v0.z, v1.z, v2.z);
   out.edges = {edgeOf(v0, v1), edgeOf(v1, v2), edgeOf(v2, v0)};
+  const auto corner = [](const WindowVertex& v) {
+    return WindowCorner{v.x, v.y, v.z, v.oow, v.uv.x * v.oow, v.uv.y * v.oow};
+  };
+  out.corners = {corner(v0), corner(v1), corner(v2)};
 
   // Pixels whose centres (multiples of 256 in snapped units) lie within the snapped bounds.
   const auto ceilDiv = [](int64_t a) { return a >= 0 ? (a + 255) / 256 : -((-a) / 256); };
@@ -201,6 +209,11 @@ void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport, bool
     triangle.primitive = static_cast<uint32_t>(k);
     triangle.fanIndex = static_cast<uint32_t>(i - 2);
     const bool fan = any != 0;
+    // Corners (p[i-1], p[i], p[0]): the edge p[i-1] p[i] is the polygon's, p[i] p[0] only for the
+    // last triangle, p[0] p[i-1] only for the first.
+    if (fan)
+      triangle.outerEdges =
+          static_cast<uint8_t>(4u | (i + 1 == polygon.size() ? 1u : 0u) | (i == 2 ? 2u : 0u));
     const WindowVertex a = toWindow(polygon[fan ? i - 1 : 0], viewport, fused);
     const WindowVertex b = toWindow(polygon[fan ? i : 1], viewport, fused);
     const WindowVertex c = toWindow(polygon[fan ? 0 : 2], viewport, fused);

@@ -18,6 +18,7 @@
 // edge (the tie rule of rule 4), so a mesh that shares edges covers every pixel once.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -30,10 +31,23 @@ struct Plane {
   float dadx = 0.0f, dady = 0.0f, a0 = 0.0f;
 };
 
+// Rule 6: a plane at integer pixel coordinates, fused (llvmpipe on an FMA CPU) or not.
+inline float evaluatePlane(const Plane& plane, int px, int py, bool fused) {
+  const float x = static_cast<float>(px), y = static_cast<float>(py);
+  return fused ? std::fma(plane.dady, y, std::fma(plane.dadx, x, plane.a0))
+               : plane.dady * y + (plane.dadx * x + plane.a0);
+}
+
 // Edge function of rule 4: covered when c + 256 * (b * py - a * px) > 0 for all three edges.
 struct Edge {
   int64_t a = 0, b = 0, c = 0;
   int64_t at(int64_t px, int64_t py) const { return c + 256 * (b * py - a * px); }
+};
+
+// A corner of a set-up triangle before snapping: window position, window z, 1/w and the
+// perspective attributes s/w and t/w. The result sets (result_set.h) interpolate from these.
+struct WindowCorner {
+  float x = 0, y = 0, z = 0, oow = 0, sw = 0, tw = 0;
 };
 
 // One triangle as the rasterizer sees it: after clipping (a clipped triangle becomes a fan of
@@ -46,6 +60,10 @@ struct SetupTriangle {
   Plane oneOverW;                                // 1/w
   Plane z;                                       // window z, not perspective-divided
   int minX = 0, minY = 0, maxX = -1, maxY = -1;  // pixels whose centres may be covered
+  std::array<WindowCorner, 3> corners;           // in the oriented order of the edges
+  // Bit i: the edge opposite corner i lies on the mesh triangle's boundary. Edges between two
+  // triangles of a clipped fan are not: the shared-edge rule gives their pixels to one of the two.
+  uint8_t outerEdges = 7;
 
   bool covers(int px, int py) const {
     return edges[0].at(px, py) > 0 && edges[1].at(px, py) > 0 && edges[2].at(px, py) > 0;

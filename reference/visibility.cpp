@@ -8,6 +8,13 @@
 #include <string>
 
 namespace vt::reference {
+
+// What Embree's bounds callback reads: the triangles and the margin of their boxes.
+struct BoxData {
+  const std::vector<SetupTriangle>* triangles;
+  int margin;
+};
+
 namespace {
 
 // What one packet collects while Embree walks the boxes its rays cross.
@@ -19,6 +26,7 @@ struct BlockQuery {
   bool fused;
   std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> hits;
   std::array<uint32_t, Visibility::kBlock * Visibility::kBlock> keys;
+  std::vector<int32_t>* collect = nullptr;  // Visibility::candidates: every box crossed
 };
 
 // The stored depth as an ordered key: Z24 is round-half-even(z * 16777215); 32F is the float,
@@ -30,13 +38,15 @@ uint32_t depthKey(float z, DepthFormat format) {
 }
 
 void boundsOf(const RTCBoundsFunctionArguments* args) {
-  const auto* triangles = static_cast<const std::vector<SetupTriangle>*>(args->geometryUserPtr);
-  const SetupTriangle& t = (*triangles)[args->primID];
-  // Pixel centres px + 0.5 for px in [minX, maxX], with a quarter pixel to spare each way.
-  args->bounds_o->lower_x = static_cast<float>(t.minX) + 0.25f;
-  args->bounds_o->upper_x = static_cast<float>(t.maxX) + 0.75f;
-  args->bounds_o->lower_y = static_cast<float>(t.minY) + 0.25f;
-  args->bounds_o->upper_y = static_cast<float>(t.maxY) + 0.75f;
+  const auto* data = static_cast<const BoxData*>(args->geometryUserPtr);
+  const SetupTriangle& t = (*data->triangles)[args->primID];
+  // Pixel centres px + 0.5 for px in [minX - margin, maxX + margin], with a quarter pixel to
+  // spare each way.
+  const float margin = static_cast<float>(data->margin);
+  args->bounds_o->lower_x = static_cast<float>(t.minX) + 0.25f - margin;
+  args->bounds_o->upper_x = static_cast<float>(t.maxX) + 0.75f + margin;
+  args->bounds_o->lower_y = static_cast<float>(t.minY) + 0.25f - margin;
+  args->bounds_o->upper_y = static_cast<float>(t.maxY) + 0.75f + margin;
   args->bounds_o->lower_z = 0.0f;
   args->bounds_o->upper_z = 1.0f;
 }
@@ -46,6 +56,10 @@ void boundsOf(const RTCBoundsFunctionArguments* args) {
 void testCandidate(const RTCIntersectFunctionNArguments* args) {
   auto* query = reinterpret_cast<BlockQuery*>(args->context);
   const int32_t k = static_cast<int32_t>(args->primID);
+  if (query->collect) {
+    query->collect->push_back(k);
+    return;
+  }
   const SetupTriangle& t = (*query->triangles)[static_cast<size_t>(k)];
   RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
   for (unsigned lane = 0; lane < args->N; ++lane) {
@@ -86,8 +100,9 @@ float windowDepth(const SetupTriangle& t, int px, int py, bool fused) {
 }
 
 Visibility::Visibility(const std::vector<SetupTriangle>& triangles, Viewport viewport,
-                       DepthFormat format, bool fused)
-    : triangles_(triangles), viewport_(viewport), format_(format), fused_(fused) {
+                       DepthFormat format, bool fused, int margin)
+    : triangles_(triangles), viewport_(viewport), format_(format), fused_(fused), margin_(margin) {
+  boxData_ = std::make_unique<BoxData>(BoxData{&triangles, margin});
 #ifdef VT_STD_THREAD_WORKERS
   // The ThreadSanitizer build (parallel_for.h): Embree's scene build runs on TBB, which TSan
   // cannot follow, so it runs on this thread; the tile workers still trace rays in parallel.
@@ -99,7 +114,7 @@ Visibility::Visibility(const std::vector<SetupTriangle>& triangles, Viewport vie
   scene_ = rtcNewScene(device_);
   RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
   rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(triangles.size()));
-  rtcSetGeometryUserData(geometry, const_cast<std::vector<SetupTriangle>*>(&triangles));
+  rtcSetGeometryUserData(geometry, boxData_.get());
   rtcSetGeometryBoundsFunction(geometry, boundsOf, nullptr);
   rtcSetGeometryIntersectFunction(geometry, testCandidate);
   rtcSetGeometryOccludedFunction(geometry, testCandidateOccluded);
@@ -147,6 +162,29 @@ std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> Visibility::block(
   }
   rtcIntersect16(valid, scene_, &query.context, &rays);
   return query.hits;
+}
+
+void Visibility::candidates(int px, int py, std::vector<int32_t>& out) const {
+  out.clear();
+  BlockQuery query;
+  rtcInitIntersectContext(&query.context);
+  query.triangles = &triangles_;
+  query.x0 = px;
+  query.y0 = py;
+  query.format = format_;
+  query.fused = fused_;
+  query.collect = &out;
+  RTCRayHit ray{};
+  ray.ray.org_x = static_cast<float>(px) + 0.5f;
+  ray.ray.org_y = static_cast<float>(py) + 0.5f;
+  ray.ray.org_z = -1.0f;
+  ray.ray.dir_z = 1.0f;
+  ray.ray.tnear = 0.0f;
+  ray.ray.tfar = std::numeric_limits<float>::infinity();
+  ray.ray.mask = 0xffffffffu;
+  ray.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &query.context, &ray);
+  std::sort(out.begin(), out.end());
 }
 
 PixelHit Visibility::at(int px, int py) const {

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "reference/triangle_setup.h"
@@ -31,12 +32,16 @@ struct PixelHit {
   float runnerUpDepth = 1.0f;
 };
 
+struct BoxData;
+
 class Visibility {
  public:
   static constexpr int kBlock = 4;  // pixels per side of a packet
 
+  // `margin`: pixels by which each triangle's box of candidate centres grows, for a model under
+  // which snapping to a coarser grid may cover centres beside those of the oracle's 8-bit grid.
   Visibility(const std::vector<SetupTriangle>& triangles, Viewport viewport, DepthFormat format,
-             bool fused);
+             bool fused, int margin = 0);
   ~Visibility();
   Visibility(const Visibility&) = delete;
   Visibility& operator=(const Visibility&) = delete;
@@ -46,12 +51,17 @@ class Visibility {
   // The 4 x 4 pixels from (x0, y0): hits[dx + 4 dy]; pixels outside the viewport get no hit.
   // Thread-safe.
   std::array<PixelHit, kBlock * kBlock> block(int x0, int y0) const;
+  // Every set-up triangle (index) whose box, grown by the margin, holds the centre of (px, py),
+  // in draw order. Thread-safe.
+  void candidates(int px, int py, std::vector<int32_t>& out) const;
 
  private:
   const std::vector<SetupTriangle>& triangles_;
   Viewport viewport_;
   DepthFormat format_;
   bool fused_;
+  int margin_;
+  std::unique_ptr<BoxData> boxData_;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
 };

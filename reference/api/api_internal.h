@@ -42,12 +42,17 @@ auto translatingErrors(Work&& work) -> decltype(work()) {
   }
 }
 
-reference::PrecisionProfile internalProfile(Profile profile);
-Profile publicProfile(reference::PrecisionProfile profile);
+// The result sets behind the public handle.
+struct ResultSets {
+  reference::ResultSets sets;
+};
+
+reference::PrecisionModel internalModel(Profile profile);
+Profile publicProfile(const reference::PrecisionModel& model);
 reference::RenderSettings internalSettings(Viewport viewport, const RenderOptions& options);
 ClipSpaceMesh internalMesh(const Scene& scene);
 reference::CacheState internalCache(const VirtualTextureReader& reader, const CacheState& cache);
-Frame publicFrame(reference::Frame&& frame);
+Frame publicFrame(reference::Frame&& frame, const reference::RenderSettings& settings);
 // A clip-space mesh as the API's scene, and a needbuffer as four values per pixel: the
 // conversions the implementation and the command line share.
 Scene publicScene(const ClipSpaceMesh& mesh, vt::Viewport viewport);

@@ -387,18 +387,35 @@ RenderOptions renderOptions(const Capture& capture, Profile profile) {
   return options;
 }
 
-CaptureCheck checkCapture(const Capture& capture, const Texture& texture, Profile profile,
-                          unsigned threads) {
+namespace {
+
+CaptureCheck checkWith(const Capture& capture, const Texture& texture,
+                       const RenderOptions& options) {
   if (texture.identity() != capture.textureIdentity)
     throw Error(texture.path().string() + ": texture identity " + identityText(texture.identity()) +
                 " does not match the capture's " + identityText(capture.textureIdentity) +
                 " (the frame was drawn from another texture)");
-  RenderOptions options = renderOptions(capture, profile);
-  options.threads = threads;
   CaptureCheck check;
   check.oracle = render(texture, capture.scene, capture.cache, options);
-  check.comparison = compare(check.oracle, capture.color, capture.need, profile);
+  check.comparison = compare(check.oracle, capture.color, capture.need);
   return check;
+}
+
+}  // namespace
+
+CaptureCheck checkCapture(const Capture& capture, const Texture& texture, Profile profile,
+                          unsigned threads) {
+  RenderOptions options = renderOptions(capture, profile);
+  options.threads = threads;
+  return checkWith(capture, texture, options);
+}
+
+CaptureCheck checkCapture(const Capture& capture, const Texture& texture,
+                          const std::filesystem::path& modelFile, unsigned threads) {
+  RenderOptions options = renderOptions(capture, Profile::kExact);
+  options.modelFile = modelFile.string();
+  options.threads = threads;
+  return checkWith(capture, texture, options);
 }
 
 }  // namespace vt::oracle

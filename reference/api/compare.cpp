@@ -7,13 +7,16 @@
 
 namespace vt::oracle {
 
+std::string reasonName(int reason) { return reference::reasonName(reason); }
+std::string widthUnit(int reason) { return reference::widthUnit(reason); }
+
 Comparison compare(const Frame& oracle, std::span<const uint8_t> color,
-                   std::span<const uint32_t> need, Profile profile) {
+                   std::span<const uint32_t> need) {
   return translatingErrors([&] {
     const size_t pixels =
         static_cast<size_t>(oracle.viewport.width) * static_cast<size_t>(oracle.viewport.height);
     if (oracle.need.size() != pixels * 4 || oracle.color.size() != pixels * 4 ||
-        oracle.ambiguity.size() != pixels)
+        oracle.ambiguous.size() != pixels)
       throw Error("compare: the oracle frame's images do not match its viewport");
     if (color.size() != pixels * 4 || need.size() != pixels * 4)
       throw Error("compare: the frame has " + std::to_string(color.size() / 4) + " colour and " +
@@ -22,7 +25,11 @@ Comparison compare(const Frame& oracle, std::span<const uint8_t> color,
     reference::Frame expected;
     expected.viewport = {oracle.viewport.width, oracle.viewport.height};
     expected.color = oracle.color;
-    expected.ambiguity = oracle.ambiguity;
+    if (oracle.sets) {
+      if (!oracle.sets->sets.empty() && oracle.sets->sets.offsets.size() != pixels + 1)
+        throw Error("compare: the oracle frame's result sets do not match its viewport");
+      expected.sets = oracle.sets->sets;
+    }
     std::vector<glm::uvec4> actualNeed(pixels);
     expected.need.resize(pixels);
     for (size_t i = 0; i < pixels; ++i) {
@@ -30,22 +37,29 @@ Comparison compare(const Frame& oracle, std::span<const uint8_t> color,
                                     oracle.need[i * 4 + 2], oracle.need[i * 4 + 3]);
       actualNeed[i] = glm::uvec4(need[i * 4], need[i * 4 + 1], need[i * 4 + 2], need[i * 4 + 3]);
     }
-    reference::FrameComparison c =
-        reference::compareFrames(expected, color, actualNeed, internalProfile(profile));
+    reference::FrameComparison c = reference::compareFrames(
+        expected, color, actualNeed, oracle.needEncoding == NeedEncoding::k8Bit);
     Comparison result;
     result.pixels = c.pixels;
     result.identical = c.identical;
-    result.flagged = c.flagged;
-    result.withinBound = c.withinBound;
-    result.mismatched = c.mismatched;
+    result.explained = c.explained;
+    result.unexplained = c.unexplained;
+    result.ambiguous = c.ambiguous;
+    result.explainedBy = c.explainedBy;
+    result.unexplainedBy = c.unexplainedBy;
+    result.widenBy = c.widenBy;
+    result.model = oracle.model;
     result.needMismatched = c.needMismatched;
     result.maxColorDifference = c.maxColorDifference;
     result.meanColorDifference = c.meanColorDifference;
     result.colorDifferenceImage = std::move(c.colorDifferenceImage);
     result.classificationImage = std::move(c.classificationImage);
     const auto width = static_cast<size_t>(oracle.viewport.width);
-    for (const uint64_t i : c.mismatchedPixels) {
+    for (const reference::UnexplainedPixel& u : c.unexplainedPixels) {
+      const uint64_t i = u.index;
       PixelDifference d;
+      d.reason = u.reason;
+      d.widenBy = u.widenBy;
       d.x = static_cast<int>(i % width);
       d.y = static_cast<int>(i / width);
       std::copy_n(oracle.need.begin() + static_cast<std::ptrdiff_t>(i * 4), 4, d.expectedNeed);

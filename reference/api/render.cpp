@@ -2,43 +2,35 @@
 
 #include "common/resource_limits.h"
 #include "reference/api/api_internal.h"
-#include "reference/precision_profile.h"
+#include "reference/precision_model.h"
+#include "reference/precision_model_file.h"
 
 namespace vt::oracle {
 
-reference::PrecisionProfile internalProfile(Profile profile) {
+reference::PrecisionModel internalModel(Profile profile) {
   switch (profile) {
     case Profile::kLlvmpipe:
-      return reference::PrecisionProfile::kLlvmpipe;
-    case Profile::kNvidia:
-      return reference::PrecisionProfile::kNvidia;
+      return reference::llvmpipeModel();
+    case Profile::kGl45:
+      return reference::gl45Model();
     default:
-      return reference::PrecisionProfile::kExact;
+      return reference::exactModel();
   }
 }
 
 Profile parseProfile(const std::string& name) {
   if (name == "exact") return Profile::kExact;
   if (name == "llvmpipe") return Profile::kLlvmpipe;
-  if (name == "nvidia") return Profile::kNvidia;
-  throw Error("unknown precision profile '" + name + "' (exact, llvmpipe or nvidia)");
+  if (name == "gl45") return Profile::kGl45;
+  throw Error("unknown precision model '" + name + "' (exact, llvmpipe or gl45)");
 }
 
-std::string toString(Profile profile) { return reference::toString(internalProfile(profile)); }
+std::string toString(Profile profile) { return internalModel(profile).name; }
 
-Profile publicProfile(reference::PrecisionProfile profile) {
-  switch (profile) {
-    case reference::PrecisionProfile::kLlvmpipe:
-      return Profile::kLlvmpipe;
-    case reference::PrecisionProfile::kNvidia:
-      return Profile::kNvidia;
-    default:
-      return Profile::kExact;
-  }
-}
+Profile publicProfile(const reference::PrecisionModel& model) { return parseProfile(model.name); }
 
 Profile profileForRenderer(const std::string& glRenderer) {
-  return publicProfile(reference::profileForRenderer(glRenderer));
+  return publicProfile(reference::modelForRenderer(glRenderer));
 }
 
 std::string toString(NeedEncoding encoding) {
@@ -54,7 +46,9 @@ std::string toString(Sampling sampling) {
 reference::RenderSettings internalSettings(Viewport viewport, const RenderOptions& options) {
   reference::RenderSettings settings;
   settings.viewport = {viewport.width, viewport.height};
-  settings.profile = internalProfile(options.profile);
+  reference::applyModel(settings, options.modelFile.empty()
+                                      ? internalModel(options.profile)
+                                      : reference::readModelFile(options.modelFile));
   settings.trilinear = options.filtering == Filtering::kTrilinear;
   settings.exactFilter = options.sampling == Sampling::kTexelFetch;
   settings.need8 = options.needEncoding == NeedEncoding::k8Bit;
@@ -105,13 +99,20 @@ std::vector<uint32_t> flatNeed(std::span<const glm::uvec4> need) {
   return flat;
 }
 
-Frame publicFrame(reference::Frame&& frame) {
+Frame publicFrame(reference::Frame&& frame, const reference::RenderSettings& settings) {
   Frame result;
+  result.needEncoding = settings.need8 ? NeedEncoding::k8Bit : NeedEncoding::k32Bit;
+  result.model = settings.model ? settings.model->name : reference::toString(settings.profile);
+  const size_t pixels = frame.need.size();
+  result.ambiguous.resize(pixels);
+  for (size_t i = 0; i < pixels; ++i)
+    result.ambiguous[i] = reference::ambiguous(frame.sets, i) ? 1 : 0;
+  if (!frame.sets.empty())
+    result.sets = std::make_shared<const ResultSets>(ResultSets{std::move(frame.sets)});
   result.viewport = {frame.viewport.width, frame.viewport.height};
   result.color = std::move(frame.color);
   result.need = flatNeed(frame.need);
   result.depth = std::move(frame.depth);
-  result.ambiguity = std::move(frame.ambiguity);
   return result;
 }
 
@@ -143,8 +144,9 @@ Frame render(const Texture& texture, const Scene& scene, const PreparedCache& ca
     const ClipSpaceMesh mesh = internalMesh(scene);
     const reference::RenderSettings settings = internalSettings(v, options);
     if (!cache.impl().state)
-      return publicFrame(reference::renderFrame(mesh, texture.impl().everything, settings));
-    return publicFrame(reference::renderFrame(mesh, *cache.impl().state, settings));
+      return publicFrame(reference::renderFrame(mesh, texture.impl().everything, settings),
+                         settings);
+    return publicFrame(reference::renderFrame(mesh, *cache.impl().state, settings), settings);
   });
 }
 

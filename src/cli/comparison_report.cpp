@@ -1,44 +1,86 @@
 #include "cli/comparison_report.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "common/image_file.h"
 
 namespace vt {
+namespace {
+
+template <class Count>
+nlohmann::json byReason(const std::array<Count, oracle::kReasons>& counts) {
+  nlohmann::json result = nlohmann::json::object();
+  for (int r = 0; r < oracle::kReasons; ++r)
+    result[oracle::reasonName(r)] = counts[static_cast<size_t>(r)];
+  return result;
+}
+
+// What each parameter would have to widen by, for the parameters any unexplained pixel names.
+nlohmann::json widenings(const std::array<uint64_t, oracle::kReasons>& unexplainedBy,
+                         const std::array<double, oracle::kReasons>& widenBy) {
+  nlohmann::json result = nlohmann::json::object();
+  for (int r = 0; r < oracle::kReasons; ++r)
+    if (unexplainedBy[static_cast<size_t>(r)] != 0)
+      result[oracle::reasonName(r)] = {{"pixels", unexplainedBy[static_cast<size_t>(r)]},
+                                       {"widen_by", widenBy[static_cast<size_t>(r)]},
+                                       {"unit", oracle::widthUnit(r)}};
+  return result;
+}
+
+double fraction(uint64_t part, uint64_t whole) {
+  return whole ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
+}
+
+}  // namespace
 
 void ComparisonTotals::add(const oracle::Comparison& c) {
   pixels += c.pixels;
   identical += c.identical;
-  flagged += c.flagged;
-  withinBound += c.withinBound;
-  mismatched += c.mismatched;
+  explained += c.explained;
+  unexplained += c.unexplained;
+  ambiguous += c.ambiguous;
+  for (size_t r = 0; r < oracle::kReasons; ++r) {
+    explainedBy[r] += c.explainedBy[r];
+    unexplainedBy[r] += c.unexplainedBy[r];
+    widenBy[r] = std::max(widenBy[r], c.widenBy[r]);
+  }
 }
+
+double ComparisonTotals::ambiguousFraction() const { return fraction(ambiguous, pixels); }
 
 nlohmann::json ComparisonTotals::json() const {
   return {{"pixels", pixels},
           {"identical", identical},
-          {"flagged", flagged},
-          {"within_bound", withinBound},
-          {"mismatched", mismatched}};
+          {"explained", explained},
+          {"unexplained", unexplained},
+          {"ambiguous", ambiguous},
+          {"ambiguous_fraction", ambiguousFraction()},
+          {"explained_by", byReason(explainedBy)},
+          {"unexplained_by", widenings(unexplainedBy, widenBy)}};
 }
 
 std::string ComparisonTotals::line() const {
-  char text[200];
+  char text[240];
   std::snprintf(text, sizeof text,
-                "%llu of %llu pixels identical, %llu flagged, %llu within bound, %llu mismatched",
+                "%llu of %llu pixels identical, %llu explained, %llu unexplained; ambiguous "
+                "fraction %.4f",
                 static_cast<unsigned long long>(identical), static_cast<unsigned long long>(pixels),
-                static_cast<unsigned long long>(flagged),
-                static_cast<unsigned long long>(withinBound),
-                static_cast<unsigned long long>(mismatched));
+                static_cast<unsigned long long>(explained),
+                static_cast<unsigned long long>(unexplained), ambiguousFraction());
   return text;
 }
 
 nlohmann::json comparisonJson(const oracle::Comparison& c) {
-  return {{"pixels", c.pixels},
+  return {{"model", c.model},
+          {"pixels", c.pixels},
           {"identical", c.identical},
-          {"flagged", c.flagged},
-          {"within_bound", c.withinBound},
-          {"mismatched", c.mismatched},
+          {"explained", c.explained},
+          {"unexplained", c.unexplained},
+          {"ambiguous", c.ambiguous},
+          {"ambiguous_fraction", fraction(c.ambiguous, c.pixels)},
+          {"explained_by", byReason(c.explainedBy)},
+          {"unexplained_by", widenings(c.unexplainedBy, c.widenBy)},
           {"needbuffer_mismatched", c.needMismatched},
           {"max_color_difference", c.maxColorDifference},
           {"mean_color_difference", c.meanColorDifference}};
@@ -47,12 +89,18 @@ nlohmann::json comparisonJson(const oracle::Comparison& c) {
 void printComparison(const std::string& name, const std::string& detail,
                      const oracle::Comparison& c) {
   std::printf(
-      "  %-12s %-28s %8llu pixels: %8llu identical, %6llu flagged, %6llu within bound, %6llu "
-      "mismatched; colour max %d, mean %.4f\n",
+      "  %-12s %-28s %8llu pixels: %8llu identical, %6llu explained, %6llu unexplained, "
+      "ambiguous %.4f; colour max %d, mean %.4f\n",
       name.c_str(), detail.c_str(), static_cast<unsigned long long>(c.pixels),
-      static_cast<unsigned long long>(c.identical), static_cast<unsigned long long>(c.flagged),
-      static_cast<unsigned long long>(c.withinBound), static_cast<unsigned long long>(c.mismatched),
+      static_cast<unsigned long long>(c.identical), static_cast<unsigned long long>(c.explained),
+      static_cast<unsigned long long>(c.unexplained), fraction(c.ambiguous, c.pixels),
       c.maxColorDifference, c.meanColorDifference);
+  for (int r = 0; r < oracle::kReasons; ++r)
+    if (c.unexplainedBy[static_cast<size_t>(r)] != 0)
+      std::printf("  %-12s %-28s %8llu unexplained pixels need %s widened by %g %s\n", "", "",
+                  static_cast<unsigned long long>(c.unexplainedBy[static_cast<size_t>(r)]),
+                  oracle::reasonName(r).c_str(), c.widenBy[static_cast<size_t>(r)],
+                  oracle::widthUnit(r).c_str());
 }
 
 void writeComparisonImages(const std::filesystem::path& folder, const std::string& stem,

@@ -49,7 +49,7 @@ void renderAndCrossCheck(const VirtualTextureReader& reader, const std::filesyst
     std::cout << "no OpenGL (" << e.what() << "): the oracle renders alone\n";
   }
   // The oracle follows the GL implementation at hand: llvmpipe's arithmetic on llvmpipe.
-  if (context) settings.profile = reference::profileForRenderer(context->renderer());
+  if (context) settings.profile = reference::modelForRenderer(context->renderer()).arithmetic;
   auto start = std::chrono::steady_clock::now();
   const reference::Frame oracle = reference::renderFrame(mesh, cache, settings);
   const double oracleSeconds = secondsSince(start);

@@ -152,7 +152,7 @@ void addEvalCommand(CLI::App& app) {
   command->add_flag("--preload-visible", o->preloadVisible,
                     "Also load the pages the first frame needs before it (4.2.1)");
   command->add_option("--profile", o->profile, "Precision profile of the oracle")
-      ->check(CLI::IsMember({"exact", "llvmpipe", "nvidia"}))
+      ->check(CLI::IsMember({"exact", "llvmpipe"}))
       ->capture_default_str();
   command->add_option("--jobs", o->jobs, "Runs at once (0: every core)")->capture_default_str();
   command->add_option("--title", o->title, "Title of the summary and plots");

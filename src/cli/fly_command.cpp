@@ -57,8 +57,8 @@ void addFlyCommand(CLI::App& app) {
   command
       ->add_option("--profile", o->profile,
                    "Precision profile of the oracle: auto (exact; with gl, GL_RENDERER's), exact, "
-                   "llvmpipe, nvidia")
-      ->check(CLI::IsMember({"auto", "exact", "llvmpipe", "nvidia"}))
+                   "llvmpipe")
+      ->check(CLI::IsMember({"auto", "exact", "llvmpipe"}))
       ->capture_default_str();
   command->add_option("--backend", o->backend, "oracle or gl")
       ->check(CLI::IsMember({"oracle", "gl"}))
@@ -95,7 +95,7 @@ void addFlyCommand(CLI::App& app) {
     if (o->profile != "auto")
       options.settings.profile = reference::parsePrecisionProfile(o->profile);
     else if (context)
-      options.settings.profile = reference::profileForRenderer(context->renderer());
+      options.settings.profile = reference::modelForRenderer(context->renderer()).arithmetic;
     // Reference images: every page resident, drawn by the oracle at the screen's resolution
     // (DESIGN section 5).
     std::unique_ptr<reference::ResidentTexture> everything;

@@ -12,9 +12,17 @@ oracle::CacheState publicCacheState(const reference::CacheState& cache) {
   return state;
 }
 
-oracle::RenderOptions publicRenderOptions(const reference::RenderSettings& settings) {
+oracle::RenderOptions publicRenderOptions(const reference::RenderSettings& settings,
+                                          const std::string& modelFile) {
   oracle::RenderOptions options;
-  options.profile = oracle::publicProfile(settings.profile);
+  options.modelFile = modelFile;
+  if (modelFile.empty())
+    options.profile =
+        settings.model
+            ? oracle::publicProfile(*settings.model)
+            : oracle::publicProfile(settings.profile == reference::PrecisionProfile::kLlvmpipe
+                                        ? reference::llvmpipeModel()
+                                        : reference::exactModel());
   options.needEncoding =
       settings.need8 ? oracle::NeedEncoding::k8Bit : oracle::NeedEncoding::k32Bit;
   options.filtering =

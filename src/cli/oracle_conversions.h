@@ -13,6 +13,7 @@ namespace vt {
 
 // Each resident page in the frame its indirection entry names.
 oracle::CacheState publicCacheState(const reference::CacheState& cache);
-oracle::RenderOptions publicRenderOptions(const reference::RenderSettings& settings);
+oracle::RenderOptions publicRenderOptions(const reference::RenderSettings& settings,
+                                          const std::string& modelFile = "");
 
 }  // namespace vt

@@ -66,7 +66,7 @@ void addRenderCommand(CLI::App& app) {
       ->check(sizeValidator())
       ->capture_default_str();
   command->add_option("--profile", o->profile, "Precision profile")
-      ->check(CLI::IsMember({"exact", "llvmpipe", "nvidia"}))
+      ->check(CLI::IsMember({"exact", "llvmpipe"}))
       ->capture_default_str();
   command->add_option("--depth", o->depth, "Depth buffer format")
       ->check(CLI::IsMember({"24", "32f"}))

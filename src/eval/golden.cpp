@@ -14,6 +14,7 @@
 #include "eval/flight_records.h"
 #include "format/virtual_texture_reader.h"
 #include "reference/frame_comparison.h"
+#include "reference/precision_model.h"
 #include "reference/texture_source.h"
 #include "scene/obj_mesh.h"
 
@@ -71,13 +72,15 @@ struct Recorded {
   std::vector<uint8_t> color;
   std::vector<glm::uvec4> need;
   FrameQuality quality;
+  std::optional<reference::FrameComparison> judged = std::nullopt;  // under a free model
 };
 
 // Flies `configuration` and keeps every `every`-th frame.
 std::vector<Recorded> flyAndRecord(const VirtualTextureReader& reader, const Mesh& mesh,
                                    const CameraPath& path, const FlightConfiguration& configuration,
                                    Viewport viewport, reference::PrecisionProfile profile,
-                                   int every, bool gl) {
+                                   int every, bool gl,
+                                   const reference::PrecisionModel* judge = nullptr) {
   FlightOptions options;
   options.settings.viewport = viewport;
   options.settings.profile = profile;
@@ -98,7 +101,24 @@ std::vector<Recorded> flyAndRecord(const VirtualTextureReader& reader, const Mes
                         std::vector<glm::uvec4>(view.need.begin(), view.need.end()),
                         *view.result.quality});
   };
+  // Under a model with free parameters, each recorded frame is drawn again from the cache state
+  // it was drawn with (a capture) and judged against the oracle's result sets there.
+  std::vector<std::pair<int, reference::FrameComparison>> judged;
+  if (judge && !judge->pinned()) {
+    options.wantsCapture = [every](int frame) { return frame % every == 0; };
+    options.capture = [&](const FlightCaptureView& view) {
+      reference::RenderSettings settings = options.settings;
+      reference::applyModel(settings, *judge);
+      const reference::Frame oracle =
+          reference::renderFrame(view.mesh, view.runtime.cacheState(), settings);
+      judged.emplace_back(view.frame,
+                          reference::compareFrames(oracle, view.color, view.need, settings.need8));
+    };
+  }
   fly(reader, mesh, path, configuration, options);
+  for (auto& [frame, comparison] : judged)
+    for (Recorded& r : recorded)
+      if (r.frame == frame) r.judged = std::move(comparison);
   return recorded;
 }
 
@@ -152,8 +172,9 @@ bool GoldenCheck::passed() const {
 
 GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesystem::path& texture,
                         const std::filesystem::path& mesh, const std::filesystem::path& path,
-                        bool gl, reference::PrecisionProfile glProfile,
+                        bool gl, const reference::PrecisionModel& glModel,
                         const std::filesystem::path& reportFolder) {
+  const reference::PrecisionProfile glProfile = glModel.arithmetic;
   const std::filesystem::path manifest = folder / "golden.json";
   // Whole numbers only: a float converted to int out of its range is undefined.
   const auto whole = [](const nlohmann::json& value, const char* what) {
@@ -198,13 +219,13 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
   GoldenCheck check;
   check.backend = gl ? "gl" : "oracle";
   check.profile = gl ? glProfile : profile;
+  check.model = gl ? glModel.name : reference::toString(profile);
   TemporaryFolder staging(reportFolder, "check.json");  // replaces the report once complete
   const std::filesystem::path& report = staging.path();
   const std::vector<Recorded> recorded =
       flyAndRecord(reader, loadObjMesh(mesh), CameraPath::load(path), configuration, viewport,
-                   check.profile, every, gl);
-  const bool exact = !gl || glProfile == reference::PrecisionProfile::kLlvmpipe;
-  const int bound = exact ? 0 : reference::colorBound(glProfile);
+                   check.profile, every, gl, gl ? &glModel : nullptr);
+  const bool exact = !gl || glModel.pinned();
   nlohmann::json frames = nlohmann::json::array();
   for (const auto& expected : golden["frames"]) {
     GoldenFrameCheck frame;
@@ -233,8 +254,13 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
       frame.pixelsDiffering += pixelMax > 0;
       frame.maxColorDifference = std::max(frame.maxColorDifference, pixelMax);
     }
+    if (r->judged) {
+      frame.explained = r->judged->explained;
+      frame.unexplained = r->judged->unexplained;
+      frame.ambiguous = r->judged->ambiguous;
+    }
     frame.passed = exact ? frame.colorMatches && frame.needMatches && frame.qualityMatches
-                         : frame.maxColorDifference <= bound;
+                         : r->judged && frame.unexplained == 0;
     if (!frame.passed)
       writeColorImage(
           report /
@@ -246,6 +272,9 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
                       {"quality_matches", frame.qualityMatches},
                       {"pixels_differing", frame.pixelsDiffering},
                       {"max_color_difference", frame.maxColorDifference},
+                      {"explained", frame.explained},
+                      {"unexplained", frame.unexplained},
+                      {"ambiguous", frame.ambiguous},
                       {"passed", frame.passed}});
     check.frames.push_back(frame);
   }
@@ -253,7 +282,7 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
                       nlohmann::json{{"golden", folder.string()},
                                      {"backend", check.backend},
                                      {"profile", reference::toString(check.profile)},
-                                     {"color_bound", bound},
+                                     {"model", check.model},
                                      {"passed", check.passed()},
                                      {"frames", frames}}
                               .dump(2) +

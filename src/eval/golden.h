@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "eval/flight.h"
+#include "reference/precision_model.h"
 
 namespace vt {
 
@@ -37,23 +38,30 @@ struct GoldenFrameCheck {
   bool colorMatches = false, needMatches = false, qualityMatches = false;
   uint64_t pixelsDiffering = 0;  // against the golden PNG
   int maxColorDifference = 0;    // 8-bit units
+  // Under a model with free parameters (a GL implementation other than llvmpipe): the GL frame
+  // against the oracle's result sets for the same cache state (frame_comparison.h).
+  uint64_t explained = 0, unexplained = 0, ambiguous = 0;
   bool passed = false;
 };
 
 struct GoldenCheck {
   std::string backend;
   reference::PrecisionProfile profile = reference::PrecisionProfile::kExact;
+  std::string model;  // the model that judged
   std::vector<GoldenFrameCheck> frames;
   bool passed() const;
 };
 
 // Flies the golden's flight again with the oracle or (gl = true, a current GL context is the
 // caller's) the GL path and compares. The texture, mesh and path files are the golden's unless
-// given; they must be the same by identity and checksum (InputError otherwise). Writes, for each
-// failed frame, frameNNNN.difference.png (colour difference x 16) into `report` with check.json.
+// given; they must be the same by identity and checksum (InputError otherwise). With the oracle,
+// or GL under a pinned model (llvmpipe), every recorded frame must match bit for bit; GL under a
+// model with free parameters (gl45, a model file) is judged by the oracle's result sets for each
+// recorded frame's cache state, and must leave no pixel unexplained. Writes, for each failed
+// frame, frameNNNN.difference.png (colour difference x 16) into `report` with check.json.
 GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesystem::path& texture,
                         const std::filesystem::path& mesh, const std::filesystem::path& path,
-                        bool gl, reference::PrecisionProfile glProfile,
+                        bool gl, const reference::PrecisionModel& glModel,
                         const std::filesystem::path& report);
 
 }  // namespace vt

@@ -26,13 +26,16 @@ std::vector<glm::uvec4> readNeed(size_t pixels, bool need8, Read read) {
 }  // namespace
 
 GlFrameRenderer::GlFrameRenderer(const reference::CacheState& cache)
-    : cache_(cache), program_(virtualTextureVertexSource(), virtualTextureFragmentSource()) {
+    : GlFrameRenderer(cache, virtualTextureFragmentSource()) {}
+
+GlFrameRenderer::GlFrameRenderer(const reference::CacheState& cache,
+                                 const std::string& fragmentSource)
+    : cache_(cache), program_(virtualTextureVertexSource(), fragmentSource) {
   const TextureDescription& d = cache.description;
   glCreateTextures(GL_TEXTURE_2D, 1, &indirection_);
   const auto finestSide = static_cast<GLsizei>(pagesPerSide(d.finestLevel()));
-  glTextureStorage2D(indirection_, static_cast<GLsizei>(d.levelCount), GL_RGBA16UI, finestSide,
-                     finestSide);
-  glTextureParameteri(indirection_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+  glTextureStorage2D(indirection_, 1, GL_RGBA16UI, finestSide + finestSide / 2, finestSide);
+  glTextureParameteri(indirection_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(indirection_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glCreateTextures(GL_TEXTURE_2D, 1, &texels_);
   const auto width = static_cast<GLsizei>(cache.widthTexels),
@@ -59,10 +62,14 @@ GlFrameRenderer::GlFrameRenderer(const reference::CacheState& cache)
 
 void GlFrameRenderer::uploadCache() {
   const TextureDescription& d = cache_.description;
+  // Level m of the table at its origin in the one texture (virtual_texture_program.cpp).
+  const auto finestSide = static_cast<GLint>(pagesPerSide(d.finestLevel()));
   for (uint32_t m = 0; m < d.levelCount; ++m) {
     const auto side = static_cast<GLsizei>(pagesPerSide(m));
-    glTextureSubImage2D(indirection_, static_cast<GLint>(d.finestLevel() - m), 0, 0, side, side,
-                        GL_RGBA_INTEGER, GL_UNSIGNED_SHORT, cache_.indirection[m].data());
+    const bool finest = m == d.finestLevel();
+    glTextureSubImage2D(indirection_, 0, finest ? 0 : finestSide,
+                        finest ? 0 : finestSide - 2 * side, side, side, GL_RGBA_INTEGER,
+                        GL_UNSIGNED_SHORT, cache_.indirection[m].data());
   }
   glTextureSubImage2D(texels_, 0, 0, 0, static_cast<GLsizei>(cache_.widthTexels),
                       static_cast<GLsizei>(cache_.heightTexels), GL_RGBA, GL_UNSIGNED_BYTE,
@@ -121,7 +128,14 @@ void GlFrameRenderer::submit(const ClipSpaceMesh& mesh, const reference::RenderS
   const GLfloat clearColor[4] = {0, 0, 0, 0}, one = 1.0f;
   const glm::uvec4 clearNeed = reference::needClearValue(settings.need8);
   glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 0, clearColor);
-  glClearNamedFramebufferuiv(framebuffer_, GL_COLOR, 1, &clearNeed.x);
+  // The integer needbuffer is cleared as a texture: Mesa 22.3's softpipe loses a framebuffer
+  // clear of an integer attachment when depth is cleared and drawn after it (README, softpipe).
+  if (settings.need8) {
+    const glm::u8vec4 narrow(clearNeed);
+    glClearTexImage(targets_[1], 0, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, &narrow.x);
+  } else {
+    glClearTexImage(targets_[1], 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, &clearNeed.x);
+  }
   glClearNamedFramebufferfv(framebuffer_, GL_DEPTH, 0, &one);
 
   glUseProgram(program_.id());

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "gl/gl_program.h"
@@ -29,8 +30,11 @@ struct GlFrame {
 class GlFrameRenderer {
  public:
   // Uploads the cache state: the page cache as an RGBA8 texture with GL_LINEAR filtering and the
-  // indirection table as an RGBA16UI texture whose mip level L - m holds page level m.
+  // indirection table as one RGBA16UI texture holding every level side by side
+  // (virtual_texture_program.cpp).
   explicit GlFrameRenderer(const reference::CacheState& cache);
+  // The same with another fragment shader: the planted-bug tests' variants of the real one.
+  GlFrameRenderer(const reference::CacheState& cache, const std::string& fragmentSource);
   ~GlFrameRenderer();
   GlFrameRenderer(const GlFrameRenderer&) = delete;
   GlFrameRenderer& operator=(const GlFrameRenderer&) = delete;

@@ -22,8 +22,21 @@ std::string virtualTextureFragmentSource() {
 uniform usampler2D uIndirection;
 uniform sampler2D uCache;
 uniform int uFinestLevel;
+// The indirection table (thesis 3.2.2.3), every level in level 0 of one texture of
+// (3/2 2^L) x 2^L entries, fetched at a constant level: level L at the origin, level m < L at
+// (2^L, 2^L - 2^(m+1)), so the levels lie side by side without overlap:
+//   +---------------+-------+
+//   |               | L - 1 |
+//   |       L       +---+---+
+//   |               |L-2|
+//   +---------------+---+ ...
+// (A mipmapped texture fetched at level L - m would do the same, but Mesa 22.3's softpipe fetches
+// one level for a whole 2x2 quad: README, softpipe.)
 uvec4 vtFetchIndirection(ivec2 page, int level) {
-  return texelFetch(uIndirection, page, uFinestLevel - level);
+  ivec2 origin = (level == uFinestLevel)
+                     ? ivec2(0, 0)
+                     : ivec2(1 << uFinestLevel, (1 << uFinestLevel) - (2 << level));
+  return texelFetch(uIndirection, origin + page, 0);
 }
 vec4 vtFetchCacheTexel(ivec2 texel) { return texelFetch(uCache, texel, 0); }
 vec4 vtSampleCacheLinear(vec2 texel) {

@@ -32,7 +32,7 @@ TEST(Q3dm6ishGolden, TheOracleReproducesEveryGoldenFrame) {
        (kData / "paths" / "q3dm6ish.storyboard.json").string(), "-o", (dir / "check").string()},
       dir.path());
   EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
-  EXPECT_THAT(result.out, HasSubstr("golden check (oracle, profile llvmpipe): 10 of 10 frames pass"));
+  EXPECT_THAT(result.out, HasSubstr("golden check (oracle, model llvmpipe): 10 of 10 frames pass"));
 }
 
 }  // namespace

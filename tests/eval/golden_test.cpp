@@ -36,7 +36,7 @@ struct Fixture {
   }
   GoldenCheck check(const std::filesystem::path& texture) {
     return checkGolden(dir / "golden", texture, request.mesh, request.path, false,
-                       reference::PrecisionProfile::kExact, dir / "report");
+                       reference::exactModel(), dir / "report");
   }
 };
 

@@ -16,6 +16,7 @@
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
 #include "reference/renderer.h"
+#include "random_triangles.h"
 #include "test_support.h"
 
 namespace vt {
@@ -24,21 +25,8 @@ namespace {
 // Textured triangles at many scales and angles: magnified, minified, grazing, some clipped.
 reference::ClipSpaceMesh texturedScene(unsigned seed) {
   std::mt19937 random(seed);
-  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), wRange(0.4f, 4.0f);
   reference::ClipSpaceMesh mesh;
-  for (int k = 0; k < 80; ++k) {
-    const float spread = k % 4 == 0 ? 0.02f : (k % 4 == 1 ? 0.2f : 0.6f);
-    const glm::vec2 centre(0.5f + 0.45f * unit(random), 0.5f + 0.45f * unit(random));
-    const glm::vec2 xy(unit(random), unit(random));
-    for (int corner = 0; corner < 3; ++corner) {
-      const float w = wRange(random);
-      const glm::vec2 p = xy + 0.8f * glm::vec2(unit(random), unit(random));
-      mesh.vertices.push_back(
-          {{p.x * w, p.y * w, 0.9f * unit(random) * w, w},
-           glm::clamp(centre + spread * glm::vec2(unit(random), unit(random)), 0.0f, 1.0f)});
-      mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
-    }
-  }
+  test::appendRandomTriangles(mesh, random, 80);
   // s and t exactly 0 and 1 at the corners of a screen-filling background quad drawn last.
   const uint32_t base = static_cast<uint32_t>(mesh.vertices.size());
   for (const auto& [x, y] :

@@ -29,11 +29,11 @@ oracle::Scene publicScene(const std::string& name, oracle::Viewport viewport) {
   return oracle::publicScene(toClipSpace(scene.mesh, scene.camera, size), size);
 }
 
-// The first pixel with geometry that the oracle did not flag as ambiguous.
+// The first pixel with geometry whose result set is one value.
 size_t firstClearPixel(const oracle::Frame& frame) {
-  for (size_t i = 0; i < frame.ambiguity.size(); ++i)
-    if (frame.ambiguity[i] == 0 && frame.color[i * 4 + 3] != 0) return i;
-  ADD_FAILURE() << "no unflagged pixel with geometry";
+  for (size_t i = 0; i < frame.ambiguous.size(); ++i)
+    if (frame.ambiguous[i] == 0 && frame.color[i * 4 + 3] != 0) return i;
+  ADD_FAILURE() << "no unambiguous pixel with geometry";
   return 0;
 }
 
@@ -65,7 +65,9 @@ TEST(OracleApi, RendersTheSameFrameAsTheOracleItWraps) {
       toClipSpace(named.mesh, named.camera, settings.viewport), everything, settings);
   EXPECT_EQ(frame.color, expected.color);
   EXPECT_EQ(frame.depth, expected.depth);
-  EXPECT_EQ(frame.ambiguity, expected.ambiguity);
+  EXPECT_EQ(frame.model, "llvmpipe");
+  EXPECT_EQ(frame.ambiguous, std::vector<uint8_t>(frame.ambiguous.size(), 0));
+  EXPECT_FALSE(frame.sets);
   ASSERT_EQ(frame.need.size(), expected.need.size() * 4);
   for (size_t i = 0; i < expected.need.size(); ++i)
     ASSERT_EQ(glm::uvec4(frame.need[i * 4], frame.need[i * 4 + 1], frame.need[i * 4 + 2],
@@ -118,29 +120,34 @@ TEST(OracleApi, ComparisonNamesExactlyTheChangedPixel) {
   const oracle::Texture texture = oracle::Texture::open(dir / "t.vt");
   const oracle::Frame frame = oracle::render(texture, publicScene("grazing", {80, 60}),
                                              oracle::CacheState::everything(), {});
-  EXPECT_TRUE(oracle::compare(frame, frame.color, frame.need, oracle::Profile::kExact).passed());
+  EXPECT_TRUE(oracle::compare(frame, frame.color, frame.need).passed());
 
   std::vector<uint32_t> need = frame.need;
   const size_t pixel = firstClearPixel(frame);
   need[pixel * 4 + 2] += 1;  // another level
-  const oracle::Comparison c = oracle::compare(frame, frame.color, need, oracle::Profile::kExact);
+  const oracle::Comparison c = oracle::compare(frame, frame.color, need);
   EXPECT_FALSE(c.passed());
-  EXPECT_EQ(c.mismatched, 1u);
+  EXPECT_EQ(c.unexplained, 1u);
   EXPECT_EQ(c.needMismatched, 1u);
   ASSERT_EQ(c.mismatches.size(), 1u);
   EXPECT_EQ(c.mismatches[0].x, static_cast<int>(pixel % 80));
   EXPECT_EQ(c.mismatches[0].y, static_cast<int>(pixel / 80));
   EXPECT_EQ(c.mismatches[0].actualNeed[2], frame.need[pixel * 4 + 2] + 1);
+  EXPECT_EQ(oracle::reasonName(c.mismatches[0].reason), "lod");
+  EXPECT_EQ(c.mismatches[0].widenBy, 1.0);
 
-  // A colour difference within the exact profile's bound of 4 passes; 5 does not.
+  // Under the pinned exact model, a colour 4 units off is unexplained, and the filter would have
+  // to widen by exactly 4.
   std::vector<uint8_t> color = frame.color;
   color[pixel * 4] =
       static_cast<uint8_t>(color[pixel * 4] < 128 ? color[pixel * 4] + 4 : color[pixel * 4] - 4);
-  EXPECT_EQ(oracle::compare(frame, color, frame.need, oracle::Profile::kExact).withinBound, 1u);
-  EXPECT_EQ(oracle::compare(frame, color, frame.need, oracle::Profile::kLlvmpipe).mismatched, 1u);
-  EXPECT_THROW(
-      oracle::compare(frame, std::span(color).first(8), frame.need, oracle::Profile::kExact),
-      oracle::Error);
+  const oracle::Comparison off = oracle::compare(frame, color, frame.need);
+  EXPECT_EQ(off.unexplained, 1u);
+  EXPECT_EQ(off.ambiguous, 0u);
+  ASSERT_EQ(off.mismatches.size(), 1u);
+  EXPECT_EQ(oracle::reasonName(off.mismatches[0].reason), "filter");
+  EXPECT_EQ(off.mismatches[0].widenBy, 4.0);
+  EXPECT_THROW(oracle::compare(frame, std::span(color).first(8), frame.need), oracle::Error);
 }
 
 // A capture of the oracle's own frame, written and read back.

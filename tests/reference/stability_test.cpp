@@ -319,17 +319,25 @@ TEST_F(Stability, HelperPixelsBeyondTheHorizon) {
   RenderSettings settings;
   settings.debugChannels = true;
   settings.viewport = {64, 64};
+  applyModel(settings, gl45Model());
   const Frame frame = renderFrame(toClipSpace(ground, camera, settings.viewport), t, settings);
   EXPECT_GT(expectDefined(frame, 4), 0u);
+  // Under gl45 a helper pixel near w = 0 leaves the LOD open: the set spans several levels.
   size_t beyond = 0;
-  for (const uint8_t reasons : frame.ambiguity) beyond += (reasons & kNearZeroW) != 0;
-  EXPECT_GT(beyond, 0u);  // the case really happens, and the oracle flags it
+  for (size_t i = 0; i < frame.need.size(); ++i)
+    for (uint32_t k = frame.sets.offsets[i]; k < frame.sets.offsets[i + 1]; ++k)
+      if (frame.sets.alternatives[k].triangle >= 0 &&
+          frame.sets.alternatives[k].levelHi > frame.sets.alternatives[k].levelLo + 1) {
+        ++beyond;
+        break;
+      }
+  EXPECT_GT(beyond, 0u);  // the case really happens, and the set widens for it
   std::string measured = std::to_string(beyond);
-  measured.append(" pixels flagged, all defined");
-  report("helper pixels beyond w = 0", "defined pages; flagged near-zero w", measured, "exact");
+  measured.append(" pixels with open levels under gl45, all defined");
+  report("helper pixels beyond w = 0", "defined pages; open levels under gl45", measured, "exact");
 }
 
-TEST_F(Stability, CoplanarFacesFirstDrawnWinsAndIsFlagged) {
+TEST_F(Stability, CoplanarFacesFirstDrawnWinsAndEitherMayUnderGl45) {
   const ResidentTexture& t = texture(5);
   ClipSpaceMesh mesh;
   for (int copy = 0; copy < 2; ++copy)
@@ -339,13 +347,23 @@ TEST_F(Stability, CoplanarFacesFirstDrawnWinsAndIsFlagged) {
   RenderSettings settings;
   settings.debugChannels = true;
   settings.viewport = {16, 16};
+  applyModel(settings, gl45Model());
   const Frame frame = renderFrame(mesh, t, settings);
   for (size_t i = 0; i < frame.triangle.size(); ++i) {
     EXPECT_EQ(frame.triangle[i], 0);  // GL_LESS: the later, equal depth fails
-    EXPECT_NE(frame.ambiguity[i] & kNearlyCoplanar, 0);
+    // Under gl45 depth precision decides: the set holds the second triangle, for depth.
+    bool second = false;
+    for (uint32_t k = frame.sets.offsets[i]; k < frame.sets.offsets[i + 1]; ++k)
+      second = second || (frame.sets.alternatives[k].triangle == 1 &&
+                          frame.sets.alternatives[k].reasons == kReasonDepth);
+    std::string listing;
+    for (uint32_t k = frame.sets.offsets[i]; k < frame.sets.offsets[i + 1]; ++k)
+      listing += " (" + std::to_string(frame.sets.alternatives[k].triangle) + ", " +
+                 std::to_string(frame.sets.alternatives[k].reasons) + ")";
+    EXPECT_TRUE(second) << i << listing;
   }
-  report("coplanar faces (decals)", "first drawn wins everywhere, flagged",
-         "first drawn, all flagged", "exact");
+  report("coplanar faces (decals)", "first drawn wins everywhere; either under gl45",
+         "first drawn; both in every set", "exact");
 }
 
 TEST_F(Stability, LodExactlyOnALevel) {

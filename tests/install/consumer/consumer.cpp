@@ -20,25 +20,24 @@ int main(int argc, char** argv) {
       const vt::oracle::Texture texture = vt::oracle::Texture::open(capture.texture);
       const vt::oracle::Profile profile = vt::oracle::profileForRenderer(capture.renderer);
       const vt::oracle::CaptureCheck check = vt::oracle::checkCapture(capture, texture, profile);
-      std::printf("%s: %llu of %llu pixels identical, %llu mismatched\n",
+      std::printf("%s: %llu of %llu pixels identical, %llu unexplained\n",
                   manifest.filename().c_str(),
                   static_cast<unsigned long long>(check.comparison.identical),
                   static_cast<unsigned long long>(check.comparison.pixels),
-                  static_cast<unsigned long long>(check.comparison.mismatched));
+                  static_cast<unsigned long long>(check.comparison.unexplained));
       if (!check.comparison.passed()) return 1;
 
       // One needbuffer pixel changed, where the oracle is certain: exactly it is reported.
       std::vector<uint32_t> need = capture.need;
       size_t pixel = 0;
-      while (pixel < check.oracle.ambiguity.size() &&
-             (check.oracle.ambiguity[pixel] != 0 || capture.color[pixel * 4 + 3] == 0))
+      while (pixel < check.oracle.ambiguous.size() &&
+             (check.oracle.ambiguous[pixel] != 0 || capture.color[pixel * 4 + 3] == 0))
         ++pixel;
-      if (pixel == check.oracle.ambiguity.size()) continue;
+      if (pixel == check.oracle.ambiguous.size()) continue;
       need[pixel * 4 + 1] ^= 1;
-      const vt::oracle::Comparison changed =
-          vt::oracle::compare(check.oracle, capture.color, need, profile);
+      const vt::oracle::Comparison changed = vt::oracle::compare(check.oracle, capture.color, need);
       const int width = capture.scene.viewport.width;
-      if (changed.mismatched != 1 || changed.mismatches.size() != 1 ||
+      if (changed.unexplained != 1 || changed.mismatches.size() != 1 ||
           changed.mismatches[0].x != static_cast<int>(pixel) % width ||
           changed.mismatches[0].y != static_cast<int>(pixel) / width) {
         std::fprintf(stderr, "the changed pixel was not reported alone\n");

@@ -19,17 +19,19 @@
 
 namespace vt::oracle {
 
-// What a GL implementation computes, so the oracle matches it bit for bit or states a bound:
-//   exact     IEEE float in source order, no fused multiply-add, denormals kept; colour within
-//             4 units of 8 bits (the Khronos bound for 8-bit linear filtering)
-//   llvmpipe  Mesa's llvmpipe on x86-64 with FMA, bit for bit (colour bound 0)
-//   nvidia    NVIDIA GPUs: exact arithmetic, 8-bit filter weights, log2 within 2^-22; colour
-//             within 4; pixels whose result could change within these bounds are flagged
-enum class Profile { kExact, kLlvmpipe, kNvidia };
+// The precision model the oracle judges under (DESIGN section 3, "Exactness"): within which
+// limits the other implementation may compute differently from the oracle.
+//   exact     IEEE float in source order, every parameter pinned: golden images, bit for bit
+//   llvmpipe  Mesa's llvmpipe on x86-64 with FMA, every parameter pinned: bit for bit
+//   gl45      only what the OpenGL 4.5 and GLSL 4.50 specifications guarantee (dEQP's minimum
+//             precisions where they are silent): every pixel gets the set of all values a
+//             conforming implementation could produce, and compare() accepts exactly those
+enum class Profile { kExact, kLlvmpipe, kGl45 };
 
 VT_ORACLE_API Profile parseProfile(const std::string& name);  // "exact", ...; throws Error
 VT_ORACLE_API std::string toString(Profile profile);
-// The profile for a GL_RENDERER string: llvmpipe for Mesa's llvmpipe, nvidia otherwise.
+// The model for a GL_RENDERER string: llvmpipe for Mesa's llvmpipe on a CPU with FMA, gl45
+// otherwise.
 VT_ORACLE_API Profile profileForRenderer(const std::string& glRenderer);
 
 // The needbuffer encodings (thesis 3.2.3.2), per pixel (r, g, b, a):
@@ -49,27 +51,28 @@ VT_ORACLE_API std::string toString(Sampling sampling);      // "texel_fetch", "h
 
 struct RenderOptions {
   Profile profile = Profile::kExact;
+  // A precision model file (reference/precision_model_file.h) to judge under instead of
+  // `profile`; empty: `profile`. Throws Error when it cannot be read.
+  std::string modelFile;
   NeedEncoding needEncoding = NeedEncoding::k32Bit;
   Filtering filtering = Filtering::kTrilinear;
   Sampling sampling = Sampling::kTexelFetch;
   unsigned threads = 0;  // 0: every core
 };
 
-// Why a pixel's result could differ on the target within its profile's precision.
-enum Ambiguity : uint8_t {
-  kNearEdge = 1 << 0,        // pixel centre within 1/256 pixel of the shown triangle's edge
-  kNearlyCoplanar = 1 << 1,  // another covering triangle's depth within the depth tolerance
-  kPageBoundary = 1 << 2,    // s * 2^m or t * 2^m within 4 ulps of an integer
-  kLevelBoundary = 1 << 3,   // LOD within 2^-12 of an integer
-  kNearZeroW = 1 << 4,       // |w| below 1e-6 at a pixel of the quad
-};
+// Every pixel's result set under a model with free parameters (opaque; compare() reads it).
+struct ResultSets;
 
 struct Frame {
   Viewport viewport;
-  std::vector<uint8_t> color;      // RGBA8; (0, 0, 0, 0) where no geometry
-  std::vector<uint32_t> need;      // four per pixel, in the chosen encoding
-  std::vector<float> depth;        // window depth; 1 where no geometry
-  std::vector<uint8_t> ambiguity;  // Ambiguity bits
+  std::vector<uint8_t> color;  // RGBA8; (0, 0, 0, 0) where no geometry
+  std::vector<uint32_t> need;  // four per pixel, in the chosen encoding
+  std::vector<float> depth;    // window depth; 1 where no geometry
+  // 1 where the pixel's result set holds more than one value (always 0 under exact, llvmpipe).
+  std::vector<uint8_t> ambiguous;
+  NeedEncoding needEncoding = NeedEncoding::k32Bit;
+  std::string model;                       // the model's name
+  std::shared_ptr<const ResultSets> sets;  // none under a pinned model
 };
 
 // A cache state with its pages read from the texture and its indirection table derived, for

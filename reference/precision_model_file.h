@@ -1,0 +1,33 @@
+#pragma once
+// Precision models as JSON files (a model measured on one implementation, or written by hand):
+//
+//   {"format": "vt-precision-model-1", "name": "...", "renderer": "<GL_RENDERER it describes>",
+//    "arithmetic": "exact" | "llvmpipe",
+//    "subpixel_bits": 1..16, "fill_rule": "pinned" | "free",
+//    "depth_ulps": >= 0, "depth_rounding": "nearest" | "either",
+//    "attribute_ulps": >= 0,
+//    "log2": "llvmpipe" | "ieee" | "bounded", "log2_absolute_error": >= 0, "log2_ulps": >= 0,
+//    "sqrt_ulps": >= 0, "arithmetic_ulps": >= 0,
+//    "filter": "llvmpipe_8bit" | "float" | "bounded", "sub_texel_bits": 0..16,
+//    "filter_error_units": >= 0,
+//    "color_conversion": "nearest" | "either", "denormals": "pinned" | "free",
+//    "sources": {"<parameter>": "<where its value comes from>", ...}}
+//
+// Every field is required; a missing, misspelt or out-of-range one is refused with the file and
+// the field named. Errors in ulps and units are at most 2^20 (a bound that loose would accept
+// anything, and is a mistake).
+
+#include <filesystem>
+#include <string>
+
+#include "reference/precision_model.h"
+
+namespace vt::reference {
+
+PrecisionModel readModelFile(const std::filesystem::path& file);
+std::string modelJson(const PrecisionModel& model);
+
+// A model by name (llvmpipe, exact, gl45), "auto" (modelForRenderer), or else a model file.
+PrecisionModel resolveModel(const std::string& nameOrFile, const std::string& glRenderer);
+
+}  // namespace vt::reference

@@ -1,0 +1,561 @@
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "reference/interval.h"
+#include "reference/result_set_builder.h"
+#include "shader/shader_cpp.h"
+
+namespace vt::reference {
+namespace {
+
+// One unit in the last place of a float in [1, 2).
+constexpr double kFloatUlp = 0x1p-23;
+// Half of it: the error of one correctly rounded float operation, relative.
+constexpr double kRounding = 0x1p-24;
+// GLSL 4.50, section 4.7.1: log2 within absolute 2^-21 inside [0.5, 2], 3 ULP outside. Every
+// log2 a model allows lies within it, the emulated ones (llvmpipe's polynomial, exact) included.
+constexpr double kGlslLog2AbsoluteError = 0x1p-21;
+constexpr double kGlslLog2Ulps = 3;
+// llvmpipe's GL_LINEAR: texel positions on a grid of 2^-8 texel (DESIGN section 7).
+constexpr int kLlvmpipeSubTexelBits = 8;
+
+// The shader logic with only what the LOD needs: the arithmetic's log2.
+class LodBackend {
+ public:
+  explicit LodBackend(PrecisionProfile profile) : profile_(profile) {}
+  float log2(float x) { return profileLog2(profile_, x); }
+  shader::uvec4 vtFetchIndirection(shader::ivec2, int) { return shader::uvec4(0u); }
+  shader::vec4 vtFetchCacheTexel(shader::ivec2) { return shader::vec4(0.0f); }
+  shader::vec4 vtSampleCacheLinear(shader::vec2) { return shader::vec4(0.0f); }
+
+ private:
+  PrecisionProfile profile_;
+};
+
+using Colour = std::array<Interval, 4>;  // per channel, in units of 1/255
+
+Colour nothing() {
+  const Interval empty{std::numeric_limits<double>::infinity(),
+                       -std::numeric_limits<double>::infinity()};
+  return {empty, empty, empty, empty};
+}
+Colour hull(const Colour& a, const Colour& b) {
+  return {hull(a[0], b[0]), hull(a[1], b[1]), hull(a[2], b[2]), hull(a[3], b[3])};
+}
+Colour widen(const Colour& a, double absolute) {
+  Colour r;
+  for (size_t c = 0; c < 4; ++c) r[c] = {a[c].lo - absolute, a[c].hi + absolute};
+  return r;
+}
+
+// The corners of a triangle as boxes: each within `radius` pixels (the model's snapping) plus the
+// float error of its window transform (x / w * W / 2 + W / 2: a few roundings of values up to the
+// viewport's size) of its float window position.
+struct CornerBoxes {
+  std::array<Interval, 3> x, y;
+};
+
+CornerBoxes cornerBoxes(const SetupTriangle& t, double radius, Viewport viewport) {
+  CornerBoxes b;
+  const double extent = std::max(viewport.width, viewport.height);
+  for (size_t i = 0; i < 3; ++i) {
+    const double window =
+        4 * kFloatUlp * (std::fabs(t.corners[i].x) + std::fabs(t.corners[i].y) + extent);
+    b.x[i] = Interval::around(t.corners[i].x, radius + window);
+    b.y[i] = Interval::around(t.corners[i].y, radius + window);
+  }
+  return b;
+}
+
+// Barycentric coordinates as affine functions of the window position: lambda_i(p) = e_i(p) / a
+// with e_i the edge function opposite corner i and a twice the signed area (the same sign, so
+// lambda does not depend on the orientation).
+struct Barycentrics {
+  std::array<Interval, 3> atCentre, ddx, ddy;  // at the pixel centre of the query, and per pixel
+  bool degenerate = false;                     // the area may be zero
+};
+
+Barycentrics barycentrics(const CornerBoxes& b, double cx, double cy) {
+  Barycentrics r;
+  const Interval area =
+      (b.x[1] - b.x[0]) * (b.y[2] - b.y[0]) - (b.x[2] - b.x[0]) * (b.y[1] - b.y[0]);
+  if (area.containsZero()) {
+    r.degenerate = true;
+    return r;
+  }
+  for (size_t i = 0; i < 3; ++i) {
+    const size_t j = (i + 1) % 3, k = (i + 2) % 3;
+    // e_i(p) = (x_k - x_j) (p_y - y_j) - (y_k - y_j) (p_x - x_j)
+    const Interval e = (b.x[k] - b.x[j]) * (Interval::point(cy) - b.y[j]) -
+                       (b.y[k] - b.y[j]) * (Interval::point(cx) - b.x[j]);
+    r.atCentre[i] = widen(e / area);
+    r.ddx[i] = widen(-(b.y[k] - b.y[j]) / area);
+    r.ddy[i] = widen((b.x[k] - b.x[j]) / area);
+  }
+  return r;
+}
+
+// An interpolated plane: value at a pixel and change per pixel in x and y.
+struct PlaneRange {
+  Interval value, ddx, ddy;
+};
+
+PlaneRange interpolate(const Barycentrics& l, float a0, float a1, float a2) {
+  const double a[3] = {a0, a1, a2};
+  PlaneRange r;
+  for (size_t i = 0; i < 3; ++i) {
+    r.value = r.value + l.atCentre[i] * a[i];
+    r.ddx = r.ddx + l.ddx[i] * a[i];
+    r.ddy = r.ddy + l.ddy[i] * a[i];
+  }
+  return {widen(r.value), widen(r.ddx), widen(r.ddy)};
+}
+
+// n / d at a pixel, and the fine derivative (n + dn) / (d + dd) - n / d = (dn d - n dd) / (d (d +
+// dd)) of the same planes, so that the two values' errors stay correlated.
+Interval ratio(Interval n, Interval d) { return widen(n / d); }
+Interval ratioStep(Interval n, Interval d, Interval dn, Interval dd) {
+  return widen((dn * d - n * dd) / (d * (d + dd)));
+}
+
+// The interval of a plane moved to pixel (px + dx, py + dy) from the query pixel.
+PlaneRange moved(const PlaneRange& p, int dx, int dy) {
+  return {widen(p.value + p.ddx * dx + p.ddy * dy), p.ddx, p.ddy};
+}
+
+// Everything the shader computes of one candidate at one pixel, as intervals.
+struct FragmentRange {
+  Interval s, t;  // after the clamp
+  Interval lod;
+  bool everything = false;  // a w near zero: any (s, t) and any level
+};
+
+int floorToInt(double x, int hi) {
+  if (!(x >= 0)) return 0;
+  return static_cast<int>(std::min<double>(std::floor(x), hi));
+}
+
+class Builder {
+ public:
+  Builder(const PrecisionModel& model, const SetShading& shading, Viewport viewport,
+          TexelSource& source)
+      : model_(model), shading_(shading), viewport_(viewport), source_(source) {
+    finestSide_ = std::ldexp(
+        static_cast<double>(shading.pageSize) * static_cast<double>(1 << shading.finestLevel),
+        -shading.needScaleLog2);
+  }
+
+  // Coverage of candidate t at the centre of (px, py): 2 sure, 1 possible, 0 impossible.
+  int coverage(const SetupTriangle& t, int px, int py) const {
+    if (model_.coveragePinned()) return t.covers(px, py) ? 2 : 0;
+    const Barycentrics l = barycentrics(
+        cornerBoxes(t, std::ldexp(1.0, -model_.subpixelBits), viewport_), px + 0.5, py + 0.5);
+    if (l.degenerate) return 1;
+    bool sure = true;
+    for (size_t i = 0; i < 3; ++i) {
+      // An edge inside a clipped fan separates two pieces of the same triangle: the shared-edge
+      // rule gives its pixels to one of them, so it decides nothing about the triangle's
+      // coverage.
+      if (!(t.outerEdges & (1u << i))) continue;
+      if (l.atCentre[i].hi < 0) return 0;
+      sure = sure && l.atCentre[i].lo > 0;
+    }
+    return sure ? 2 : 1;
+  }
+
+  // Window depth of candidate t at (px, py) as the depth test compares it.
+  Interval depth(const SetupTriangle& t, int px, int py, DepthFormat format) const {
+    const bool fused = usesFusedPlanes(model_.arithmetic);
+    const bool pinned =
+        model_.coveragePinned() && model_.depthUlps == 0 && model_.depthRoundsToNearest;
+    const double own = windowDepth(t, px, py, fused);
+    if (pinned) return Interval::point(own);
+    const Barycentrics l = barycentrics(
+        cornerBoxes(t, std::ldexp(1.0, -model_.subpixelBits), viewport_), px + 0.5, py + 0.5);
+    Interval z = Interval::everything();
+    if (!l.degenerate) {
+      z = interpolate(l, t.corners[0].z, t.corners[1].z, t.corners[2].z).value;
+      z = widen(z, model_.depthUlps * kFloatUlp, kFloatUlp);
+    }
+    z = hull(z, Interval::point(own));
+    if (format == DepthFormat::kDepth24)
+      z = widen(z, 0, (model_.depthRoundsToNearest ? 0.5 : 1.0) / 16777215.0);
+    return clamp(z, 0, 1);
+  }
+
+  FragmentRange fragment(const SetupTriangle& t, int px, int py) const {
+    const int qx = px & ~1, qy = py & ~1;
+    const int column = px - qx, row = py - qy;
+    const bool attributesPinned = model_.attributeUlps == 0 && model_.coveragePinned();
+    FragmentRange f;
+    Interval dsdx, dtdx, dsdy, dtdy;
+    if (attributesPinned) {
+      // The oracle's own float values at the quad's pixels (renderer.cpp computes them alike).
+      const bool fused = usesFusedPlanes(model_.arithmetic);
+      const auto at = [&](int x, int y) {
+        const float recip = 1.0f / evaluatePlane(t.oneOverW, x, y, fused);
+        return glm::vec2(evaluatePlane(t.s, x, y, fused) * recip,
+                         evaluatePlane(t.t, x, y, fused) * recip);
+      };
+      const glm::vec2 here = at(px, py);
+      const glm::vec2 dx = at(qx + 1, qy + row) - at(qx, qy + row);
+      const glm::vec2 dy = at(qx + column, qy + 1) - at(qx + column, qy);
+      f.s = Interval::point(here.x);
+      f.t = Interval::point(here.y);
+      dsdx = Interval::point(dx.x);
+      dtdx = Interval::point(dx.y);
+      dsdy = Interval::point(dy.x);
+      dtdy = Interval::point(dy.y);
+      if (!std::isfinite(here.x) || !std::isfinite(here.y)) f.everything = true;
+    } else {
+      const double radius = std::ldexp(1.0, -model_.subpixelBits);
+      const Barycentrics l = barycentrics(cornerBoxes(t, radius, viewport_), px + 0.5, py + 0.5);
+      if (l.degenerate) {
+        f.everything = true;
+      } else {
+        const PlaneRange w = interpolate(l, t.corners[0].oow, t.corners[1].oow, t.corners[2].oow);
+        const PlaneRange s = interpolate(l, t.corners[0].sw, t.corners[1].sw, t.corners[2].sw);
+        const PlaneRange tt = interpolate(l, t.corners[0].tw, t.corners[1].tw, t.corners[2].tw);
+        const double relative = model_.attributeUlps * kFloatUlp;
+        f.s = widen(ratio(s.value, w.value), relative, kFloatUlp);
+        f.t = widen(ratio(tt.value, w.value), relative, kFloatUlp);
+        // Fine derivatives: the left pixel of the quad row, the lower of the quad column.
+        const PlaneRange wl = moved(w, qx - px, 0), sl = moved(s, qx - px, 0),
+                         tl = moved(tt, qx - px, 0);
+        const PlaneRange wb = moved(w, 0, qy - py), sb = moved(s, 0, qy - py),
+                         tb = moved(tt, 0, qy - py);
+        // Each of the two values differs by `relative` of its size; their difference by the sum.
+        const auto step = [&](Interval n, Interval d, Interval dn, Interval dd) {
+          const Interval v = ratioStep(n, d, dn, dd);
+          const double size = 2 * ratio(n, d).magnitude() + v.magnitude();
+          return widen(v, 0, (relative + kFloatUlp) * size);
+        };
+        dsdx = step(sl.value, wl.value, s.ddx, w.ddx);
+        dtdx = step(tl.value, wl.value, tt.ddx, w.ddx);
+        dsdy = step(sb.value, wb.value, s.ddy, w.ddy);
+        dtdy = step(tb.value, wb.value, tt.ddy, w.ddy);
+        if (!f.s.finite() || !f.t.finite() || !dsdx.finite() || !dtdx.finite() || !dsdy.finite() ||
+            !dtdy.finite())
+          f.everything = true;
+      }
+    }
+    if (f.everything) {
+      f.s = f.t = {0, 1};
+      f.lod = {0, static_cast<double>(shading_.finestLevel)};
+      return f;
+    }
+    f.s = clamp(f.s, 0, 1);
+    f.t = clamp(f.t, 0, 1);
+    f.lod = lodRange(dsdx, dtdx, dsdy, dtdy);
+    return f;
+  }
+
+  // The needed level's bounds and the colour bounds of candidate t.
+  Alternative alternative(const SetupTriangle& t, int32_t index, const FragmentRange& f,
+                          const OracleFragment& oracle) {
+    Alternative a;
+    a.triangle = static_cast<int32_t>(t.primitive);
+    const int L = shading_.finestLevel;
+    a.levelLo = static_cast<uint8_t>(std::clamp(static_cast<int>(std::ceil(f.lod.lo)), 0, L));
+    a.levelHi = static_cast<uint8_t>(std::clamp(static_cast<int>(std::ceil(f.lod.hi)), 0, L));
+    a.uvLo = glm::vec2(static_cast<float>(f.s.lo), static_cast<float>(f.t.lo));
+    a.uvHi = glm::vec2(static_cast<float>(f.s.hi), static_cast<float>(f.t.hi));
+    // Rounded outwards to floats, so the bounds still hold.
+    a.uvLo = glm::vec2(std::nextafter(a.uvLo.x, -1.0f), std::nextafter(a.uvLo.y, -1.0f));
+    a.uvHi = glm::vec2(std::nextafter(a.uvHi.x, 2.0f), std::nextafter(a.uvHi.y, 2.0f));
+    const Colour colour = shade(f.s, f.t, f.lod);
+    store(colour, a.colorLo, a.colorHi);
+    if (index == oracle.index) {
+      // The filter's and the conversion's share alone: from the oracle's (s, t) and LOD.
+      const Colour narrow = shade(Interval::point(oracle.uv.x), Interval::point(oracle.uv.y),
+                                  Interval::point(oracle.lod));
+      store(narrow, a.filterLo, a.filterHi);
+      // The oracle's own value is in both (its arithmetic is one the model allows).
+      a.filterLo = glm::min(a.filterLo, oracle.color);
+      a.filterHi = glm::max(a.filterHi, oracle.color);
+      a.colorLo = glm::min(a.colorLo, a.filterLo);
+      a.colorHi = glm::max(a.colorHi, a.filterHi);
+      a.levelLo = static_cast<uint8_t>(std::min<int>(a.levelLo, oracle.neededLevel));
+      a.levelHi = static_cast<uint8_t>(std::max<int>(a.levelHi, oracle.neededLevel));
+      a.uvLo = glm::min(a.uvLo, oracle.uv);
+      a.uvHi = glm::max(a.uvHi, oracle.uv);
+    } else {
+      a.filterLo = a.colorLo;
+      a.filterHi = a.colorHi;
+    }
+    return a;
+  }
+
+ private:
+  Interval lodRange(Interval dsdx, Interval dtdx, Interval dsdy, Interval dtdy) const {
+    // e_max^2 = max(|dUV/dx|^2, |dUV/dy|^2): three correctly rounded operations per term and the
+    // model's arithmetic error (GLSL 4.50: + - * correctly rounded).
+    const double ops = (3 * kRounding + 3 * model_.arithmeticUlps * kFloatUlp);
+    const Interval ex = widen(square(dsdx) + square(dtdx), ops);
+    const Interval ey = widen(square(dsdy) + square(dtdy), ops);
+    Interval e = widen(sqrt(max(ex, ey)), kRounding + model_.sqrtUlps * kFloatUlp);
+    e = e * finestSide_;  // a power of two: exact
+    Interval d = log2(e);
+    // The interval's log2 is double precision; the model's lies within the GLSL table or within
+    // the model's own wider bound.
+    d = widen(d, std::max(model_.log2Ulps, kGlslLog2Ulps) * kFloatUlp,
+              std::max(model_.log2AbsoluteError, kGlslLog2AbsoluteError));
+    const double L = shading_.finestLevel;
+    if (std::isnan(d.lo) || std::isnan(d.hi)) return {0, L};
+    const Interval clamped = clamp(d, 0, L);
+    return widen(Interval{L - clamped.hi, L - clamped.lo}, 0, L * kRounding);
+  }
+
+  // The colour of every (s, t) in the box and LOD in the interval, in units of 1/255.
+  Colour shade(Interval s, Interval t, Interval lod) {
+    const int L = shading_.finestLevel;
+    const double tiny = 16 * kFloatUlp * 255;  // float lerps in the shader, precise
+    if (!shading_.trilinear) {
+      Colour c = nothing();
+      for (int m = std::clamp(static_cast<int>(std::ceil(lod.lo)), 0, L);
+           m <= std::clamp(static_cast<int>(std::ceil(lod.hi)), 0, L); ++m)
+        c = hull(c, sampleLevel(s, t, m));
+      return c;
+    }
+    Colour c = nothing();
+    const int first = std::clamp(static_cast<int>(std::floor(lod.lo)), 0, L);
+    const int last = std::clamp(static_cast<int>(std::floor(lod.hi)), 0, L);
+    for (int coarse = first; coarse <= last; ++coarse) {
+      const Colour c0 = sampleLevel(s, t, coarse);
+      if (coarse == L) {
+        c = hull(c, c0);
+        continue;
+      }
+      const Colour c1 = sampleLevel(s, t, coarse + 1);
+      const Interval w = clamp(Interval{lod.lo - coarse, lod.hi - coarse}, 0, 1);
+      Colour blend;
+      for (size_t k = 0; k < 4; ++k) {
+        // c0 + (c1 - c0) w is multilinear in (c0, c1, w): its bounds lie at the corners.
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (double a : {c0[k].lo, c0[k].hi})
+          for (double b : {c1[k].lo, c1[k].hi})
+            for (double x : {w.lo, w.hi}) {
+              const double v = a + (b - a) * x;
+              lo = std::min(lo, v);
+              hi = std::max(hi, v);
+            }
+        blend[k] = {lo, hi};
+      }
+      c = hull(c, blend);
+    }
+    return widen(c, tiny);
+  }
+
+  // Bilinear lookups of level m over the (s, t) box: every page of level m the box touches, each
+  // through its indirection entry (the page or its resident ancestor).
+  Colour sampleLevel(Interval s, Interval t, int m) {
+    const int last = (1 << m) - 1;
+    const double scale = std::ldexp(1.0, m);
+    const int x0 = floorToInt(s.lo * scale, last), x1 = floorToInt(s.hi * scale, last);
+    const int y0 = floorToInt(t.lo * scale, last), y1 = floorToInt(t.hi * scale, last);
+    if (x1 - x0 > 3 || y1 - y0 > 3) return {Interval{0, 255}, {0, 255}, {0, 255}, {0, 255}};
+    Colour c = nothing();
+    for (int py = y0; py <= y1; ++py)
+      for (int px = x0; px <= x1; ++px) {
+        const Interval ps{std::max(s.lo, px / scale),
+                          std::min(s.hi, px == last ? 1.0 : (px + 1) / scale)};
+        const Interval pt{std::max(t.lo, py / scale),
+                          std::min(t.hi, py == last ? 1.0 : (py + 1) / scale)};
+        c = hull(c, samplePage(ps, pt, glm::ivec2(px, py), m));
+      }
+    return c;
+  }
+
+  Colour samplePage(Interval s, Interval t, glm::ivec2 page, int m) {
+    const glm::uvec4 e = source_.entry(page, m);
+    const int i = static_cast<int>(e.z);
+    const glm::ivec2 resident(page.x >> (m - i), page.y >> (m - i));
+    const int stored = shading_.pageSize + 2 * shading_.border;
+    const double scale = std::ldexp(1.0, i);
+    const double ox = static_cast<double>(e.x) * stored + shading_.border;
+    const double oy = static_cast<double>(e.y) * stored + shading_.border;
+    Interval x{ox + (s.lo * scale - resident.x) * shading_.pageSize,
+               ox + (s.hi * scale - resident.x) * shading_.pageSize};
+    Interval y{oy + (t.lo * scale - resident.y) * shading_.pageSize,
+               oy + (t.hi * scale - resident.y) * shading_.pageSize};
+    // The shader's float arithmetic for the texel position: a product and two sums of values up
+    // to the cache's size.
+    double positionError = 4 * kFloatUlp * std::max(x.magnitude(), y.magnitude());
+    double valueError = 16 * kFloatUlp * 255;
+    if (!shading_.exactFilter) {
+      // The sampler: the position is divided by the cache size and multiplied back (two more
+      // roundings), then quantised to its sub-texel grid; the lerps round as the model says.
+      positionError *= 2;
+      switch (model_.filter) {
+        case FilterArithmetic::kLlvmpipe8Bit:
+          positionError += std::ldexp(1.0, -kLlvmpipeSubTexelBits);
+          valueError = 1.0;  // three lerps, each rounded to nearest: 0.5 + 0.5
+          break;
+        case FilterArithmetic::kFloat:
+          break;
+        case FilterArithmetic::kBounded:
+          positionError += std::ldexp(1.0, -model_.subTexelBits);
+          valueError = model_.filterErrorUnits;
+          break;
+      }
+    } else {
+      valueError += model_.arithmeticUlps * kFloatUlp * 255 * 4;
+    }
+    x = widen(x, 0, positionError);
+    y = widen(y, 0, positionError);
+    return widen(bilinearRange(x, y), valueError);
+  }
+
+  // Bounds of the bilinear filter (texel centres at +0.5, clamped fetches) over a box of texel
+  // positions: on each cell between texel centres the filter is bilinear, so its bounds lie at
+  // the box's corners and where the box meets the lines through texel centres.
+  Colour bilinearRange(Interval x, Interval y) {
+    const auto stops = [](Interval v) {
+      std::vector<double> points{v.lo};
+      for (double k = std::ceil(v.lo - 0.5) + 0.5; k < v.hi; k += 1)
+        if (k > v.lo) points.push_back(k);
+      points.push_back(v.hi);
+      return points;
+    };
+    const std::vector<double> xs = stops(x), ys = stops(y);
+    Colour c = nothing();
+    if (xs.size() * ys.size() > 64) {
+      // A wide box: every texel it reaches bounds the filter (a convex combination of them);
+      // beyond 16 x 16 texels, the whole range (cheaper than reading them, and still a bound).
+      if (y.width() > 16 || x.width() > 16) return {Interval{0, 255}, {0, 255}, {0, 255}, {0, 255}};
+      for (int ty = static_cast<int>(std::floor(y.lo - 0.5));
+           ty <= static_cast<int>(std::floor(y.hi - 0.5)) + 1; ++ty)
+        for (int tx = static_cast<int>(std::floor(x.lo - 0.5));
+             tx <= static_cast<int>(std::floor(x.hi - 0.5)) + 1; ++tx) {
+          const glm::u8vec4 v = source_.texel({tx, ty});
+          for (size_t k = 0; k < 4; ++k) c[k] = hull(c[k], Interval::point(v[static_cast<int>(k)]));
+        }
+      return c;
+    }
+    for (double py : ys)
+      for (double px : xs) {
+        const double tx = px - 0.5, ty = py - 0.5;
+        const double bx = std::floor(tx), by = std::floor(ty);
+        const double fx = tx - bx, fy = ty - by;
+        const glm::ivec2 i0(static_cast<int>(bx), static_cast<int>(by));
+        const glm::u8vec4 c00 = source_.texel(i0), c10 = source_.texel(i0 + glm::ivec2(1, 0)),
+                          c01 = source_.texel(i0 + glm::ivec2(0, 1)),
+                          c11 = source_.texel(i0 + glm::ivec2(1, 1));
+        for (int k = 0; k < 4; ++k) {
+          const double row0 = c00[k] + (c10[k] - c00[k]) * fx;
+          const double row1 = c01[k] + (c11[k] - c01[k]) * fx;
+          const double v = row0 + (row1 - row0) * fy;
+          c[static_cast<size_t>(k)] = hull(c[static_cast<size_t>(k)], Interval::point(v));
+        }
+      }
+    return c;
+  }
+
+  // Float colour bounds (units of 1/255) to 8-bit bounds under the model's conversion.
+  void store(const Colour& c, glm::u8vec4& lo, glm::u8vec4& hi) const {
+    // The float colour (value x 255 in [0, 255]) carries the rounding of its last few float
+    // operations, 16 units of 2^-23 of 255 as valueError counts them: below 2^-11.
+    constexpr double kSlack = 16 * kFloatUlp * 255;
+    for (int k = 0; k < 4; ++k) {
+      const Interval v = clamp(c[static_cast<size_t>(k)], 0, 255);
+      double l, h;
+      if (model_.colorRoundsToNearest) {
+        l = std::ceil(v.lo - 0.5 - kSlack);
+        h = std::floor(v.hi + 0.5 + kSlack);
+      } else {
+        l = std::floor(v.lo - kSlack);
+        h = std::ceil(v.hi + kSlack);
+      }
+      lo[k] = static_cast<uint8_t>(std::clamp(l, 0.0, 255.0));
+      hi[k] = static_cast<uint8_t>(std::clamp(h, 0.0, 255.0));
+    }
+  }
+
+  const PrecisionModel& model_;
+  SetShading shading_;
+  Viewport viewport_;
+  TexelSource& source_;
+  double finestSide_ = 1;
+};
+
+}  // namespace
+
+const char* reasonName(int bit) {
+  static const char* const kNames[kResultReasons] = {"coverage", "depth", "attributes", "lod",
+                                                     "filter"};
+  return bit >= 0 && bit < kResultReasons ? kNames[bit] : "unknown";
+}
+
+void appendResultSet(const PrecisionModel& model, const SetShading& shading,
+                     const std::vector<SetupTriangle>& triangles,
+                     const std::vector<int32_t>& candidates, int px, int py, Viewport viewport,
+                     DepthFormat depthFormat, const OracleFragment& oracle, TexelSource& source,
+                     std::vector<Alternative>& out) {
+  Builder builder(model, shading, viewport, source);
+  struct Candidate {
+    int32_t index;
+    int cover;
+    Interval z;
+  };
+  std::vector<Candidate> list;
+  list.reserve(candidates.size());
+  for (int32_t index : candidates) {
+    const SetupTriangle& t = triangles[static_cast<size_t>(index)];
+    const int cover = builder.coverage(t, px, py);
+    if (cover == 0) continue;
+    const Interval z = builder.depth(t, px, py, depthFormat);
+    if (!(z.lo < 1.0)) continue;  // never passes GL_LESS against the cleared 1.0
+    list.push_back({index, cover, z});
+  }
+  const auto surelyBeats = [](const Candidate& d, const Candidate& c) {
+    if (d.cover != 2 || !(d.z.hi < 1.0)) return false;
+    // Points: the pinned depth test, where the earlier drawn triangle wins a tie.
+    if (d.z.lo == d.z.hi && c.z.lo == c.z.hi)
+      return d.z.lo < c.z.lo || (d.z.lo == c.z.lo && d.index < c.index);
+    return d.z.hi < c.z.lo;
+  };
+  bool mayBeEmpty = true;
+  const Candidate* own = nullptr;
+  for (const Candidate& c : list) {
+    if (c.cover == 2 && c.z.hi < 1.0) mayBeEmpty = false;
+    if (c.index == oracle.index) own = &c;
+  }
+  for (const Candidate& c : list) {
+    bool possible = true;
+    for (const Candidate& d : list)
+      if (&d != &c && surelyBeats(d, c)) possible = false;
+    if (!possible && c.index != oracle.index) continue;
+    const SetupTriangle& t = triangles[static_cast<size_t>(c.index)];
+    Alternative a = builder.alternative(t, c.index, builder.fragment(t, px, py), oracle);
+    if (c.index != oracle.index)
+      a.reasons = (c.cover == 2 && own && own->cover == 2) ? kReasonDepth : kReasonCoverage;
+    out.push_back(a);
+  }
+  if (oracle.index >= 0 && !own) {
+    // The oracle's own triangle, should the bounds above have missed it.
+    const SetupTriangle& t = triangles[static_cast<size_t>(oracle.index)];
+    out.push_back(builder.alternative(t, oracle.index, builder.fragment(t, px, py), oracle));
+  }
+  if (mayBeEmpty || oracle.index < 0) {
+    Alternative empty;
+    empty.triangle = -1;
+    empty.reasons = oracle.index < 0 ? 0 : kReasonCoverage;
+    out.push_back(empty);
+  }
+}
+
+bool ambiguous(const ResultSets& sets, size_t pixel) {
+  if (sets.empty()) return false;
+  const uint32_t first = sets.offsets[pixel], last = sets.offsets[pixel + 1];
+  if (last - first != 1) return true;
+  const Alternative& a = sets.alternatives[first];
+  if (a.triangle < 0) return false;
+  if (a.levelLo != a.levelHi || a.colorLo != a.colorHi) return true;
+  const double scale = std::ldexp(1.0, a.levelLo);
+  const int last_ = (1 << a.levelLo) - 1;
+  return floorToInt(a.uvLo.x * scale, last_) != floorToInt(a.uvHi.x * scale, last_) ||
+         floorToInt(a.uvLo.y * scale, last_) != floorToInt(a.uvHi.y * scale, last_);
+}
+
+}  // namespace vt::reference

@@ -1,0 +1,63 @@
+#pragma once
+// Per-pixel result sets (DESIGN section 3, "Exactness"): under a precision model that leaves a
+// parameter free, everything a conforming implementation could produce at a pixel.
+//
+// A pixel's set is a list of alternatives, one per triangle that may own the pixel (and one with
+// no triangle where the pixel may stay empty). For each the oracle bounds, with interval
+// arithmetic over the model's parameters (interval.h):
+//   - the vertices: each within 2^-subpixelBits pixel of its float window position (snapping to
+//     the model's sub-pixel grid), hence the barycentric coordinates at the pixel centre, the
+//     coverage (sure, possible, impossible) and the window depth;
+//   - (s, t) at the pixel and at the other three pixels of its 2x2 quad (helpers included), as
+//     the perspective-correct ratio of two interpolated planes; fine derivatives from the same
+//     interpolated planes (so their errors stay correlated, as on the hardware);
+//   - the LOD through sqrt and log2 with the model's errors, hence the needed levels;
+//   - per channel the colour: the bilinear filter over every texel position (s, t) can reach on
+//     every level the LOD can blend, each page looked up in the indirection table, widened by the
+//     sub-texel and weight precision, blended over the reachable weights, and converted to 8 bits
+//     as the model allows.
+// Which triangle may own a pixel follows the GL rules on the candidates Embree gathers: it must
+// possibly cover the centre and possibly pass GL_LESS against every candidate that surely covers.
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace vt::reference {
+
+// The parameter that explains a difference (or that admitted an alternative).
+enum ResultReason : uint8_t {
+  kReasonCoverage = 1 << 0,    // sub-pixel precision and fill rule: which triangle, or none
+  kReasonDepth = 1 << 1,       // depth precision: which of overlapping triangles is in front
+  kReasonAttributes = 1 << 2,  // attribute interpolation (snapped vertices, arithmetic): the page
+  kReasonLod = 1 << 3,         // derivatives, sqrt and log2: the needed level
+  kReasonFilter = 1 << 4,      // sub-texel bits, filter weights, colour conversion: the colour
+};
+inline constexpr int kResultReasons = 5;
+const char* reasonName(int bit);  // "coverage", "depth", "attributes", "lod", "filter"
+
+// One way a conforming implementation may draw a pixel.
+struct Alternative {
+  int32_t triangle = -1;  // mesh triangle, -1: the pixel keeps the clear values
+  uint8_t reasons = 0;    // why this triangle (coverage or depth); 0 for the oracle's own
+  uint8_t levelLo = 0, levelHi = 0;      // needed levels
+  glm::vec2 uvLo{0.0f}, uvHi{0.0f};      // (s, t) after the shader's clamp to [0, 1]
+  glm::u8vec4 colorLo{0}, colorHi{0};    // every reachable colour
+  glm::u8vec4 filterLo{0}, filterHi{0};  // from the oracle's (s, t) and LOD: filter only
+
+  bool operator==(const Alternative&) const = default;
+};
+
+// The sets of a frame: pixel i's alternatives are alternatives[offsets[i] .. offsets[i + 1]).
+// Empty when the model pins every parameter (every set is the frame's one value).
+struct ResultSets {
+  std::vector<uint32_t> offsets;
+  std::vector<Alternative> alternatives;
+  bool empty() const { return offsets.empty(); }
+  bool operator==(const ResultSets&) const = default;
+};
+
+// Whether the set of pixel i holds more than one value.
+bool ambiguous(const ResultSets& sets, size_t pixel);
+
+}  // namespace vt::reference

@@ -1,0 +1,94 @@
+#include "reference/precision_model.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "common/error.h"
+#include "reference/precision_model_file.h"
+#include "test_support.h"
+
+namespace vt::reference {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(PrecisionModel, ShippedModelsPinWhatTheyMeasureAndGl45LeavesTheSpecificationsSlack) {
+  EXPECT_TRUE(llvmpipeModel().pinned());
+  EXPECT_TRUE(exactModel().pinned());
+  const PrecisionModel gl45 = gl45Model();
+  EXPECT_FALSE(gl45.pinned());
+  EXPECT_FALSE(gl45.coveragePinned());
+  EXPECT_EQ(gl45.subpixelBits, 4);  // GL 4.5 table 23.53
+  EXPECT_EQ(gl45.log2AbsoluteError, 0x1p-21);
+  // Every parameter of every shipped model says where its value comes from.
+  for (const PrecisionModel& m : {llvmpipeModel(), exactModel(), gl45}) {
+    for (const char* parameter : {"subpixel_bits", "fill_rule", "depth", "attributes", "log2",
+                                  "sqrt", "arithmetic", "filter", "color_conversion", "denormals"})
+      EXPECT_FALSE(m.sources.at(parameter).empty()) << m.name << " " << parameter;
+  }
+  EXPECT_EQ(namedModel("gl45"), gl45);
+  EXPECT_THROW(namedModel("nvidia"), std::invalid_argument);
+  EXPECT_EQ(modelForRenderer("softpipe").name, "gl45");
+  EXPECT_EQ(modelForRenderer("NVIDIA H100/PCIe/SSE2").name, "gl45");
+}
+
+TEST(PrecisionModelFile, RoundTripsEveryParameter) {
+  test::ScratchDirectory dir;
+  PrecisionModel measured = gl45Model();
+  measured.name = "measured";
+  measured.renderer = "softpipe";
+  measured.subpixelBits = 16;
+  measured.fillRulePinned = true;
+  measured.filter = FilterArithmetic::kFloat;
+  measured.sources["filter"] = "probe draws";
+  for (const PrecisionModel& m : {measured, llvmpipeModel(), exactModel()}) {
+    std::ofstream(dir / "m.json") << modelJson(m);
+    EXPECT_EQ(readModelFile(dir / "m.json"), m) << m.name;
+    EXPECT_EQ(resolveModel((dir / "m.json").string(), "llvmpipe"), m);
+  }
+  EXPECT_EQ(resolveModel("exact", "softpipe"), exactModel());
+  EXPECT_EQ(resolveModel("auto", "softpipe"), gl45Model());
+}
+
+TEST(PrecisionModelFile, RefusesMalformedFilesNamingTheField) {
+  test::ScratchDirectory dir;
+  const nlohmann::json good = nlohmann::json::parse(modelJson(gl45Model()));
+  const auto refused = [&](nlohmann::json json, const std::string& expected) {
+    std::ofstream(dir / "bad.json") << json.dump();
+    try {
+      (void)readModelFile(dir / "bad.json");
+      ADD_FAILURE() << "accepted: " << expected;
+    } catch (const InputError& e) {
+      EXPECT_THAT(e.what(), HasSubstr((dir / "bad.json").string()));
+      EXPECT_THAT(e.what(), HasSubstr(expected));
+    }
+  };
+  nlohmann::json j = good;
+  j.erase("attribute_ulps");
+  refused(j, "field attribute_ulps is missing");
+  j = good;
+  j["subpixel_bits"] = 99;
+  refused(j, "field subpixel_bits is not a whole number from 1 to 16");
+  j = good;
+  j["filter"] = "magic";
+  refused(j, "field filter is 'magic', not one of llvmpipe_8bit, float, bounded");
+  j = good;
+  j["depth_ulps"] = -1;
+  refused(j, "field depth_ulps is not a number from 0");
+  j = good;
+  j["format"] = "vt-precision-model-0";
+  refused(j, "field format is not 'vt-precision-model-1'");
+  j = good;
+  j["sub_texel_bits"] = 0;
+  refused(j, "field sub_texel_bits is 0 for a bounded filter");
+  refused(nlohmann::json::array(), "not a JSON object");
+  std::ofstream(dir / "bad.json") << "{\"format\": ";
+  EXPECT_THROW((void)readModelFile(dir / "bad.json"), InputError);
+  EXPECT_THROW((void)readModelFile(dir / "missing.json"), InputError);
+}
+
+}  // namespace
+}  // namespace vt::reference
