@@ -411,16 +411,26 @@ class Builder {
   // positions: on each cell between texel centres the filter is bilinear, so its bounds lie at
   // the box's corners and where the box meets the lines through texel centres.
   Colour bilinearRange(Interval x, Interval y) {
-    const auto stops = [](Interval v) {
-      std::vector<double> points{v.lo};
-      for (double k = std::ceil(v.lo - 0.5) + 0.5; k < v.hi; k += 1)
-        if (k > v.lo) points.push_back(k);
-      points.push_back(v.hi);
-      return points;
+    // Per axis the stops: the box's ends and the texel centres strictly inside.
+    constexpr size_t kMaxPoints = 64;
+    struct Stops {
+      std::array<double, kMaxPoints + 2> at;
+      size_t count = 0;
     };
-    const std::vector<double> xs = stops(x), ys = stops(y);
+    // False when there are more than fit (the box is wide).
+    const auto stops = [](Interval v, Stops& out) {
+      out.at[out.count++] = v.lo;
+      for (double k = std::ceil(v.lo - 0.5) + 0.5; k < v.hi; k += 1)
+        if (k > v.lo) {
+          if (out.count == kMaxPoints + 1) return false;
+          out.at[out.count++] = k;
+        }
+      out.at[out.count++] = v.hi;
+      return true;
+    };
+    Stops xs, ys;
     Colour c = nothing();
-    if (xs.size() * ys.size() > 64) {
+    if (!stops(x, xs) || !stops(y, ys) || xs.count * ys.count > kMaxPoints) {
       // A wide box: every texel it reaches bounds the filter (a convex combination of them);
       // beyond 16 x 16 texels, the whole range (cheaper than reading them, and still a bound).
       if (y.width() > 16 || x.width() > 16) return {Interval{0, 255}, {0, 255}, {0, 255}, {0, 255}};
@@ -433,15 +443,29 @@ class Builder {
         }
       return c;
     }
-    for (double py : ys)
-      for (double px : xs) {
-        const double tx = px - 0.5, ty = py - 0.5;
+    // The texels the stops read, each fetched once.
+    const glm::ivec2 origin(static_cast<int>(std::floor(x.lo - 0.5)),
+                            static_cast<int>(std::floor(y.lo - 0.5)));
+    const int width = static_cast<int>(std::floor(x.hi - 0.5)) + 2 - origin.x;
+    const int height = static_cast<int>(std::floor(y.hi - 0.5)) + 2 - origin.y;
+    std::array<glm::u8vec4, 4 * kMaxPoints> block;
+    const bool cached = width * height <= static_cast<int>(block.size());
+    if (cached)
+      for (int ty = 0; ty < height; ++ty)
+        for (int tx = 0; tx < width; ++tx)
+          block[static_cast<size_t>(ty * width + tx)] = source_.texel(origin + glm::ivec2(tx, ty));
+    const auto texel = [&](glm::ivec2 at) {
+      const glm::ivec2 local = at - origin;
+      return cached ? block[static_cast<size_t>(local.y * width + local.x)] : source_.texel(at);
+    };
+    for (size_t j = 0; j < ys.count; ++j)
+      for (size_t i = 0; i < xs.count; ++i) {
+        const double tx = xs.at[i] - 0.5, ty = ys.at[j] - 0.5;
         const double bx = std::floor(tx), by = std::floor(ty);
         const double fx = tx - bx, fy = ty - by;
         const glm::ivec2 i0(static_cast<int>(bx), static_cast<int>(by));
-        const glm::u8vec4 c00 = source_.texel(i0), c10 = source_.texel(i0 + glm::ivec2(1, 0)),
-                          c01 = source_.texel(i0 + glm::ivec2(0, 1)),
-                          c11 = source_.texel(i0 + glm::ivec2(1, 1));
+        const glm::u8vec4 c00 = texel(i0), c10 = texel(i0 + glm::ivec2(1, 0)),
+                          c01 = texel(i0 + glm::ivec2(0, 1)), c11 = texel(i0 + glm::ivec2(1, 1));
         for (int k = 0; k < 4; ++k) {
           const double row0 = c00[k] + (c10[k] - c00[k]) * fx;
           const double row1 = c01[k] + (c11[k] - c01[k]) * fx;
