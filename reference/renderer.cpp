@@ -245,6 +245,186 @@ void sizeFrame(Frame& frame, Viewport viewport, bool debug) {
   frame.residentLevel.resize(debugPixels);
 }
 
+// What every tile of one frame shares.
+struct FrameJob {
+  const RenderSettings& settings;
+  Viewport viewport;
+  bool fused, debug;
+  const std::vector<SetupTriangle>& triangles;
+  const Visibility& visibility;
+  const PrecisionModel* model;  // null under a pinned model: no result sets
+  SetShading shading;
+  shader::VtParameters parameters;
+  glm::uvec4 noNeed;
+  Frame& frame;
+};
+
+// One worker's shading of a frame: a tile of pixels at a time, block by block (one Embree packet
+// of 4 x 4 rays), quad by quad. A triangle's planes are evaluated once at its quad's four pixels
+// (helpers included) and serve every pixel of the quad that shows it. Pixel k of quad (qx, qy) is
+// (qx + column, qy + row), column = k & 1, row = k >> 1; window y points up:
+//
+//     row 1:  2 3    dUV/dx = right - left in the pixel's row
+//     row 0:  0 1    dUV/dy = above - below in the pixel's column
+template <class Backend, class Source>
+class TileShader {
+ public:
+  static constexpr int kTile = 16;
+
+  TileShader(const FrameJob& job, const Source& texture)
+      : job_(job),
+        denormals_(job.settings.profile),
+        shader_(&texture, job.settings.profile),
+        texels_(shader_) {}
+
+  // Shades the tile at (x0, y0); under a model with free parameters, appends each pixel's result
+  // set to `sets`.
+  void shadeTile(int x0, int y0, TileSets* sets) {
+    sets_ = sets;
+    const Viewport v = job_.viewport;
+    for (int by = y0; by < std::min(y0 + kTile, v.height); by += Visibility::kBlock)
+      for (int bx = x0; bx < std::min(x0 + kTile, v.width); bx += Visibility::kBlock) {
+        const auto hits = job_.visibility.block(bx, by);
+        for (int qy = by; qy < std::min(by + Visibility::kBlock, v.height); qy += 2)
+          for (int qx = bx; qx < std::min(bx + Visibility::kBlock, v.width); qx += 2)
+            shadeQuad(qx, qy, [&](int px, int py) {
+              return hits[static_cast<size_t>((px - bx) + Visibility::kBlock * (py - by))];
+            });
+      }
+  }
+
+ private:
+  template <class HitAt>
+  void shadeQuad(int qx, int qy, const HitAt& hitAt) {
+    slots_ = 0;
+    for (int k = 0; k < 4; ++k) {
+      const int px = qx + (k & 1), py = qy + (k >> 1);
+      if (px >= job_.viewport.width || py >= job_.viewport.height) continue;
+      const PixelHit hit = hitAt(px, py);
+      if (hit.triangle < 0)
+        writeEmpty(px, py);
+      else
+        shadePixel(px, py, k, hit, quadAttributes(hit.triangle, qx, qy));
+    }
+  }
+
+  // The triangle's attributes at the quad's four pixels, evaluated once per quad.
+  const std::array<Attributes, 4>& quadAttributes(int32_t triangle, int qx, int qy) {
+    int slot = 0;
+    while (slot < slots_ && quadTriangle_[static_cast<size_t>(slot)] != triangle) ++slot;
+    auto& at = quadAttributes_[static_cast<size_t>(slot)];
+    if (slot == slots_) {
+      quadTriangle_[static_cast<size_t>(slot)] = triangle;
+      const SetupTriangle& t = job_.triangles[static_cast<size_t>(triangle)];
+      for (int q = 0; q < 4; ++q)
+        at[static_cast<size_t>(q)] = attributesAt(t, qx + (q & 1), qy + (q >> 1), job_.fused);
+      ++slots_;
+    }
+    return at;
+  }
+
+  size_t indexOf(int px, int py) const {
+    return static_cast<size_t>(py) * static_cast<size_t>(job_.viewport.width) +
+           static_cast<size_t>(px);
+  }
+
+  // No geometry: the clear values.
+  void writeEmpty(int px, int py) {
+    Frame& frame = job_.frame;
+    const size_t index = indexOf(px, py);
+    for (size_t c = 0; c < 4; ++c) frame.color[index * 4 + c] = 0;
+    frame.need[index] = job_.noNeed;
+    frame.depth[index] = 1.0f;
+    frame.triangle[index] = -1;
+    if (job_.model) addSet(px, py, OracleFragment{});
+    if (job_.debug) {
+      frame.uv[index] = vec2(0.0f);
+      frame.derivatives[index] = vec4(0.0f);
+      frame.lod[index] = 0.0f;
+      frame.residentLevel[index] = -1;
+    }
+  }
+
+  // The shader at pixel k of its quad, with fine derivatives from the quad's attributes.
+  void shadePixel(int px, int py, int k, const PixelHit& hit, const std::array<Attributes, 4>& at) {
+    const int column = k & 1, row = k >> 1;
+    const Attributes here = at[static_cast<size_t>(k)];
+    const Attributes left = at[static_cast<size_t>(2 * row)],
+                     right = at[static_cast<size_t>(2 * row + 1)];
+    const Attributes below = at[static_cast<size_t>(column)],
+                     above = at[static_cast<size_t>(2 + column)];
+    const vec2 dUVdx = right.uv - left.uv, dUVdy = above.uv - below.uv;
+    const shader::VtFragment f = shader_.vtShadeFragment(here.uv, dUVdx, dUVdy, job_.parameters);
+
+    Frame& frame = job_.frame;
+    const size_t index = indexOf(px, py);
+    for (int c = 0; c < 4; ++c)
+      frame.color[index * 4 + static_cast<size_t>(c)] = toUnorm8(f.color[c]);
+    frame.need[index] = f.need;
+    frame.depth[index] = hit.depth;
+    frame.triangle[index] =
+        static_cast<int32_t>(job_.triangles[static_cast<size_t>(hit.triangle)].primitive);
+    if (job_.debug) {
+      frame.uv[index] = here.uv;
+      frame.derivatives[index] = vec4(dUVdx.x, dUVdx.y, dUVdy.x, dUVdy.y);
+      frame.lod[index] = f.lod;
+      frame.residentLevel[index] = static_cast<int8_t>(f.residentLevel);
+    }
+    if (job_.model)
+      addSet(px, py,
+             OracleFragment{hit.triangle,
+                            glm::u8vec4(frame.color[index * 4], frame.color[index * 4 + 1],
+                                        frame.color[index * 4 + 2], frame.color[index * 4 + 3]),
+                            here.uv, f.neededLevel, f.lod});
+  }
+
+  // The pixel's result set under the model, after the oracle's own value.
+  void addSet(int px, int py, const OracleFragment& own) {
+    const size_t before = sets_->alternatives.size();
+    job_.visibility.candidates(px, py, candidates_);
+    appendResultSet(*job_.model, job_.shading, job_.triangles, candidates_, px, py, job_.viewport,
+                    job_.settings.depthFormat, own, texels_, sets_->alternatives);
+    sets_->pixels.emplace_back(indexOf(px, py),
+                               static_cast<uint32_t>(sets_->alternatives.size() - before));
+  }
+
+  const FrameJob& job_;
+  const DenormalMode denormals_;
+  shader::ShaderLogic<Backend> shader_;
+  BackendTexels<shader::ShaderLogic<Backend>> texels_;
+  TileSets* sets_ = nullptr;
+  std::vector<int32_t> candidates_;
+  // The triangles met in the current quad: slots below slots_ hold their attributes.
+  std::array<int32_t, 4> quadTriangle_{};
+  std::array<std::array<Attributes, 4>, 4> quadAttributes_{};
+  int slots_ = 0;
+};
+
+SetShading setShading(const TextureDescription& d, const RenderSettings& settings) {
+  SetShading shading;
+  shading.pageSize = static_cast<int>(d.pageSize);
+  shading.border = static_cast<int>(d.border);
+  shading.finestLevel = static_cast<int>(d.finestLevel());
+  shading.trilinear = settings.trilinear;
+  shading.exactFilter = settings.exactFilter;
+  shading.needScaleLog2 = settings.needScaleLog2;
+  return shading;
+}
+
+shader::VtParameters shaderParameters(const TextureDescription& d, glm::vec2 cacheSize,
+                                      const RenderSettings& settings) {
+  shader::VtParameters parameters{};
+  parameters.pageSize = static_cast<int>(d.pageSize);
+  parameters.border = static_cast<int>(d.border);
+  parameters.finestLevel = static_cast<int>(d.finestLevel());
+  parameters.trilinear = settings.trilinear ? 1 : 0;
+  parameters.exactFilter = settings.exactFilter ? 1 : 0;
+  parameters.need8 = settings.need8 ? 1 : 0;
+  parameters.needScaleLog2 = settings.needScaleLog2;
+  parameters.cacheSize = cacheSize;
+  return parameters;
+}
+
 template <class Backend, class Source>
 void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescription& d,
             glm::vec2 cacheSize, const RenderSettings& settings, Frame& frame) {
@@ -258,137 +438,33 @@ void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescr
   const PrecisionModel* model =
       settings.model && !settings.model->pinned() ? settings.model.get() : nullptr;
   const Visibility visibility(triangles, viewport, settings.depthFormat, fused, model ? 1 : 0);
-  SetShading shading;
-  shading.pageSize = static_cast<int>(d.pageSize);
-  shading.border = static_cast<int>(d.border);
-  shading.finestLevel = static_cast<int>(d.finestLevel());
-  shading.trilinear = settings.trilinear;
-  shading.exactFilter = settings.exactFilter;
-  shading.needScaleLog2 = settings.needScaleLog2;
+  sizeFrame(frame, viewport, settings.debugChannels);
+  const FrameJob job{settings,
+                     viewport,
+                     fused,
+                     settings.debugChannels,
+                     triangles,
+                     visibility,
+                     model,
+                     setShading(d, settings),
+                     shaderParameters(d, cacheSize, settings),
+                     needClearValue(settings.need8),
+                     frame};
 
-  shader::VtParameters parameters{};
-  parameters.pageSize = static_cast<int>(d.pageSize);
-  parameters.border = static_cast<int>(d.border);
-  parameters.finestLevel = static_cast<int>(d.finestLevel());
-  parameters.trilinear = settings.trilinear ? 1 : 0;
-  parameters.exactFilter = settings.exactFilter ? 1 : 0;
-  parameters.need8 = settings.need8 ? 1 : 0;
-  parameters.needScaleLog2 = settings.needScaleLog2;
-  parameters.cacheSize = cacheSize;
-
-  const bool debug = settings.debugChannels;
-  sizeFrame(frame, viewport, debug);
-  const glm::uvec4 noNeed = needClearValue(settings.need8);
-
-  constexpr int kTile = 16;
+  constexpr int kTile = TileShader<Backend, Source>::kTile;
   const int tilesX = (viewport.width + kTile - 1) / kTile,
             tilesY = (viewport.height + kTile - 1) / kTile;
-  std::vector<TileSets> tileSets(model ? static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY)
-                                       : 0);
-  parallelFor(
-      static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY), settings.threads,
-      [&](size_t tileIndex) {
-        const int tile = static_cast<int>(tileIndex);
-        const DenormalMode denormals(settings.profile);
-        shader::ShaderLogic<Backend> shader(&texture, settings.profile);
-        BackendTexels<shader::ShaderLogic<Backend>> texels(shader);
-        std::vector<int32_t> candidates;
-        // The pixel's result set under the model, after the oracle's own value.
-        const auto addSet = [&](int px, int py, const OracleFragment& own) {
-          TileSets& sets = tileSets[tileIndex];
-          const size_t before = sets.alternatives.size();
-          visibility.candidates(px, py, candidates);
-          appendResultSet(*model, shading, triangles, candidates, px, py, viewport,
-                          settings.depthFormat, own, texels, sets.alternatives);
-          sets.pixels.emplace_back(static_cast<size_t>(py) * static_cast<size_t>(viewport.width) +
-                                       static_cast<size_t>(px),
-                                   static_cast<uint32_t>(sets.alternatives.size() - before));
-        };
-        const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
-        // Block by block (one Embree packet of 4 x 4 rays), quad by quad: a triangle's planes are
-        // evaluated once at the quad's four pixels (helpers included) and serve every pixel of the
-        // quad that shows it.
-        for (int by = y0; by < std::min(y0 + kTile, viewport.height); by += Visibility::kBlock)
-          for (int bx = x0; bx < std::min(x0 + kTile, viewport.width); bx += Visibility::kBlock) {
-            const auto hits = visibility.block(bx, by);
-            for (int qy = by; qy < std::min(by + Visibility::kBlock, viewport.height); qy += 2)
-              for (int qx = bx; qx < std::min(bx + Visibility::kBlock, viewport.width); qx += 2) {
-                std::array<int32_t, 4> quadTriangle{-1, -1, -1, -1};
-                std::array<std::array<Attributes, 4>, 4>
-                    quadAttributes;  // [slot][pixel of the quad]; slots below `slots` are set
-                int slots = 0;
-                for (int k = 0; k < 4; ++k) {
-                  const int px = qx + (k & 1), py = qy + (k >> 1);
-                  if (px >= viewport.width || py >= viewport.height) continue;
-                  const size_t index =
-                      static_cast<size_t>(py) * static_cast<size_t>(viewport.width) +
-                      static_cast<size_t>(px);
-                  const PixelHit hit =
-                      hits[static_cast<size_t>((px - bx) + Visibility::kBlock * (py - by))];
-                  if (hit.triangle < 0) {
-                    for (int c = 0; c < 4; ++c) frame.color[index * 4 + static_cast<size_t>(c)] = 0;
-                    frame.need[index] = noNeed;
-                    frame.depth[index] = 1.0f;
-                    frame.triangle[index] = -1;
-                    if (model) addSet(px, py, OracleFragment{});
-                    if (debug) {
-                      frame.uv[index] = vec2(0.0f);
-                      frame.derivatives[index] = vec4(0.0f);
-                      frame.lod[index] = 0.0f;
-                      frame.residentLevel[index] = -1;
-                    }
-                    continue;
-                  }
-                  const SetupTriangle& t = triangles[static_cast<size_t>(hit.triangle)];
-                  int slot = 0;
-                  while (slot < slots && quadTriangle[static_cast<size_t>(slot)] != hit.triangle)
-                    ++slot;
-                  if (slot == slots) {
-                    quadTriangle[static_cast<size_t>(slot)] = hit.triangle;
-                    for (int q = 0; q < 4; ++q)
-                      quadAttributes[static_cast<size_t>(slot)][static_cast<size_t>(q)] =
-                          attributesAt(t, qx + (q & 1), qy + (q >> 1), fused);
-                    ++slots;
-                  }
-                  const auto& at = quadAttributes[static_cast<size_t>(slot)];
-                  const int column = k & 1, row = k >> 1;
-                  const Attributes here = at[static_cast<size_t>(k)];
-                  const Attributes left = at[static_cast<size_t>(2 * row)],
-                                   right = at[static_cast<size_t>(2 * row + 1)];
-                  const Attributes below = at[static_cast<size_t>(column)],
-                                   above = at[static_cast<size_t>(2 + column)];
-                  const vec2 dUVdx = right.uv - left.uv, dUVdy = above.uv - below.uv;
-                  const shader::VtFragment f =
-                      shader.vtShadeFragment(here.uv, dUVdx, dUVdy, parameters);
-
-                  for (int c = 0; c < 4; ++c)
-                    frame.color[index * 4 + static_cast<size_t>(c)] = toUnorm8(f.color[c]);
-                  frame.need[index] = f.need;
-                  frame.depth[index] = hit.depth;
-                  frame.triangle[index] = static_cast<int32_t>(t.primitive);
-                  if (debug) {
-                    frame.uv[index] = here.uv;
-                    frame.derivatives[index] = vec4(dUVdx.x, dUVdx.y, dUVdy.x, dUVdy.y);
-                    frame.lod[index] = f.lod;
-                    frame.residentLevel[index] = static_cast<int8_t>(f.residentLevel);
-                  }
-
-                  if (model)
-                    addSet(px, py,
-                           OracleFragment{
-                               hit.triangle,
-                               glm::u8vec4(frame.color[index * 4], frame.color[index * 4 + 1],
-                                           frame.color[index * 4 + 2], frame.color[index * 4 + 3]),
-                               here.uv, f.neededLevel, f.lod});
-                }
-              }
-          }
-      });
-  if (model)
-    frame.sets = gatherSets(
-        tileSets, static_cast<size_t>(viewport.width) * static_cast<size_t>(viewport.height));
-  else
-    frame.sets = ResultSets{};
+  const size_t tiles = static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY);
+  std::vector<TileSets> tileSets(model ? tiles : 0);
+  parallelFor(tiles, settings.threads, [&](size_t tile) {
+    TileShader<Backend, Source> shader(job, texture);
+    shader.shadeTile(static_cast<int>(tile % static_cast<size_t>(tilesX)) * kTile,
+                     static_cast<int>(tile / static_cast<size_t>(tilesX)) * kTile,
+                     model ? &tileSets[tile] : nullptr);
+  });
+  frame.sets = model ? gatherSets(tileSets, static_cast<size_t>(viewport.width) *
+                                                static_cast<size_t>(viewport.height))
+                     : ResultSets{};
 }
 
 }  // namespace
