@@ -48,25 +48,6 @@ float llvmpipeLog2(float x) {
   return std::fma(y, p, e);
 }
 
-float llvmpipeExp2(float x) {
-  // Rule 8: clamp to [-126.99999, 128], ip = floor(x), f = x - ip, a degree-5 polynomial in f by
-  // the same even/odd fma scheme, times 2^ip built from bits.
-  if (std::isnan(x)) return x;
-  const float clamped = std::fmin(std::fmax(x, -126.99999f), 128.0f);
-  const float ip = std::floor(clamped);
-  const float f = clamped - ip;
-  constexpr float c0 = 1.0f, c1 = 0.693153073200168932794f, c2 = 0.240153617044375388211f,
-                  c3 = 0.0558263180532956664775f, c4 = 0.00898934009049466391101f,
-                  c5 = 0.00187757667519147912699f;
-  const float f2 = f * f;
-  const float even = std::fma(std::fma(f2, c4, c2), f2, c0);
-  const float odd = std::fma(std::fma(f2, c5, c3), f2, c1);
-  const float poly = std::fma(odd, f, even);
-  const int exponent = static_cast<int>(ip);
-  if (exponent >= 128) return std::numeric_limits<float>::infinity();
-  return poly * std::bit_cast<float>(static_cast<uint32_t>(exponent + 127) << 23);
-}
-
 float profileLog2(PrecisionProfile profile, float x) {
   return profile == PrecisionProfile::kLlvmpipe ? llvmpipeLog2(x) : std::log2(x);
 }

@@ -23,9 +23,8 @@ bool usesFusedPlanes(PrecisionProfile profile);
 // Whether fragment arithmetic flushes denormals to zero (DAZ and FTZ).
 bool flushesDenormals(PrecisionProfile profile);
 
-// llvmpipe's log2 and exp2 (DESIGN section 7, rule 8), bit for bit.
+// llvmpipe's log2 (DESIGN section 7, rule 8), bit for bit.
 float llvmpipeLog2(float x);
-float llvmpipeExp2(float x);
 
 // The profile's log2.
 float profileLog2(PrecisionProfile profile, float x);
