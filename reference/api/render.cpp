@@ -4,6 +4,7 @@
 #include "reference/api/api_internal.h"
 #include "reference/precision_model.h"
 #include "reference/precision_model_file.h"
+#include "shader/needbuffer.h"
 
 namespace vt::oracle {
 
@@ -137,7 +138,8 @@ Frame render(const Texture& texture, const Scene& scene, const PreparedCache& ca
       throw Error("scene: viewport " + std::to_string(v.width) + " x " + std::to_string(v.height) +
                   " is not within 1.." + std::to_string(kMaxViewportSide) + " per side");
     const VirtualTextureReader& reader = texture.impl().reader;
-    if (options.needEncoding == NeedEncoding::k8Bit && reader.description().finestLevel() > 12)
+    if (options.needEncoding == NeedEncoding::k8Bit &&
+        !need8Encodes(reader.description().finestLevel()))
       throw Error(reader.path().string() + ": the 8-bit needbuffer names pages of at most 12 " +
                   "levels below the root; the texture has " +
                   std::to_string(reader.description().finestLevel()));

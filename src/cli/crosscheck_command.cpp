@@ -25,6 +25,7 @@
 #include "scene/camera_path.h"
 #include "scene/obj_mesh.h"
 #include "scene/test_scenes.h"
+#include "shader/needbuffer.h"
 
 namespace vt {
 namespace {
@@ -143,7 +144,8 @@ void addCrosscheckCommand(CLI::App& app) {
 
     std::vector<Mode> modes = {{"texelfetch-trilinear-need32", true, true, false},
                                {"linear-bilinear-need8", false, false, true}};
-    if (reader.description().finestLevel() > 12) modes.pop_back();  // 8-bit needbuffer limit
+    if (!need8Encodes(reader.description().finestLevel()))
+      modes.pop_back();  // 8-bit needbuffer limit
 
     nlohmann::json summary;
     summary["gl_renderer"] = renderer;

@@ -30,6 +30,7 @@
 #include "eval/flight_records.h"
 #include "scene/box_room.h"
 #include "scene/obj_mesh.h"
+#include "shader/needbuffer.h"
 
 namespace vt {
 namespace {
@@ -209,7 +210,7 @@ void addEvalCommand(CLI::App& app) {
     TemporaryFolder::requireReplaceable(o->output, "summary.json");
     EvaluationOptions options;
     options.settings.viewport = parseSize(o->scene.size);
-    options.settings.need8 = reader.description().finestLevel() <= 12;
+    options.settings.need8 = need8Encodes(reader.description().finestLevel());
     options.settings.profile = reference::parsePrecisionProfile(o->profile);
     options.jobs = o->jobs;
     const uint64_t total = static_cast<uint64_t>(path.frameCount()) * (1 + configurations.size());

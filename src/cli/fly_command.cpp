@@ -22,6 +22,7 @@
 #include "scene/box_room.h"
 #include "scene/camera_path.h"
 #include "scene/obj_mesh.h"
+#include "shader/needbuffer.h"
 
 namespace vt {
 
@@ -82,7 +83,7 @@ void addFlyCommand(CLI::App& app) {
     options.settings.threads = o->threads;
     const VirtualTextureReader reader(o->scene.texture);
     // The narrowest needbuffer encoding that fits.
-    options.settings.need8 = reader.description().finestLevel() <= 12;
+    options.settings.need8 = need8Encodes(reader.description().finestLevel());
     const CameraPath path = o->scene.cameraPath();
     const Mesh mesh = o->scene.loadMesh();
 

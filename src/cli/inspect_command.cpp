@@ -20,6 +20,7 @@
 #include "reference/texture_source.h"
 #include "scene/box_room.h"
 #include "scene/obj_mesh.h"
+#include "shader/needbuffer.h"
 
 namespace vt {
 namespace {
@@ -79,7 +80,7 @@ void addInspectCommand(CLI::App& app) {
 
     FlightOptions options;
     options.settings.viewport = parseSize(o->scene.size);
-    options.settings.need8 = reader.description().finestLevel() <= 12;
+    options.settings.need8 = need8Encodes(reader.description().finestLevel());
     options.keepAnalysis = true;
     const reference::ResidentTexture everything(reader);
     // Reference images for the frames shown only.

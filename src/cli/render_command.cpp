@@ -100,7 +100,7 @@ void addRenderCommand(CLI::App& app) {
     settings.threads = o->threads;
 
     const VirtualTextureReader reader(o->texture);
-    if (settings.need8 && reader.description().finestLevel() > 12)
+    if (settings.need8 && !need8Encodes(reader.description().finestLevel()))
       throw InputError(o->texture, "the 8-bit needbuffer holds at most 4096 pages per side");
     const Mesh mesh = o->mesh.empty() ? boxRoom() : loadObjMesh(o->mesh);
     const Camera camera = o->camera.empty() ? boxRoomCamera() : parseCamera(o->camera);

@@ -30,6 +30,7 @@
 #include "scene/camera_path.h"
 #include "scene/fly_camera.h"
 #include "scene/obj_mesh.h"
+#include "shader/needbuffer.h"
 
 namespace vt {
 namespace {
@@ -119,7 +120,7 @@ void addViewCommand(CLI::App& app) {
     GlFrameRenderer gl(runtime.cacheState());
     HudOverlay hud;
     reference::RenderSettings settings;
-    settings.need8 = reader.description().finestLevel() <= 12;
+    settings.need8 = need8Encodes(reader.description().finestLevel());
     std::vector<Keyframe> recorded;
     bool recording = o->recordFromStart;
     glm::dvec2 cursor = window.cursor();

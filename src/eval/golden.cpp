@@ -17,6 +17,7 @@
 #include "reference/precision_model.h"
 #include "reference/texture_source.h"
 #include "scene/obj_mesh.h"
+#include "shader/needbuffer.h"
 
 namespace vt {
 namespace {
@@ -84,7 +85,7 @@ std::vector<Recorded> flyAndRecord(const VirtualTextureReader& reader, const Mes
   FlightOptions options;
   options.settings.viewport = viewport;
   options.settings.profile = profile;
-  options.settings.need8 = reader.description().finestLevel() <= 12;
+  options.settings.need8 = need8Encodes(reader.description().finestLevel());
   options.gl = gl;
   const reference::ResidentTexture everything(reader);
   reference::RenderSettings referenceSettings = options.settings;

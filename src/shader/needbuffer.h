@@ -20,6 +20,11 @@
 
 namespace vt {
 
+// The finest level the 8-bit encoding can name: 4 bits of a per axis above the 8 of r and g, 2^12
+// pages per side.
+inline constexpr uint32_t kNeed8FinestLevel = 12;
+inline bool need8Encodes(uint32_t finestLevel) { return finestLevel <= kNeed8FinestLevel; }
+
 inline glm::uvec4 needClearValue(bool need8) {
   return need8 ? glm::uvec4(0, 0, 255, 0) : glm::uvec4(0);
 }
