@@ -15,9 +15,10 @@ namespace vt {
 // layout of chapter 4 under 100 KB).
 inline constexpr uint64_t kMaxTextFileBytes = uint64_t{256} << 20;
 
-// Throws InputError "<file>: cannot open the <what>: <reason>", "... is a folder, not a file" or
-// "... is not a regular file (a FIFO)" unless `file` names a regular file; also when its name
-// holds a NUL character (it would be cut there). For inputs a library opens by name (images).
+// Throws InputError "<file>: cannot open <what>: <reason>" or "<file>: cannot read <what>: it is a
+// folder" ("... it is a FIFO, not a regular file") unless `file` names a regular file; also when
+// its name holds a NUL character (it would be cut there). `what` is a noun phrase ("mesh", "the
+// configuration"). For inputs a library opens by name (images, archives).
 void requireRegularFile(const std::filesystem::path& file, const std::string& what);
 
 // The whole of `file`, a regular file of at most `limit` bytes (InputError naming the file and

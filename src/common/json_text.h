@@ -37,7 +37,7 @@ inline std::string jsonErrorText(const nlohmann::json::exception& e) {
 
 // The whole of `file` parsed as above, read by readTextFile (common/input_file.h).
 inline nlohmann::json readJsonFile(const std::filesystem::path& file, const std::string& what) {
-  return parseJsonText(readTextFile(file, what), file);
+  return parseJsonText(readTextFile(file, "the " + what), file);
 }
 
 }  // namespace vt

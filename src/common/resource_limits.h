@@ -39,6 +39,11 @@ inline constexpr uint64_t kMaxMapIndices = uint64_t{1} << 26;
 // size.
 inline constexpr uint64_t kMaxPackageEntryBytes = uint64_t{256} << 20;
 
+// Bytes of one shader script of a .pk3 archive: 4 MiB (OpenArena's largest script is far below
+// 1 MB). Every script of the packages is tokenised, so a script inflated from a small archive
+// could otherwise cost seconds and memory out of all proportion to the map.
+inline constexpr uint64_t kMaxShaderScriptBytes = uint64_t{4} << 20;
+
 // Frames of a camera path: 10^6, more than four hours at 60 frames a second. Every frame is
 // rendered, so a path of 2^31 frames would run for years.
 inline constexpr int64_t kMaxCameraPathFrames = 1'000'000;

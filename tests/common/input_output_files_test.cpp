@@ -28,29 +28,30 @@ TEST(InputFile, ReadsARegularFileWhole) {
 TEST(InputFile, RefusesATextLongerThanTheLimitBeforeReadingIt) {
   test::ScratchDirectory dir;
   std::ofstream(dir / "big.json") << std::string(1001, ' ');
-  EXPECT_THAT([&] { readTextFile(dir / "big.json", "layout", 1000); },
-              ThrowsMessage<InputError>(
-                  HasSubstr("big.json: the layout asks for 1001 bytes, the limit is 1000 bytes")));
+  EXPECT_THAT([&] { readTextFile(dir / "big.json", "layout file", 1000); },
+              ThrowsMessage<InputError>(HasSubstr(
+                  "big.json: reading layout file asks for 1001 bytes, the limit is 1000 bytes")));
 }
 
 TEST(InputFile, RefusesAFifoADeviceAFolderAndANameWithANul) {
   test::ScratchDirectory dir;
   ASSERT_EQ(::mkfifo((dir / "pipe").c_str(), 0600), 0);
   // Neither waits for a writer nor reads without end.
-  EXPECT_THAT(
-      [&] { readTextFile(dir / "pipe", "camera path"); },
-      ThrowsMessage<InputError>(HasSubstr("pipe: the camera path is not a regular file (a FIFO)")));
+  EXPECT_THAT([&] { readTextFile(dir / "pipe", "camera path"); },
+              ThrowsMessage<InputError>(
+                  HasSubstr("pipe: cannot read camera path: it is a FIFO, not a regular file")));
   EXPECT_THAT([&] { readTextFile("/dev/zero", "mesh"); },
               ThrowsMessage<InputError>(
-                  HasSubstr("/dev/zero: the mesh is not a regular file (a character device)")));
+                  HasSubstr("/dev/zero: cannot read mesh: it is a character device")));
   EXPECT_THAT([&] { readTextFile(dir.path(), "mesh"); },
-              ThrowsMessage<InputError>(HasSubstr("is a folder, not a mesh file")));
+              ThrowsMessage<InputError>(HasSubstr("cannot read mesh: it is a folder")));
   EXPECT_THAT([&] { readTextFile(dir / "absent.obj", "mesh"); },
-              ThrowsMessage<InputError>(HasSubstr("absent.obj: cannot open the mesh")));
+              ThrowsMessage<InputError>(
+                  HasSubstr("absent.obj: cannot open mesh: No such file or directory")));
   std::ofstream(dir / "a.png") << "x";
   const std::filesystem::path cut((dir / "a.png").string() + std::string(1, '\0') + ".txt");
   EXPECT_THAT([&] { requireRegularFile(cut, "image"); },
-              ThrowsMessage<InputError>(HasSubstr("a.png: the name of the image holds a NUL")));
+              ThrowsMessage<InputError>(HasSubstr("a.png: the name of image holds a NUL")));
 }
 
 TEST(PathInside, KeepsRelativeNamesInsideAndRefusesTheOthersNamingTheSource) {
