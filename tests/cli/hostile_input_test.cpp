@@ -14,6 +14,7 @@
 #include "cli/run_command.h"
 #include "common/image_file.h"
 #include "eval/box_room_scene.h"
+#include "format/virtual_texture_writer.h"
 #include "scene/quake3_fixtures.h"
 #include "test_support.h"
 
@@ -216,6 +217,24 @@ TEST_F(HostileInput, ARetextureThatFailsLeavesNoOutput) {
   EXPECT_EQ(result.exitCode, 1) << result.err;
   EXPECT_THAT(result.err, HasSubstr("pak0.pk3:maps/bad.bsp: entities"));
   EXPECT_FALSE(std::filesystem::exists(dir_ / "out"));
+}
+
+// Class 3: a valid 149-byte texture (page size 1, 16 levels, only the root stored) whose dense page
+// tables would need 24 GB is refused before they are allocated, with the bytes they would need.
+TEST_F(HostileInput, PageTablesForEveryPageOfEveryLevelAreRefusedUpFront) {
+  TextureDescription d;
+  d.pageSize = 1, d.border = 0, d.levelCount = 16, d.channels = 4;
+  VirtualTextureWriter writer(dir_ / "deep.vt", d, {0});
+  writer.writePage(PageId{}, std::vector<std::byte>(4, std::byte{200}), 0.0f);
+  writer.commit();
+  const std::string limit =
+      "the page tables of 16 levels (an entry for each of the 1431655765 pages, stored or not) "
+      "asks for 24338148005 bytes, the limit is 2281701376 bytes";
+  expectOneLine(vt({"render", path("deep.vt"), "--size", "16x16", "-o", path("r.png")}),
+                path("deep.vt"), limit);
+  expectOneLine(vt({"fly", path("deep.vt"), "--size", "16x16", "-o", path("f")}), path("deep.vt"),
+                limit);
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "f"));
 }
 
 }  // namespace
