@@ -33,9 +33,11 @@ std::string kindOf(mode_t mode) {
 
 std::filesystem::path pathInside(const std::filesystem::path& root, std::string_view name,
                                  const std::string& source) {
+  // The folder by its own name only: `root` may be a temporary folder taking the output's place.
+  const std::filesystem::path folder = (root / "").parent_path().filename();
   const auto refuse = [&](const std::string& why) {
     return InputError(source, "the name '" + std::string(name.substr(0, name.find('\0'))) +
-                                  "' leads outside " + root.string() + ": " + why);
+                                  "' leads outside the folder " + folder.string() + "/: " + why);
   };
   if (name.find('\0') != std::string_view::npos) throw refuse("it holds a NUL character");
   const std::filesystem::path relative(name);
@@ -46,14 +48,15 @@ std::filesystem::path pathInside(const std::filesystem::path& root, std::string_
     if (component == "..") throw refuse("it has a '..' component");
   // Each folder on the way, and the file itself, must be what it says: a symbolic link placed
   // there (by an earlier run, or by another user in a shared folder) could lead anywhere.
-  std::filesystem::path path = root;
+  std::filesystem::path path = root, walked = folder;
   bool exists = true;  // below a component that does not exist, none does (made by the writer)
   for (const std::filesystem::path& component : relative) {
     if (component.empty() || component == ".") continue;
     path /= component;
+    walked /= component;
     struct stat info {};
     exists = exists && ::lstat(path.c_str(), &info) == 0;
-    if (exists && S_ISLNK(info.st_mode)) throw refuse(path.string() + " is a symbolic link");
+    if (exists && S_ISLNK(info.st_mode)) throw refuse(walked.string() + " is a symbolic link");
   }
   return path;
 }

@@ -79,8 +79,9 @@ inline uint32_t requirePageTablesFit(const std::filesystem::path& file, uint32_t
                                : ((uint64_t{1} << (2 * levelCount)) - 1) / 3;  // thesis 3.1.1.1
   if (entries > kMaxPageTableEntries)
     throw limitError(file,
-                     "the page tables of " + std::to_string(levelCount) + " levels (an entry for " +
-                         "each of the " + std::to_string(entries) + " pages, stored or not)",
+                     "building the page tables of " + std::to_string(levelCount) +
+                         " levels (an entry for " + "each of the " + std::to_string(entries) +
+                         " pages, stored or not)",
                      entries * kPageTableBytesPerEntry,
                      kMaxPageTableEntries * kPageTableBytesPerEntry, " bytes");
   return levelCount;

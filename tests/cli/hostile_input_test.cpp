@@ -228,7 +228,8 @@ TEST_F(HostileInput, PageTablesForEveryPageOfEveryLevelAreRefusedUpFront) {
   writer.writePage(PageId{}, std::vector<std::byte>(4, std::byte{200}), 0.0f);
   writer.commit();
   const std::string limit =
-      "the page tables of 16 levels (an entry for each of the 1431655765 pages, stored or not) "
+      "building the page tables of 16 levels (an entry for each of the 1431655765 pages, stored or "
+      "not) "
       "asks for 24338148005 bytes, the limit is 2281701376 bytes";
   expectOneLine(vt({"render", path("deep.vt"), "--size", "16x16", "-o", path("r.png")}),
                 path("deep.vt"), limit);

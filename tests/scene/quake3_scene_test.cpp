@@ -213,10 +213,11 @@ TEST_F(Quake3Scene, RefusesImageNamesThatLeaveTheImageFolderNamingArchiveAndEntr
   const std::filesystem::path escaped = scratch_ / "escaped.tga";
   // By the shader's own name, "../escaped" from images/.
   writeWith("../escaped", "../escaped.tga", "");
-  EXPECT_THAT([&] { load(); },
-              ThrowsMessage<InputError>(
-                  HasSubstr("pak0.pk3:../escaped.tga: the name '../escaped.tga' leads outside " +
-                            (scratch_ / "images").string() + ": it has a '..' component")));
+  EXPECT_THAT(
+      [&] { load(); },
+      ThrowsMessage<InputError>(HasSubstr(
+          "pak0.pk3:../escaped.tga: the name '../escaped.tga' leads outside the folder images/: it "
+          "has a '..' component")));
   EXPECT_FALSE(std::filesystem::exists(escaped));
   // Through a shader stage naming it.
   writeWith("textures/base/stage", "textures/../../escaped.tga",
@@ -235,8 +236,7 @@ TEST_F(Quake3Scene, RefusesImageNamesThatLeaveTheImageFolderNamingArchiveAndEntr
   std::filesystem::create_directories(scratch_ / "elsewhere");
   std::filesystem::create_directory_symlink(scratch_ / "elsewhere", scratch_ / "images/textures");
   EXPECT_THAT([&] { load(); },
-              ThrowsMessage<InputError>(
-                  HasSubstr((scratch_ / "images/textures").string() + " is a symbolic link")));
+              ThrowsMessage<InputError>(HasSubstr("images/textures is a symbolic link")));
   EXPECT_TRUE(std::filesystem::is_empty(scratch_ / "elsewhere"));
 }
 
