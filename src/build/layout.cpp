@@ -205,7 +205,7 @@ Layout parseLayout(std::string_view text, const std::filesystem::path& file,
   try {
     root = parseJsonText(text, file);
   } catch (const json::exception& e) {
-    throw InputError(file, std::string("not valid JSON: ") + e.what());
+    throw InputError(file, "not valid JSON: " + jsonErrorText(e));
   }
   if (!root.is_object()) throw InputError(file, "the layout is not a JSON object");
 
@@ -273,7 +273,7 @@ Layout parseLayout(std::string_view text, const std::filesystem::path& file,
   } catch (const std::invalid_argument& e) {
     throw InputError(file, e.what());
   } catch (const json::exception& e) {
-    throw InputError(file, std::string("unexpected value: ") + e.what());
+    throw InputError(file, "unexpected value: " + jsonErrorText(e));
   }
   return layout;
 }

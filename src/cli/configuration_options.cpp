@@ -110,7 +110,7 @@ FlightConfiguration ConfigurationOptions::configuration() const {
     try {
       base = FlightConfiguration::fromJson(readJsonFile(v.config, "configuration"), base);
     } catch (const nlohmann::json::exception& e) {
-      throw InputError(v.config, std::string("not a configuration: ") + e.what());
+      throw InputError(v.config, "not a configuration: " + jsonErrorText(e));
     } catch (const std::invalid_argument& e) {
       throw InputError(v.config, e.what());
     }

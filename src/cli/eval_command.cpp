@@ -27,6 +27,7 @@
 #include "common/output_path.h"
 #include "common/posix_file.h"
 #include "common/progress_bar.h"
+#include "common/resource_limits.h"
 #include "eval/evaluation.h"
 #include "eval/evaluation_report.h"
 #include "eval/flight_records.h"
@@ -102,7 +103,7 @@ ConfigurationsFile loadConfigurations(const std::filesystem::path& file) {
         result.figures.push_back(figureOf(entry, result.configurations));
     return result;
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(file, std::string("not a configurations file: ") + e.what());
+    throw InputError(file, "not a configurations file: " + jsonErrorText(e));
   } catch (const std::invalid_argument& e) {
     throw InputError(file, e.what());
   }
@@ -221,6 +222,16 @@ void addEvalCommand(CLI::App& app) {
     TemporaryFolder::requireReplaceable(o->output, "summary.json");
     EvaluationOptions options;
     options.settings.viewport = parseSize(o->scene.size);
+    // The reference images are kept for every frame: refused before the first is drawn.
+    const Viewport& v = options.settings.viewport;
+    const uint64_t referenceBytes =
+        static_cast<uint64_t>(path.frameCount()) * static_cast<uint64_t>(v.width) * v.height * 4;
+    if (referenceBytes > kMaxReferenceImageBytes)
+      throw limitError(o->scene.path.empty() ? "the box room's path" : o->scene.path,
+                       "keeping a " + std::to_string(v.width) + " x " + std::to_string(v.height) +
+                           " reference image for each of its " + std::to_string(path.frameCount()) +
+                           " frames",
+                       referenceBytes, kMaxReferenceImageBytes, " bytes");
     options.settings.need8 = reader.description().finestLevel() <= 12;
     options.settings.profile = reference::parsePrecisionProfile(o->profile);
     options.jobs = o->jobs;

@@ -48,6 +48,11 @@ inline constexpr uint64_t kMaxShaderScriptBytes = uint64_t{4} << 20;
 // rendered, so a path of 2^31 frames would run for years.
 inline constexpr int64_t kMaxCameraPathFrames = 1'000'000;
 
+// Bytes of the reference images `vt eval` keeps, one RGBA8 image per frame of the path, which
+// every run is compared with: 8 GiB. (The q3dm6ish tour, 1,500 frames of 320 x 200, keeps 384 MB;
+// a path of 10^6 frames at that size would keep 256 GB.)
+inline constexpr uint64_t kMaxReferenceImageBytes = uint64_t{8} << 30;
+
 // Texels per side of a page cache texture, and pixels per side of a captured frame: 16384, the
 // GL_MAX_TEXTURE_SIZE of llvmpipe and of current GPUs. (The flights' default cache, 16 x 16 frames
 // of 136 texels, is 2,176 texels wide.)

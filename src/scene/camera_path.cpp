@@ -139,7 +139,7 @@ CameraPath CameraPath::parse(std::string_view text, const std::filesystem::path&
     }
     return CameraPath(std::move(keyframes), std::move(motions));
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(file, std::string("not a camera path: ") + e.what());
+    throw InputError(file, "not a camera path: " + jsonErrorText(e));
   } catch (const std::invalid_argument& e) {
     throw InputError(file, e.what());
   }
