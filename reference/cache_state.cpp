@@ -28,6 +28,7 @@ CacheState placePages(const VirtualTextureReader& reader, std::span<const Placed
   CacheState state;
   state.description = reader.description();
   const TextureDescription& d = state.description;
+  requirePageTablesFit(reader.path(), d.levelCount);
   const uint32_t side = d.storedPageSide();
   if (framesX == 0 || framesY == 0 || uint64_t{framesX} * side > kMaxCacheSideTexels ||
       uint64_t{framesY} * side > kMaxCacheSideTexels)

@@ -81,7 +81,7 @@ PrecisionModel readModelFile(const std::filesystem::path& file) {
   try {
     json = readJsonFile(file, "precision model");
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(file, std::string("not a precision model: ") + e.what());
+    throw InputError(file, "not a precision model: " + jsonErrorText(e));
   }
   if (!json.is_object()) throw InputError(file, "not a precision model: not a JSON object");
   const Fields f(file, json);

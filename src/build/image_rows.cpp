@@ -4,6 +4,7 @@
 #include <map>
 
 #include "common/error.h"
+#include "common/input_file.h"
 
 namespace vt {
 namespace {
@@ -42,6 +43,7 @@ void convertTexels(const uint8_t* in, uint32_t from, uint8_t* out, uint32_t to, 
 }
 
 std::unique_ptr<OIIO::ImageInput> openImage(const Placement& p) {
+  requireRegularFile(p.file, "image");
   auto input = OIIO::ImageInput::open(p.file.string(), &kKeepAlphaAsStored);
   if (!input) throw InputError(p.file, "cannot read image: " + OIIO::geterror());
   return input;

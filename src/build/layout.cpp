@@ -12,6 +12,7 @@
 
 #include "common/error.h"
 #include "common/image_file.h"
+#include "common/input_file.h"
 #include "common/json_text.h"
 #include "common/resource_limits.h"
 
@@ -182,8 +183,9 @@ void finish(Layout& layout, std::optional<uint64_t> side, std::optional<uint32_t
 }  // namespace
 
 ImageInfo probeImageFile(const std::filesystem::path& file, const std::string& namedBy) {
-  if (!std::filesystem::exists(file))
+  if (!std::filesystem::exists(file) && file.native().find('\0') == std::string::npos)
     throw InputError(file, "image not found (named by " + namedBy + ")");
+  requireRegularFile(file, "image (named by " + namedBy + ")");
   std::string error;
   const std::optional<ImageHeader> header = readImageHeader(file, &error);
   if (!header) throw InputError(file, "cannot read image (named by " + namedBy + "): " + error);
@@ -194,11 +196,7 @@ ImageInfo probeImageFile(const std::filesystem::path& file, const std::string& n
 }
 
 Layout readLayout(const std::filesystem::path& file, const LayoutOverrides& overrides) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file, "cannot open layout file");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(file, "cannot read layout file");
-  return parseLayout(text, file, overrides, probeImageFile);
+  return parseLayout(readTextFile(file, "layout file"), file, overrides, probeImageFile);
 }
 
 Layout parseLayout(std::string_view text, const std::filesystem::path& file,
@@ -207,7 +205,7 @@ Layout parseLayout(std::string_view text, const std::filesystem::path& file,
   try {
     root = parseJsonText(text, file);
   } catch (const json::exception& e) {
-    throw InputError(file, std::string("not valid JSON: ") + e.what());
+    throw InputError(file, "not valid JSON: " + jsonErrorText(e));
   }
   if (!root.is_object()) throw InputError(file, "the layout is not a JSON object");
 
@@ -275,7 +273,7 @@ Layout parseLayout(std::string_view text, const std::filesystem::path& file,
   } catch (const std::invalid_argument& e) {
     throw InputError(file, e.what());
   } catch (const json::exception& e) {
-    throw InputError(file, std::string("unexpected value: ") + e.what());
+    throw InputError(file, "unexpected value: " + jsonErrorText(e));
   }
   return layout;
 }

@@ -4,7 +4,9 @@
 #include <memory>
 
 #include "build/texture_builder.h"
+#include "cli/argument_checks.h"
 #include "cli/commands.h"
+#include "common/output_path.h"
 
 namespace vt {
 
@@ -23,7 +25,8 @@ void addBuildCommand(CLI::App& app) {
       "build", "Compile a layout of images (.json) or one image into a virtual-texture file");
   command->add_option("INPUT", options->input, "Layout file (.json) or an image")->required();
   command->add_option("-o,--output", options->output, "Virtual-texture file to write")->required();
-  command->add_option("--page-size", options->pageSize, "Page size P, a power of two (128)");
+  command->add_option("--page-size", options->pageSize, "Page size P, a power of two (128)")
+      ->check(pageSizeArgument());
   command->add_option("--border", options->border, "Border B in texels, B < P (4)");
   command->add_option("--side", options->side,
                       "Finest level side, P * 2^L (the smallest that holds the images)");
@@ -34,7 +37,8 @@ void addBuildCommand(CLI::App& app) {
       ->check(CLI::IsMember({"srgb", "linear"}));
   command->add_option("--filter", options->filter, "Mip filter: box (default) or tent")
       ->check(CLI::IsMember({"box", "tent"}));
-  command->add_option("--threads", options->threads, "Worker threads (0: every core)");
+  command->add_option("--threads", options->threads, "Worker threads (0: every core)")
+      ->check(workerCount());
   command->add_option("--keep-free", options->keepFree,
                       "Bytes of disk that must stay free after the build (0)");
   command->add_flag("-q,--quiet", options->quiet, "No progress bar");
@@ -44,8 +48,12 @@ void addBuildCommand(CLI::App& app) {
     if (!options->colorSpace.empty()) overrides.colorSpace = parseColorSpace(options->colorSpace);
     if (!options->filter.empty()) overrides.filter = parseMipFilter(options->filter);
     const std::filesystem::path input = options->input;
+    requireOutputFile(options->output, {input});
     const Layout layout = input.extension() == ".json" ? readLayout(input, overrides)
                                                        : singleImageLayout(input, overrides);
+    std::vector<std::filesystem::path> images;
+    for (const Placement& placement : layout.images) images.push_back(placement.file);
+    requireOutputFile(options->output, images);
     const BuildReport report = buildVirtualTexture(
         layout, options->output, {options->threads, !options->quiet, options->keepFree});
     const TextureDescription& d = layout.description;

@@ -4,6 +4,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 
+#include "cli/argument_checks.h"
 #include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/json_text.h"
@@ -46,8 +47,10 @@ ConfigurationOptions::ConfigurationOptions(CLI::App* command)
                       "Configuration (.json, the keys of the options below); options given as "
                       "well override it");
   command->add_option("--budget", v.budget, "Pages streamed per frame (thesis 4.1.1)")
+      ->check(wholeNumbersIn(0, 1 << 20))
       ->capture_default_str();
   command->add_option("--latency", v.latency, "Frames between a request and its page's arrival")
+      ->check(wholeNumbersIn(0, 1000))
       ->capture_default_str();
   command
       ->add_option("--need-scale", v.needScale,
@@ -58,6 +61,7 @@ ConfigurationOptions::ConfigurationOptions(CLI::App* command)
       ->add_option("--heuristic", v.heuristic,
                    "Factors joined by '*': random, pixelsum, distance, weightedpixel, "
                    "hotspot, noisevalue, mipgap")
+      ->check(heuristicArgument())
       ->capture_default_str();
   command->add_option("--ancestors", v.ancestors, "Ancestor streaming: none, intern, extern")
       ->check(CLI::IsMember({"none", "intern", "extern"}))
@@ -69,20 +73,25 @@ ConfigurationOptions::ConfigurationOptions(CLI::App* command)
   command->add_option("--hotspot", v.hotSpot, "HotSpot centre (4.2.3.1): fixed, shifted, sliding")
       ->check(CLI::IsMember({"fixed", "shifted", "sliding"}))
       ->capture_default_str();
-  command->add_option("--noise-threshold", v.noiseThreshold,
-                      "NoiseValueSkipping threshold (default: the mean NoiseValue)");
+  command
+      ->add_option("--noise-threshold", v.noiseThreshold,
+                   "NoiseValueSkipping threshold (default: the mean NoiseValue)")
+      ->check(finiteNumber());
   command
       ->add_option("--locked-levels", v.lockedLevels, "Levels 0..K-1 never leave the cache (4.3.1)")
+      ->check(wholeNumbersIn(0, 24))
       ->capture_default_str();
   command
       ->add_option("--initial-levels", v.initialLevels,
                    "Levels 0..K-1 loaded before the first frame (4.2.1)")
+      ->check(wholeNumbersIn(0, 24))
       ->capture_default_str();
   command->add_flag("--preload-visible", v.preloadVisible,
                     "Also load the pages the first frame needs before it (4.2.1)");
   command->add_flag("--trilinear-parents", v.trilinearParents,
                     "A needed page's parent, which trilinear filtering reads, counts as needed");
   command->add_option("--cache-frames", v.frames, "The cache holds N x N frames")
+      ->check(wholeNumbersIn(1, 256))
       ->capture_default_str();
   command
       ->add_option("--readback", v.readback,
@@ -92,6 +101,8 @@ ConfigurationOptions::ConfigurationOptions(CLI::App* command)
       ->capture_default_str();
 }
 
+std::filesystem::path ConfigurationOptions::file() const { return values_->config; }
+
 FlightConfiguration ConfigurationOptions::configuration() const {
   const Values& v = *values_;
   FlightConfiguration base;
@@ -99,7 +110,7 @@ FlightConfiguration ConfigurationOptions::configuration() const {
     try {
       base = FlightConfiguration::fromJson(readJsonFile(v.config, "configuration"), base);
     } catch (const nlohmann::json::exception& e) {
-      throw InputError(v.config, std::string("not a configuration: ") + e.what());
+      throw InputError(v.config, "not a configuration: " + jsonErrorText(e));
     } catch (const std::invalid_argument& e) {
       throw InputError(v.config, e.what());
     }

@@ -5,7 +5,9 @@
 // override its values.
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <memory>
+#include <vector>
 
 #include "eval/flight_configuration.h"
 #include "scene/camera_path.h"
@@ -22,6 +24,8 @@ struct FlightSceneArguments {
   CameraPath cameraPath() const;  // the file (keyframes or storyboard), or the box room's turn
   Mesh loadMesh() const;          // the OBJ file, or the box room
   std::string sceneName() const;
+  // The files read: for requireOutputFile/Folder (common/output_path.h).
+  std::vector<std::filesystem::path> inputs() const { return {texture, path, mesh}; }
 };
 
 class ConfigurationOptions {
@@ -29,6 +33,8 @@ class ConfigurationOptions {
   explicit ConfigurationOptions(CLI::App* command);
   // After parsing: the configuration (throws InputError for a bad --config file).
   FlightConfiguration configuration() const;
+  // The --config file, empty without one.
+  std::filesystem::path file() const;
 
  private:
   struct Values;

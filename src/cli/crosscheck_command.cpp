@@ -12,12 +12,14 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "cli/argument_checks.h"
 #include "cli/commands.h"
 #include "cli/comparison_report.h"
 #include "cli/crosscheck_captures.h"
 #include "cli/oracle_conversions.h"
 #include "cli/size_argument.h"
 #include "common/error.h"
+#include "common/output_path.h"
 #include "common/posix_file.h"
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
@@ -60,7 +62,8 @@ void addCrosscheckCommand(CLI::App& app) {
                    "Compare the captures of this folder (frames another renderer drew, "
                    "reference/validate-your-renderer.md) with the oracle; writes junit.xml too")
       ->check(CLI::ExistingDirectory);
-  command->add_option("--threads", o->threads, "With --captures: oracle threads (0: every core)");
+  command->add_option("--threads", o->threads, "With --captures: oracle threads (0: every core)")
+      ->check(workerCount());
   std::string names;
   for (const std::string& name : testSceneNames())
     names.append(names.empty() ? "" : ", ").append(name);
@@ -85,6 +88,7 @@ void addCrosscheckCommand(CLI::App& app) {
   command->add_option("-o,--output", o->output, "Folder for summary.json and difference images")
       ->capture_default_str();
   command->callback([o] {
+    requireOutputFolder(o->output, {o->texture, o->captures, o->mesh, o->path});
     if (!o->captures.empty()) {
       if (!o->texture.empty())
         throw CLI::ValidationError("TEXTURE", "--captures takes none: each capture names its own");

@@ -16,6 +16,7 @@
 #include "cli/commands.h"
 #include "cli/texture_report.h"
 #include "common/image_file.h"
+#include "common/output_path.h"
 #include "format/level_image.h"
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
@@ -93,6 +94,7 @@ void addDemoCommand(CLI::App& app) {
   command->add_option("-o,--output", options->output, "Output folder")->capture_default_str();
   command->callback([options] {
     const std::filesystem::path folder = options->output;
+    requireOutputFolder(folder, {});
     auto start = std::chrono::steady_clock::now();
     const std::filesystem::path layoutFile = writeDemoScene(folder / "scene");
     std::cout << "wrote the default scene " << layoutFile.string() << " in " << secondsSince(start)

@@ -18,13 +18,16 @@
 #include <sstream>
 #include <thread>
 
+#include "cli/argument_checks.h"
 #include "cli/commands.h"
 #include "cli/configuration_options.h"
 #include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/json_text.h"
+#include "common/output_path.h"
 #include "common/posix_file.h"
 #include "common/progress_bar.h"
+#include "common/resource_limits.h"
 #include "eval/evaluation.h"
 #include "eval/evaluation_report.h"
 #include "eval/flight_records.h"
@@ -101,7 +104,7 @@ ConfigurationsFile loadConfigurations(const std::filesystem::path& file) {
         result.figures.push_back(figureOf(entry, result.configurations));
     return result;
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(file, std::string("not a configurations file: ") + e.what());
+    throw InputError(file, "not a configurations file: " + jsonErrorText(e));
   } catch (const std::invalid_argument& e) {
     throw InputError(file, e.what());
   }
@@ -127,12 +130,15 @@ void addEvalCommand(CLI::App& app) {
   command->add_option("--configs", o->configs,
                       "Configurations (.json); otherwise the product of the lists below");
   command->add_option("--heuristic", o->heuristics, "Heuristics, comma-separated")
+      ->check(heuristicArgument(true))
       ->capture_default_str();
   command->add_option("--budget", o->budgets, "Pages per frame, comma-separated")
+      ->check(wholeNumbersIn(0, 1 << 20))
       ->capture_default_str();
   command->add_option("--ancestors", o->ancestors, "none, intern, extern; comma-separated")
       ->capture_default_str();
   command->add_option("--locked-levels", o->locked, "Locked levels, comma-separated")
+      ->check(wholeNumbersIn(0, 24))
       ->capture_default_str();
   command
       ->add_option("--need-scale", o->needScales, "Needbuffer scales 1, 2, 4, 8; comma-separated")
@@ -147,15 +153,19 @@ void addEvalCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_flag("--noise-skipping", o->noiseSkipping, "NoiseValueSkipping (with extern)");
   command->add_option("--cache-frames", o->cacheFrames, "The cache holds N x N frames")
+      ->check(wholeNumbersIn(1, 256))
       ->capture_default_str();
   command->add_option("--initial-levels", o->initialLevels, "Levels 0..K-1 loaded first")
+      ->check(wholeNumbersIn(0, 24))
       ->capture_default_str();
   command->add_flag("--preload-visible", o->preloadVisible,
                     "Also load the pages the first frame needs before it (4.2.1)");
   command->add_option("--profile", o->profile, "Precision profile of the oracle")
       ->check(CLI::IsMember({"exact", "llvmpipe"}))
       ->capture_default_str();
-  command->add_option("--jobs", o->jobs, "Runs at once (0: every core)")->capture_default_str();
+  command->add_option("--jobs", o->jobs, "Runs at once (0: every core)")
+      ->check(workerCount())
+      ->capture_default_str();
   command->add_option("--title", o->title, "Title of the summary and plots");
   command->add_option("-o,--output", o->output, "Output folder")->capture_default_str();
   command->callback([o, command] {
@@ -207,9 +217,22 @@ void addEvalCommand(CLI::App& app) {
     }
 
     // The results replace the output folder: refuse one with other files before flying.
+    std::vector<std::filesystem::path> inputs = o->scene.inputs();
+    inputs.push_back(o->configs);
+    requireOutputFolder(o->output, inputs);
     TemporaryFolder::requireReplaceable(o->output, "summary.json");
     EvaluationOptions options;
     options.settings.viewport = parseSize(o->scene.size);
+    // The reference images are kept for every frame: refused before the first is drawn.
+    const Viewport& v = options.settings.viewport;
+    const uint64_t referenceBytes =
+        static_cast<uint64_t>(path.frameCount()) * static_cast<uint64_t>(v.width) * v.height * 4;
+    if (referenceBytes > kMaxReferenceImageBytes)
+      throw limitError(o->scene.path.empty() ? "the box room's path" : o->scene.path,
+                       "keeping a " + std::to_string(v.width) + " x " + std::to_string(v.height) +
+                           " reference image for each of its " + std::to_string(path.frameCount()) +
+                           " frames",
+                       referenceBytes, kMaxReferenceImageBytes, " bytes");
     options.settings.need8 = need8Encodes(reader.description().finestLevel());
     options.settings.profile = reference::parsePrecisionProfile(o->profile);
     options.jobs = o->jobs;

@@ -5,6 +5,7 @@
 
 #include "cli/commands.h"
 #include "common/image_file.h"
+#include "common/output_path.h"
 #include "format/level_image.h"
 
 namespace vt {
@@ -23,6 +24,7 @@ void addExportLevelCommand(CLI::App& app) {
   command->add_option("-o,--output", options->output, "Image to write (.png, .tif, .exr, ...)")
       ->required();
   command->callback([options] {
+    requireOutputFile(options->output, {options->file});
     const VirtualTextureReader reader(options->file);
     const LevelImage image = assembleLevel(reader, options->level);
     writeImage8(options->output, image.side, image.side, image.channels, image.texels);

@@ -9,10 +9,12 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "cli/argument_checks.h"
 #include "cli/commands.h"
 #include "cli/configuration_options.h"
 #include "cli/flight_capture.h"
 #include "cli/size_argument.h"
+#include "common/output_path.h"
 #include "common/posix_file.h"
 #include "eval/flight.h"
 #include "eval/flight_records.h"
@@ -64,7 +66,8 @@ void addFlyCommand(CLI::App& app) {
   command->add_option("--backend", o->backend, "oracle or gl")
       ->check(CLI::IsMember({"oracle", "gl"}))
       ->capture_default_str();
-  command->add_option("--threads", o->threads, "Worker threads of the oracle (0: every core)");
+  command->add_option("--threads", o->threads, "Worker threads of the oracle (0: every core)")
+      ->check(workerCount());
   command->add_flag("--quality", o->quality,
                     "Per frame RMSE, SSIM (8 x 8) and WSSIM against the frame with every page "
                     "resident (the oracle's reference image); the flight's run time excludes it");
@@ -78,6 +81,10 @@ void addFlyCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("-o,--output", o->output, "Output folder")->capture_default_str();
   command->callback([o, configurationOptions] {
+    std::vector<std::filesystem::path> inputs = o->scene.inputs();
+    inputs.push_back(configurationOptions->file());
+    requireOutputFolder(o->output, inputs);
+    if (!o->capture.empty()) requireOutputFolder(o->capture, inputs);
     FlightOptions options;
     options.settings.viewport = parseSize(o->scene.size);
     options.settings.threads = o->threads;
@@ -106,8 +113,10 @@ void addFlyCommand(CLI::App& app) {
         return referenceImage(*everything, mesh, path.at(frame), options.settings);
       };
     }
-    const std::filesystem::path folder = o->output;
-    std::filesystem::create_directories(folder);
+    // The frames and records go into a temporary folder that takes the output's place once the
+    // flight is complete: a failure, early or late, leaves the previous output or none.
+    TemporaryFolder staging(o->output, "summary.json");
+    const std::filesystem::path folder = staging.path();
     if (o->imagesEvery > 0) {
       options.wantsColor = [&](int frame) { return frame % o->imagesEvery == 0; };
       options.observe = [&](const FlightFrameView& view) {
@@ -148,11 +157,13 @@ void addFlyCommand(CLI::App& app) {
                                        {"quality_seconds", result.qualitySeconds}}
                                 .dump(2) +
                             "\n");
+    staging.commit();
     const FrameStatistics& totals = result.totals;
     std::cout << "flew " << path.frameCount() << " frames in " << result.seconds << " s ("
               << o->backend << "): " << totals.hits << " needed-page hits, " << totals.misses
               << " misses, " << totals.streamed << " pages streamed, " << totals.evicted
-              << " evicted; wrote " << (folder / "frames.csv").string() << "\n";
+              << " evicted; wrote " << (std::filesystem::path(o->output) / "frames.csv").string()
+              << "\n";
     if (o->quality) {
       const nlohmann::json q = flightTotals(result);
       std::cout << "quality against every page resident: mean SSIM " << q["mean_ssim"].get<double>()

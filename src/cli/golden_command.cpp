@@ -11,6 +11,7 @@
 #include "cli/configuration_options.h"
 #include "cli/size_argument.h"
 #include "common/error.h"
+#include "common/output_path.h"
 #include "eval/golden.h"
 #include "gl/headless_context.h"
 #include "reference/precision_model_file.h"
@@ -41,6 +42,7 @@ void addGoldenCommand(CLI::App& app) {
       ->capture_default_str();
   generate->add_option("-o,--output", g->output, "Golden folder")->required();
   generate->callback([g, configuration] {
+    requireOutputFolder(g->output, {g->texture, g->mesh, g->path, configuration->file()});
     GoldenRequest request = g->request;
     request.texture = g->texture;
     request.mesh = g->mesh;
@@ -54,7 +56,8 @@ void addGoldenCommand(CLI::App& app) {
   });
 
   struct Check {
-    std::string golden, texture, mesh, path, backend = "oracle", model = "auto", output = "golden-check";
+    std::string golden, texture, mesh, path, backend = "oracle", model = "auto",
+                                             output = "golden-check";
   };
   auto c = std::make_shared<Check>();
   CLI::App* check = golden->add_subcommand("check", "Fly a golden set again and compare");
@@ -74,6 +77,7 @@ void addGoldenCommand(CLI::App& app) {
   check->add_option("-o,--output", c->output, "Folder for check.json and difference images")
       ->capture_default_str();
   check->callback([c] {
+    requireOutputFolder(c->output, {c->golden, c->texture, c->mesh, c->path});
     std::unique_ptr<HeadlessContext> context;
     reference::PrecisionModel glModel = reference::exactModel();
     if (c->backend == "gl") {
@@ -93,8 +97,8 @@ void addGoldenCommand(CLI::App& app) {
                   << " pixels differ from the golden image, by up to " << frame.maxColorDifference
                   << "; " << frame.unexplained << " pixels unexplained\n";
     }
-    std::cout << "golden check (" << result.backend << ", model " << result.model << "): " << passed << " of "
-              << result.frames.size() << " frames pass; wrote "
+    std::cout << "golden check (" << result.backend << ", model " << result.model << "): " << passed
+              << " of " << result.frames.size() << " frames pass; wrote "
               << (std::filesystem::path(c->output) / "check.json").string() << "\n";
     if (!result.passed())
       throw InputError(c->golden,

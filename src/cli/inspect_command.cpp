@@ -14,6 +14,7 @@
 #include "cli/configuration_options.h"
 #include "cli/size_argument.h"
 #include "common/error.h"
+#include "common/output_path.h"
 #include "eval/flight.h"
 #include "eval/inspect_images.h"
 #include "eval/inspect_page.h"
@@ -60,6 +61,9 @@ void addInspectCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("-o,--output", o->output, "HTML file")->capture_default_str();
   command->callback([o, configurationOptions] {
+    std::vector<std::filesystem::path> inputs = o->scene.inputs();
+    inputs.push_back(configurationOptions->file());
+    requireOutputFile(o->output, inputs);
     const VirtualTextureReader reader(o->scene.texture);
     const CameraPath path = o->scene.cameraPath();
     const Mesh mesh = o->scene.loadMesh();

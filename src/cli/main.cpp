@@ -4,9 +4,11 @@
 // the problem), 2 bad arguments (the error and the command's usage line on stderr).
 
 #include <iostream>
+#include <new>
 
 #include "cli/commands.h"
 #include "common/error.h"
+#include "common/json_text.h"
 
 #ifndef VT_VERSION
 #error "VT_VERSION must be defined by the build"
@@ -23,6 +25,16 @@ std::string usageLine(const CLI::App& app) {
     name += " " + command->get_name();
   }
   return CLI::Formatter().make_usage(command, name);
+}
+
+// "vt fly" for the subcommand that was running.
+std::string commandName(const CLI::App& app) {
+  std::string name = "vt";
+  for (const CLI::App* command = &app; !command->get_subcommands().empty();) {
+    command = command->get_subcommands().front();
+    name += " " + command->get_name();
+  }
+  return name;
 }
 
 }  // namespace
@@ -56,6 +68,16 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const vt::InputError& e) {
     std::cerr << "vt: " << e.what() << '\n';
+    return 1;
+  } catch (const std::bad_alloc&) {
+    // Sizes read from files are checked against the limits of common/resource_limits.h before
+    // allocating; what remains is a job larger than this machine's memory.
+    std::cerr << "vt: " << commandName(app)
+              << ": out of memory: the inputs and arguments ask for more memory than this "
+                 "machine can give\n";
+    return 1;
+  } catch (const nlohmann::json::exception& e) {
+    std::cerr << "vt: " << commandName(app) << ": " << vt::jsonErrorText(e) << '\n';
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "vt: error: " << e.what() << '\n';

@@ -7,10 +7,13 @@
 #include <iostream>
 #include <memory>
 
+#include "cli/argument_checks.h"
 #include "cli/commands.h"
 #include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/image_file.h"
+#include "common/input_file.h"
+#include "common/output_path.h"
 #include "eval/image_metrics.h"
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
@@ -24,6 +27,7 @@ namespace vt {
 namespace {
 
 std::vector<uint8_t> readReference(const std::filesystem::path& path, Viewport size) {
+  requireRegularFile(path, "reference image");
   auto input = OIIO::ImageInput::open(path.string());
   if (!input) throw InputError(path, "cannot read image: " + OIIO::geterror());
   const auto& spec = input->spec();
@@ -79,7 +83,8 @@ void addRenderCommand(CLI::App& app) {
       ->add_option("--resident-levels", o->residentLevels,
                    "Only levels 0..K-1 resident (a cache state); default every page")
       ->check(CLI::Range(1, 16));
-  command->add_option("--threads", o->threads, "Worker threads of the oracle (0: every core)");
+  command->add_option("--threads", o->threads, "Worker threads of the oracle (0: every core)")
+      ->check(workerCount());
   command
       ->add_option("--backend", o->backend, "oracle (the CPU reference) or gl (OpenGL, headless)")
       ->check(CLI::IsMember({"oracle", "gl"}))
@@ -89,6 +94,11 @@ void addRenderCommand(CLI::App& app) {
   command->add_option("--reference", o->reference,
                       "Reference image: print RMSE and SSIM against it");
   command->callback([o] {
+    const std::vector<std::filesystem::path> inputs = {o->texture, o->mesh, o->reference};
+    requireOutputFile(o->output, inputs);
+    if (!o->needbuffer.empty()) requireOutputFile(o->needbuffer, inputs);
+    if (!o->needbuffer.empty() && std::filesystem::path(o->needbuffer) == o->output)
+      throw InputError(o->output, "given as both the colour image and the needbuffer image");
     reference::RenderSettings settings;
     settings.viewport = parseSize(o->size);
     settings.profile = reference::parsePrecisionProfile(o->profile);

@@ -6,9 +6,13 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 
+#include "cli/argument_checks.h"
 #include "cli/commands.h"
 #include "common/error.h"
+#include "common/output_path.h"
+#include "common/posix_file.h"
 #include "retexture/retexture_outputs.h"
 #include "scene/obj_scene.h"
 #include "scene/quake3_scene.h"
@@ -71,38 +75,43 @@ void addRetextureCommand(CLI::App& app) {
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   command->add_flag("--no-coherence", o->noCoherence, "Skip the coherence figure (no rendering)");
-  command->add_option("--threads", o->retexture.coherence.threads,
-                      "Worker threads of the oracle (0: every core)");
+  command
+      ->add_option("--threads", o->retexture.coherence.threads,
+                   "Worker threads of the oracle (0: every core)")
+      ->check(workerCount());
   command->callback([o] {
     o->retexture.measureCoherence = !o->noCoherence;
     if (std::popcount(o->retexture.pageSize) != 1)
       throw CLI::ValidationError("--page-size", "must be a power of two");
     const std::filesystem::path output = o->output, scenePath = o->scene;
-    const std::filesystem::path images = output / "images";
-    // Folders are made when the first file goes into them: bad input leaves nothing behind.
-    TexturedScene scene;
-    if (scenePath.extension() == ".obj") {
-      const std::filesystem::path written = output / (scenePath.stem().string() + ".obj");
-      if (std::filesystem::exists(written) && std::filesystem::equivalent(written, scenePath))
-        throw InputError(scenePath, "the retextured mesh would overwrite it: choose another -o");
-      scene = loadObjScene(scenePath, images);
-    } else {
-      if (o->packages.empty())
-        throw CLI::ValidationError("--packages", "a map needs the folder of its .pk3 archives");
-      std::vector<std::filesystem::path> folders(o->packages.begin(), o->packages.end());
-      scene = loadQuake3Map(PackageFiles::fromFolders(folders), o->scene, images,
-                            {.patchLevel = o->patchLevel});
-    }
+    const bool obj = scenePath.extension() == ".obj";
+    if (!obj && o->packages.empty())
+      throw CLI::ValidationError("--packages", "a map needs the folder of its .pk3 archives");
+    const std::vector<std::filesystem::path> packages(o->packages.begin(), o->packages.end());
+    std::vector<std::filesystem::path> inputs = packages;
+    inputs.push_back(scenePath);
+    requireOutputFolder(output, inputs);
+    const std::optional<PackageFiles> files =
+        obj ? std::nullopt : std::optional(PackageFiles::fromFolders(packages));
+    const std::string name = obj ? scenePath.stem().string() : quake3MapName(*files, o->scene);
+    // Everything, extracted images included, is written into a temporary folder that takes the
+    // output's place once complete: a failure leaves the previous output or none. A previous
+    // output is recognised by its report.
+    TemporaryFolder staging(output, name + ".report.json");
+    const std::filesystem::path folder = staging.path(), images = folder / "images";
+    const TexturedScene scene =
+        obj ? loadObjScene(scenePath, images)
+            : loadQuake3Map(*files, o->scene, images, {.patchLevel = o->patchLevel});
     for (const std::string& warning : scene.warnings)
       std::cerr << "warning: " << scene.name << ": " << warning << '\n';
     const RetextureResult result = retexture(scene, o->retexture);
-    std::filesystem::create_directories(output);
     const MethodResult& chosen = result.chosen(o->retexture);
-    writeRetexturedObj(output / (scene.name + ".obj"), scene, result.uvs);
-    writeRetextureLayout(output / (scene.name + ".layout.json"), scene, chosen.layout,
+    writeRetexturedObj(folder / (scene.name + ".obj"), scene, result.uvs);
+    writeRetextureLayout(folder / (scene.name + ".layout.json"), scene, chosen.layout,
                          {.border = o->border});
-    writeRetextureReport(output / (scene.name + ".report.json"), scene, result, o->retexture);
-    writeViewpointTour(output / (scene.name + ".path.json"), scene);
+    writeRetextureReport(folder / (scene.name + ".report.json"), scene, result, o->retexture);
+    writeViewpointTour(folder / (scene.name + ".path.json"), scene);
+    staging.commit();
     std::cout << "retextured " << scene.name << ": " << scene.faces.size() << " faces ("
               << scene.patchFaces << " patches), " << scene.textures.size() << " textures, "
               << scene.skipped.total() << " faces skipped; wrote " << o->retexture.method

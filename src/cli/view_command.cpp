@@ -19,6 +19,7 @@
 #include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/image_file.h"
+#include "common/output_path.h"
 #include "gl/gl_frame_renderer.h"
 #include "gl/hud_overlay.h"
 #include "gl/window_context.h"
@@ -96,6 +97,9 @@ void addViewCommand(CLI::App& app) {
       ->check(CLI::Range(0, 1 << 30));
   command->add_option("--screenshot", o->screenshot, "Write the last frame (with HUD) as image");
   command->callback([o] {
+    const std::vector<std::filesystem::path> inputs = {o->texture, o->mesh, o->path};
+    if (!o->record.empty()) requireOutputFile(o->record, inputs);
+    if (!o->screenshot.empty()) requireOutputFile(o->screenshot, inputs);
     const VirtualTextureReader reader(o->texture);
     const Mesh mesh = o->mesh.empty() ? boxRoom() : loadObjMesh(o->mesh);
     std::unique_ptr<CameraPath> path;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "common/posix_file.h"
 
 namespace vt {
@@ -34,6 +35,7 @@ void writeImage8(const std::filesystem::path& path, uint32_t width, uint32_t hei
 Image8 readImage8(const std::filesystem::path& path, int maxSide) {
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
+  requireRegularFile(path, "image");
   auto input = OIIO::ImageInput::open(path.string(), &config);
   if (!input) throw InputError(path, "cannot read image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = input->spec();
@@ -55,6 +57,12 @@ Image8 readImage8(const std::filesystem::path& path, int maxSide) {
 }
 
 std::optional<ImageHeader> readImageHeader(const std::filesystem::path& path, std::string* error) {
+  try {
+    requireRegularFile(path, "image");
+  } catch (const InputError& e) {
+    if (error) *error = e.what();
+    return std::nullopt;
+  }
   auto input = OIIO::ImageInput::open(path.string());
   if (!input) {
     const std::string reason = OIIO::geterror();  // read, so it does not linger for the next call

@@ -6,13 +6,12 @@
 // InputError naming the file.
 
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 
 #include "common/error.h"
+#include "common/input_file.h"
 
 namespace vt {
 
@@ -28,12 +27,17 @@ inline nlohmann::json parseJsonText(std::string_view text, const std::filesystem
       });
 }
 
-// The whole of `file` parsed as above; InputError "cannot open the <what>" when it cannot be read.
+// The message of a JSON error without nlohmann's "[json.exception.type_error.302] " prefix, e.g.
+// "key 'width' not found" or "type must be string, but is null".
+inline std::string jsonErrorText(const nlohmann::json::exception& e) {
+  const std::string text = e.what();
+  const size_t end = text.starts_with("[json.exception.") ? text.find("] ") : std::string::npos;
+  return end == std::string::npos ? text : text.substr(end + 2);
+}
+
+// The whole of `file` parsed as above, read by readTextFile (common/input_file.h).
 inline nlohmann::json readJsonFile(const std::filesystem::path& file, const std::string& what) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file, "cannot open the " + what);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return parseJsonText(text, file);
+  return parseJsonText(readTextFile(file, "the " + what), file);
 }
 
 }  // namespace vt

@@ -23,7 +23,11 @@ namespace {
 }  // namespace
 
 PosixFile PosixFile::openForReading(const std::filesystem::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (path.native().find('\0') != std::string::npos)
+    throw InputError(path.native().substr(0, path.native().find('\0')),
+                     "the file name holds a NUL character");
+  // Without blocking: opening a FIFO would wait for a writer (regular files ignore the flag).
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) throwSystemError(path, "cannot open");
   PosixFile file(fd, path);
   struct stat info {};

@@ -39,9 +39,19 @@ inline constexpr uint64_t kMaxMapIndices = uint64_t{1} << 26;
 // size.
 inline constexpr uint64_t kMaxPackageEntryBytes = uint64_t{256} << 20;
 
+// Bytes of one shader script of a .pk3 archive: 4 MiB (OpenArena's largest script is far below
+// 1 MB). Every script of the packages is tokenised, so a script inflated from a small archive
+// could otherwise cost seconds and memory out of all proportion to the map.
+inline constexpr uint64_t kMaxShaderScriptBytes = uint64_t{4} << 20;
+
 // Frames of a camera path: 10^6, more than four hours at 60 frames a second. Every frame is
 // rendered, so a path of 2^31 frames would run for years.
 inline constexpr int64_t kMaxCameraPathFrames = 1'000'000;
+
+// Bytes of the reference images `vt eval` keeps, one RGBA8 image per frame of the path, which
+// every run is compared with: 8 GiB. (The q3dm6ish tour, 1,500 frames of 320 x 200, keeps 384 MB;
+// a path of 10^6 frames at that size would keep 256 GB.)
+inline constexpr uint64_t kMaxReferenceImageBytes = uint64_t{8} << 30;
 
 // Texels per side of a page cache texture, and pixels per side of a captured frame: 16384, the
 // GL_MAX_TEXTURE_SIZE of llvmpipe and of current GPUs. (The flights' default cache, 16 x 16 frames
@@ -49,12 +59,37 @@ inline constexpr int64_t kMaxCameraPathFrames = 1'000'000;
 inline constexpr uint64_t kMaxCacheSideTexels = 16384;
 inline constexpr uint64_t kMaxViewportSide = 16384;
 
+// Entries of a texture's page table and indirection table: one for every page of every level,
+// (4^L - 1) / 3 for L levels (thesis 3.1.1.1), however few pages the file stores, as the
+// indirection texture the shader reads is dense. 2^27 entries allow L = 14 (89,478,485 entries,
+// 8192^2 pages on the finest level; a 16384^2 texture with P = 128 has L = 8). The runtime keeps
+// 17 bytes per entry (table, residency, indirection copy), the oracle's cache state 16.
+inline constexpr uint64_t kMaxPageTableEntries = uint64_t{1} << 27;
+inline constexpr uint64_t kPageTableBytesPerEntry = 17;
+
 // The error for a request beyond a limit: "<file>: <what> asks for <asked><unit>, the limit is
 // <limit><unit>", e.g. what = "header field stored_page_count", unit = " pages".
 inline InputError limitError(const std::filesystem::path& file, const std::string& what,
                              uint64_t asked, uint64_t limit, const std::string& unit) {
   return InputError(file, what + " asks for " + std::to_string(asked) + unit + ", the limit is " +
                               std::to_string(limit) + unit);
+}
+
+// `levelCount` after checking that the page tables of a texture of that many levels stay within
+// kMaxPageTableEntries; before they are allocated, by every user of them (the runtime, the
+// oracle's cache state). Throws limitError naming `file` and the bytes the tables would need.
+inline uint32_t requirePageTablesFit(const std::filesystem::path& file, uint32_t levelCount) {
+  const uint64_t entries = levelCount >= 32
+                               ? UINT64_MAX / kPageTableBytesPerEntry
+                               : ((uint64_t{1} << (2 * levelCount)) - 1) / 3;  // thesis 3.1.1.1
+  if (entries > kMaxPageTableEntries)
+    throw limitError(file,
+                     "building the page tables of " + std::to_string(levelCount) +
+                         " levels (an entry for " + "each of the " + std::to_string(entries) +
+                         " pages, stored or not)",
+                     entries * kPageTableBytesPerEntry,
+                     kMaxPageTableEntries * kPageTableBytesPerEntry, " bytes");
+  return levelCount;
 }
 
 }  // namespace vt

@@ -9,7 +9,9 @@
 
 #include "common/checksum.h"
 #include "common/error.h"
+#include "common/input_file.h"
 #include "common/json_text.h"
+#include "common/output_path.h"
 #include "common/posix_file.h"
 #include "eval/flight_records.h"
 #include "format/virtual_texture_reader.h"
@@ -31,10 +33,7 @@ std::string hex(uint64_t value) {
 }
 
 uint64_t fileChecksum(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file, "cannot open");
-  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)),
-                                std::istreambuf_iterator<char>());
+  const std::string bytes = readTextFile(file, "file");
   return checksum64(std::as_bytes(std::span(bytes)));
 }
 
@@ -51,6 +50,7 @@ std::string imageName(int frame) {
 
 // The PNG's RGBA8 rows, turned bottom to top like a rendered frame.
 std::vector<uint8_t> readGoldenImage(const std::filesystem::path& file, Viewport viewport) {
+  requireRegularFile(file, "golden image");
   auto input = OIIO::ImageInput::open(file.string());
   if (!input) throw InputError(file, "cannot read golden image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = input->spec();
@@ -196,12 +196,18 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
     viewport = {whole(golden.at("width"), "width"), whole(golden.at("height"), "height")};
     profile = reference::parsePrecisionProfile(golden.at("profile").get<std::string>());
     every = whole(golden.at("every"), "every");
-    for (const auto& frame : golden.at("frames")) whole(frame.at("frame"), "a frame number");
+    for (const char* key : {"texture_identity", "mesh_checksum", "path_checksum"})
+      golden.at(key).get<std::string>();
+    for (const auto& frame : golden.at("frames")) {
+      whole(frame.at("frame"), "a frame number");
+      for (const char* key : {"color", "need", "image"}) frame.at(key).get<std::string>();
+      for (const char* key : {"rmse", "ssim", "wssim"}) frame.at(key).get<double>();
+    }
     if (every < 1 || viewport.width < 1 || viewport.height < 1 || viewport.width > 16384 ||
         viewport.height > 16384 || golden.at("frames").empty())
       throw std::invalid_argument("size, every or frames out of range");
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(manifest, std::string("not a golden set: ") + e.what());
+    throw InputError(manifest, "not a golden set: " + jsonErrorText(e));
   } catch (const std::invalid_argument& e) {
     throw InputError(manifest, std::string("not a golden set: ") + e.what());
   }
@@ -242,8 +248,8 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
     frame.qualityMatches = r->quality.rmse == expected["rmse"].get<double>() &&
                            r->quality.ssim == expected["ssim"].get<double>() &&
                            r->quality.wssim == expected["wssim"].get<double>();
-    const std::vector<uint8_t> image =
-        readGoldenImage(folder / expected.at("image").get<std::string>(), viewport);
+    const std::vector<uint8_t> image = readGoldenImage(
+        pathInside(folder, expected.at("image").get<std::string>(), manifest.string()), viewport);
     std::vector<uint8_t> difference(image.size(), 255);
     for (size_t p = 0; p < image.size(); p += 4) {
       int pixelMax = 0;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "common/resource_limits.h"
+
 namespace vt {
 namespace {
 
@@ -29,7 +31,7 @@ VirtualTextureRuntime::VirtualTextureRuntime(const VirtualTextureReader& reader,
       options_(options),
       // The root is always locked: every lookup falls back to it, so it must never leave.
       pageCache_(options.framesX, options.framesY, std::max(1u, options.lockedLevels)),
-      table_(reader.description().levelCount) {
+      table_(requirePageTablesFit(reader.path(), reader.description().levelCount)) {
   validateHeuristic(options.priority.heuristic);
   const TextureDescription& d = reader.description();
   cache_.description = d;

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "common/json_text.h"
 #include "common/posix_file.h"
 #include "common/resource_limits.h"
@@ -103,11 +104,7 @@ CameraPath::CameraPath(std::vector<Keyframe> keyframes, std::vector<NamedMotion>
 }
 
 CameraPath CameraPath::load(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file, "cannot open camera path");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(file, "cannot read camera path");
-  return parse(text, file);
+  return parse(readTextFile(file, "camera path"), file);
 }
 
 CameraPath CameraPath::parse(std::string_view text, const std::filesystem::path& file) {
@@ -142,7 +139,7 @@ CameraPath CameraPath::parse(std::string_view text, const std::filesystem::path&
     }
     return CameraPath(std::move(keyframes), std::move(motions));
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(file, std::string("not a camera path: ") + e.what());
+    throw InputError(file, "not a camera path: " + jsonErrorText(e));
   } catch (const std::invalid_argument& e) {
     throw InputError(file, e.what());
   }

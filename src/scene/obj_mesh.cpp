@@ -10,16 +10,13 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/input_file.h"
 
 namespace vt {
 
 Mesh loadObjMesh(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) throw InputError(path, "mesh not found");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "cannot open mesh");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(path, "cannot read mesh");
-  return parseObjMesh(text, path);
+  return parseObjMesh(readTextFile(path, "mesh"), path);
 }
 
 Mesh parseObjMesh(std::string_view text, const std::filesystem::path& path) {

@@ -10,18 +10,11 @@
 
 #include "common/error.h"
 #include "common/image_file.h"
+#include "common/input_file.h"
 #include "scene/missing_texture.h"
 
 namespace vt {
 namespace {
-
-std::string readText(const std::filesystem::path& path, const char* what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, std::string("cannot open ") + what);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(path, std::string("cannot read ") + what);
-  return text;
-}
 
 // The folder of the MTL file defining each material (map_Kd names are relative to it). A library
 // the OBJ names but the source lacks is an error (tinyobjloader only warns).
@@ -139,12 +132,12 @@ std::vector<std::string> materialLibraryNames(std::string_view objText) {
 TexturedScene loadObjScene(const std::filesystem::path& path,
                            const std::filesystem::path& imageFolder) {
   if (!std::filesystem::exists(path)) throw InputError(path, "mesh not found");
-  ObjSceneText source{path, readText(path, "mesh"), {}};
+  ObjSceneText source{path, readTextFile(path, "mesh"), {}};
   for (const std::string& library : materialLibraryNames(source.obj)) {
     const std::filesystem::path file = path.parent_path() / library;
     if (!std::filesystem::exists(file))
       throw InputError(path, "material library " + library + " not found");
-    source.materialLibraries.try_emplace(library, readText(file, "material library"));
+    source.materialLibraries.try_emplace(library, readTextFile(file, "material library"));
   }
   return loadObjScene(source, imageFolder);
 }

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "common/resource_limits.h"
 
 namespace vt {
@@ -25,6 +26,8 @@ class ZipArchive {
  public:
   explicit ZipArchive(std::filesystem::path path) : path_(std::move(path)) {
     int code = 0;
+    // A FIFO or a device would be read without end; a missing file is libzip's to report.
+    if (std::filesystem::exists(path_)) requireRegularFile(path_, "zip archive");
     // No ZIP_CHECKCONS: the game's own reader is lenient, and a damaged entry still fails on read.
     zip_ = zip_open(path_.c_str(), ZIP_RDONLY, &code);
     if (zip_ == nullptr)
@@ -158,7 +161,7 @@ std::optional<std::string> PackageFiles::find(std::string_view name) const {
   return entry->name;
 }
 
-std::vector<uint8_t> PackageFiles::read(std::string_view name) const {
+std::vector<uint8_t> PackageFiles::read(std::string_view name, uint64_t limit) const {
   const Archives::Entry* entry = archives_->lookup(name);
   if (entry == nullptr)
     throw InputError(std::string(name), "no such file in " + archives_->summary());
@@ -171,9 +174,8 @@ std::vector<uint8_t> PackageFiles::read(std::string_view name) const {
   if (zip_stat_index(archive.handle(), entry->index, 0, &stat) != 0 ||
       (stat.valid & ZIP_STAT_SIZE) == 0)
     throw fail(zip_strerror(archive.handle()));
-  if (stat.size > kMaxPackageEntryBytes)
-    throw limitError(archive.path(), "entry '" + entry->name + "'", stat.size,
-                     kMaxPackageEntryBytes, " bytes");
+  if (stat.size > limit)
+    throw limitError(archive.path(), "entry '" + entry->name + "'", stat.size, limit, " bytes");
   zip_file_t* file = zip_fopen_index(archive.handle(), entry->index, 0);
   if (file == nullptr) throw fail(zip_strerror(archive.handle()));
   // Read to the end rather than trusting the declared size (a damaged entry may lie), but never

@@ -17,6 +17,8 @@
 #include <string_view>
 #include <vector>
 
+#include "common/resource_limits.h"
+
 namespace vt {
 
 // The key a name is compared by: ASCII lower case, '/' as the separator (file names, and shader
@@ -40,9 +42,9 @@ class PackageFiles {
   // The name as stored in the winning archive, or nothing.
   std::optional<std::string> find(std::string_view name) const;
   // The file's bytes; an InputError naming archive and entry if it is missing, cannot be inflated,
-  // or would inflate to more than its directory entry says or than kMaxPackageEntryBytes
-  // (common/resource_limits.h).
-  std::vector<uint8_t> read(std::string_view name) const;
+  // or would inflate to more than its directory entry says or than `limit` (by default
+  // kMaxPackageEntryBytes, common/resource_limits.h).
+  std::vector<uint8_t> read(std::string_view name, uint64_t limit = kMaxPackageEntryBytes) const;
   // Every file whose name starts with `prefix` and ends with `suffix` (case-insensitive), as
   // stored, sorted by lower-cased name.
   std::vector<std::string> list(std::string_view prefix, std::string_view suffix) const;

@@ -7,6 +7,7 @@
 
 #include "common/error.h"
 #include "common/image_file.h"
+#include "common/output_path.h"
 #include "common/posix_file.h"
 #include "common/resource_limits.h"
 #include "scene/bsp_entities.h"
@@ -125,7 +126,8 @@ class SourceImages {
 
  private:
   void extract(const ResolvedTexture& resolved, SourceTexture& texture) {
-    const std::filesystem::path path = folder_ / resolved.file;
+    const std::filesystem::path path =
+        pathInside(folder_, resolved.file, files_.describe(resolved.file));
     if (!std::filesystem::exists(path)) {
       const std::vector<uint8_t> bytes = files_.read(resolved.file);
       std::filesystem::create_directories(path.parent_path());
@@ -271,6 +273,13 @@ void requireWithinLimits(const BspFile& bsp, const std::string& source, int patc
 }
 
 }  // namespace
+
+std::string quake3MapName(const PackageFiles& files, std::string_view map) {
+  const std::string wanted = mapEntry(map);
+  const std::optional<std::string> entry = files.find(wanted);
+  if (!entry) throw InputError(wanted, "no such map in the packages");
+  return std::filesystem::path(*entry).stem().string();
+}
 
 TexturedScene loadQuake3Map(const PackageFiles& files, std::string_view map,
                             const std::filesystem::path& imageFolder,

@@ -30,6 +30,10 @@ struct Quake3Options {
 };
 
 // `map` is a map name ("q3dm6ish") or an entry ("maps/q3dm6ish.bsp").
+// The scene's name for `map`: its entry's name without folder and extension, as the packages
+// spell it (InputError when there is no such map).
+std::string quake3MapName(const PackageFiles& files, std::string_view map);
+
 TexturedScene loadQuake3Map(const PackageFiles& files, std::string_view map,
                             const std::filesystem::path& imageFolder,
                             const Quake3Options& options = {});

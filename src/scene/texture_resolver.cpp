@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "common/resource_limits.h"
 #include "scene/shader_script.h"
 
 namespace vt {
@@ -30,7 +31,7 @@ TextureResolver::TextureResolver(const PackageFiles& files) : files_(files) {
   // list() returns the scripts in name order; a later script's definition replaces an earlier
   // one, as the game reads its scripts in reverse name order and takes the first it finds.
   for (const std::string& script : files.list("scripts/", ".shader")) {
-    const std::vector<uint8_t> bytes = files.read(script);
+    const std::vector<uint8_t> bytes = files.read(script, kMaxShaderScriptBytes);
     const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     for (ShaderDefinition& definition : parseShaderScript(text, files.describe(script))) {
       shaders_.insert_or_assign(

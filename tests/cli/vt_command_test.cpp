@@ -100,6 +100,34 @@ TEST_F(VtCommand, BadArgumentsPrintTheUsageAndExitTwo) {
   EXPECT_THAT(vt({"info"}).err, HasSubstr("Usage: vt info [OPTIONS] FILE"));
 }
 
+// Values out of range or grammar are bad arguments too (issue 20, class 8): checked by CLI11
+// before any file is read, never blamed on an input, never an allocation sized by them.
+TEST_F(VtCommand, BadArgumentValuesPrintTheUsageAndExitTwo) {
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"fly", "a.vt", "--cache-frames", "0"}, "--cache-frames: '0' is not a whole number from 1"},
+      {{"fly", "a.vt", "--heuristic", "pixelsum*bogus"}, "'bogus' is not one of random"},
+      {{"fly", "a.vt", "--noise-threshold", "nan"}, "'nan' is not a finite number"},
+      {{"fly", "a.vt", "--locked-levels", "99"}, "'99' is not a whole number from 0 to 24"},
+      {{"build", "image.png", "-o", "x.vt", "--page-size", "3"},
+       "page size '3' is not a power of two in [1, 4096]"},
+      {{"build", "image.png", "-o", "x.vt", "--threads", "1000000000"},
+       "'1000000000' is not a whole number from 0 to 1024"},
+      {{"fly", "a.vt", "--threads", "1000000000"}, "is not a whole number from 0 to 1024"},
+      {{"eval", "a.vt", "--jobs", "1000000000"}, "is not a whole number from 0 to 1024"},
+      {{"eval", "a.vt", "--heuristic", "pixelsum,bogus"}, "'bogus' is not one of random"},
+      {{"eval", "a.vt", "--budget", "5,x"}, "'x' is not a whole number"},
+      {{"eval", "a.vt", "--cache-frames", "0"}, "'0' is not a whole number from 1"},
+      {{"render", "a.vt", "--size", "4294967360x64"}, "'4294967360x64' is not WIDTHxHEIGHT"},
+      {{"render", "a.vt", "--size", "64x-64"}, "is not WIDTHxHEIGHT"},
+  };
+  for (const auto& [args, message] : cases) {
+    const auto result = vt(args);
+    EXPECT_EQ(result.exitCode, 2) << args[0] << " " << args[args.size() - 2] << ": " << result.err;
+    EXPECT_THAT(result.err, HasSubstr(message));
+    EXPECT_THAT(result.err, HasSubstr("Usage: vt " + args[0]));
+  }
+}
+
 TEST_F(VtCommand, HelpAndVersion) {
   const auto version = vt({"--version"});
   EXPECT_EQ(version.exitCode, 0);
@@ -206,8 +234,9 @@ TEST_F(VtCommand, FlyStreamsTheDefaultPathWithTheSameBytesForAnyThreadCount) {
   EXPECT_EQ(frames, 51);
   const auto bad =
       vt({"fly", texture, "--heuristic", "pixelsum*speed", "-o", (dir_ / "bad").string()});
-  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_EQ(bad.exitCode, 2);  // a bad argument (issue 20): the usage line too
   EXPECT_THAT(bad.err, HasSubstr("'speed' is not one of"));
+  EXPECT_THAT(bad.err, HasSubstr("Usage: vt fly"));
 }
 
 // Quality against the reference images (every page resident): streaming from the coarsest level

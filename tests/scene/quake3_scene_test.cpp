@@ -195,6 +195,51 @@ TEST_F(Quake3Scene, RejectsAMissingMapATruncatedMapAndABrokenArchiveNamingThem) 
   EXPECT_THAT([&] { load(); }, ThrowsMessage<InputError>(HasSubstr("pak2.pk3")));
 }
 
+// An archive entry (found by the map's shader name, or by a shader stage) must not lead the
+// extracted image out of the image folder, by name or through a symbolic link.
+TEST_F(Quake3Scene, RefusesImageNamesThatLeaveTheImageFolderNamingArchiveAndEntry) {
+  const auto writeWith = [&](const std::string& shader, const std::string& entry,
+                             const std::string& script) {
+    test::BspBuilder bsp = map();
+    bsp.shaders[0].name = shader;
+    std::filesystem::remove_all(scratch_ / "baseoa");
+    std::filesystem::create_directories(scratch_ / "baseoa");
+    const std::vector<uint8_t> bytes = bsp.build();
+    test::writeZip(scratch_ / "baseoa/pak0.pk3",
+                   {{"maps/test.bsp", std::string(bytes.begin(), bytes.end())},
+                    {entry, imageBytes(4, 4)},
+                    {"scripts/x.shader", script}});
+  };
+  const std::filesystem::path escaped = scratch_ / "escaped.tga";
+  // By the shader's own name, "../escaped" from images/.
+  writeWith("../escaped", "../escaped.tga", "");
+  EXPECT_THAT(
+      [&] { load(); },
+      ThrowsMessage<InputError>(HasSubstr(
+          "pak0.pk3:../escaped.tga: the name '../escaped.tga' leads outside the folder images/: it "
+          "has a '..' component")));
+  EXPECT_FALSE(std::filesystem::exists(escaped));
+  // Through a shader stage naming it.
+  writeWith("textures/base/stage", "textures/../../escaped.tga",
+            "textures/base/stage\n{\n { map textures/../../escaped.tga }\n}\n");
+  EXPECT_THAT([&] { load(); }, ThrowsMessage<InputError>(HasSubstr("it has a '..' component")));
+  EXPECT_FALSE(std::filesystem::exists(escaped));
+  // An absolute name.
+  // (A shader name holds at most 63 characters.)
+  const std::string absolute = "/tmp/vt-absolute-" + std::to_string(::getpid());
+  writeWith(absolute, absolute + ".tga", "");
+  EXPECT_THAT([&] { load(); }, ThrowsMessage<InputError>(HasSubstr("it is absolute")));
+  EXPECT_FALSE(std::filesystem::exists(absolute + ".tga"));
+  // A symbolic link inside the image folder leading out of it.
+  writeWith("textures/base/wall", "textures/base/wall.tga", "");
+  std::filesystem::create_directories(scratch_ / "images");
+  std::filesystem::create_directories(scratch_ / "elsewhere");
+  std::filesystem::create_directory_symlink(scratch_ / "elsewhere", scratch_ / "images/textures");
+  EXPECT_THAT([&] { load(); },
+              ThrowsMessage<InputError>(HasSubstr("images/textures is a symbolic link")));
+  EXPECT_TRUE(std::filesystem::is_empty(scratch_ / "elsewhere"));
+}
+
 TEST_F(Quake3Scene, RejectsAMapThatDrawsNothing) {
   test::BspBuilder bsp = map();
   bsp.surfaces = {surface(1, BspSurfaceType::kPolygon, 0, 4, 0, 6)};  // only sky
