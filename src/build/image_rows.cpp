@@ -139,7 +139,7 @@ void ImageRows::open(const Pending& pending) {
 
 void ImageRows::row(uint64_t y, RowRing& rows) {
   const uint32_t channels = layout_.description.channels;
-  uint8_t* out = rows.append(y);
+  rows.append(y);
 
   // Close placements that ended above this row, release the images no later row needs, open the
   // placements that start on this row.
@@ -158,15 +158,16 @@ void ImageRows::row(uint64_t y, RowRing& rows) {
 
   for (OpenImage& image : open_) {
     const Placement& p = *image.placement;
-    uint8_t* to = out + p.x * channels;
-    rows.wrote({p.x, p.x + p.width});
+    placed_.resize(uint64_t{p.width} * channels);
     if (image.whole != kStreamed) {
-      copyRegionRow(p, wholes_[image.whole].texels, y - p.y, channels, to);
-      continue;
+      copyRegionRow(p, wholes_[image.whole].texels, y - p.y, channels, placed_.data());
+    } else {
+      const auto line = static_cast<uint32_t>(y - p.y);
+      readScanlines(*image.input, p, line, line + 1, image.scanline.data());
+      convertTexels(image.scanline.data(), p.channels, placed_.data(), channels, p.width);
     }
-    const auto line = static_cast<uint32_t>(y - p.y);
-    readScanlines(*image.input, p, line, line + 1, image.scanline.data());
-    convertTexels(image.scanline.data(), p.channels, to, channels, p.width);
+    rows.declare({p.x, p.x + p.width});
+    rows.write(p.x, placed_.data(), p.width);
   }
 }
 

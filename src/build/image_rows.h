@@ -76,6 +76,7 @@ class ImageRows {
   std::vector<OpenImage> open_;
   std::vector<WholeImage> wholes_;
   std::vector<size_t> held_;  // wholes_ read and not yet released
+  std::vector<uint8_t> placed_;  // one placement's texels of the current row, texture channels
 };
 
 }  // namespace vt

@@ -43,7 +43,8 @@ uint8_t MipKernel::encode(float linear) const {
 }
 
 template <int Taps>
-void MipKernel::filterTexel(const Rows& rows, uint64_t x, uint64_t side, uint8_t* out) const {
+void MipKernel::filterTexel(const Rows& rows, uint64_t x, uint64_t side, uint64_t firstColumn,
+                            uint8_t* out) const {
   // Source columns 2X - reach .. 2X + 1 + reach, clamped to the level (the box filter's 2X and
   // 2X + 1 always lie inside).
   constexpr int kReach = (Taps - 2) / 2;
@@ -51,9 +52,10 @@ void MipKernel::filterTexel(const Rows& rows, uint64_t x, uint64_t side, uint8_t
   for (int k = 0; k < Taps; ++k) {
     const int64_t c = static_cast<int64_t>(2 * x) - kReach + k;
     column[static_cast<size_t>(k)] =
-        Taps == 2
-            ? static_cast<uint64_t>(c)
-            : static_cast<uint64_t>(std::clamp<int64_t>(c, 0, static_cast<int64_t>(side) - 1));
+        (Taps == 2
+             ? static_cast<uint64_t>(c)
+             : static_cast<uint64_t>(std::clamp<int64_t>(c, 0, static_cast<int64_t>(side) - 1))) -
+        firstColumn;
   }
   constexpr std::array<uint32_t, 4> kWeights =
       Taps == 2 ? std::array<uint32_t, 4>{1, 1, 0, 0} : kTentWeights;
@@ -79,21 +81,22 @@ void MipKernel::filterTexel(const Rows& rows, uint64_t x, uint64_t side, uint8_t
   }
 }
 
-void MipKernel::texel(const Rows& rows, uint64_t x, uint64_t side, uint8_t* out) const {
+void MipKernel::texel(const Rows& rows, uint64_t x, uint64_t side, uint8_t* out,
+                      uint64_t firstColumn) const {
   if (filter_ == MipFilter::kBox)
-    filterTexel<2>(rows, x, side, out);
+    filterTexel<2>(rows, x, side, firstColumn, out);
   else
-    filterTexel<4>(rows, x, side, out);
+    filterTexel<4>(rows, x, side, firstColumn, out);
 }
 
 void MipKernel::downsample(const Rows& rows, uint64_t side, uint64_t begin, uint64_t count,
-                           uint8_t* out) const {
+                           uint8_t* out, uint64_t firstColumn) const {
   if (filter_ == MipFilter::kBox) {
-    for (uint64_t x = begin; x < begin + count; ++x)
-      filterTexel<2>(rows, x, side, out + x * channels_);
+    for (uint64_t i = 0; i < count; ++i)
+      filterTexel<2>(rows, begin + i, side, firstColumn, out + i * channels_);
   } else {
-    for (uint64_t x = begin; x < begin + count; ++x)
-      filterTexel<4>(rows, x, side, out + x * channels_);
+    for (uint64_t i = 0; i < count; ++i)
+      filterTexel<4>(rows, begin + i, side, firstColumn, out + i * channels_);
   }
 }
 

@@ -26,18 +26,22 @@ class MipKernel {
   // Level m rows on each side of 2Y that the filter reads: 0 for box, 1 for tent.
   uint32_t reach() const { return filter_ == MipFilter::kTent ? 1 : 0; }
 
-  // Texels [begin, begin + count) of a row Y of level m - 1, written to out[begin * channels...].
+  // Texels [begin, begin + count) of a row Y of level m - 1, written to out[0 .. count * channels).
   // rows[k] is the level m row 2Y - reach + k, already clamped to the level, k in
-  // [0, 2 + 2 reach); `side` is the level m side.
+  // [0, 2 + 2 reach), from column `firstColumn` on: rows[k][(x - firstColumn) * channels] is
+  // column x. It must hold the columns the texels read, 2X - reach .. 2X + 1 + reach clamped to
+  // the level; `side` is the level m side.
   using Rows = std::array<const uint8_t*, 4>;
-  void downsample(const Rows& rows, uint64_t side, uint64_t begin, uint64_t count,
-                  uint8_t* out) const;
+  void downsample(const Rows& rows, uint64_t side, uint64_t begin, uint64_t count, uint8_t* out,
+                  uint64_t firstColumn = 0) const;
   // The single texel X of that row, written to out[0 .. channels).
-  void texel(const Rows& rows, uint64_t x, uint64_t side, uint8_t* out) const;
+  void texel(const Rows& rows, uint64_t x, uint64_t side, uint8_t* out,
+             uint64_t firstColumn = 0) const;
 
  private:
   template <int Taps>
-  void filterTexel(const Rows& rows, uint64_t x, uint64_t side, uint8_t* out) const;
+  void filterTexel(const Rows& rows, uint64_t x, uint64_t side, uint64_t firstColumn,
+                   uint8_t* out) const;
   uint8_t encode(float linear) const;
 
   MipFilter filter_;

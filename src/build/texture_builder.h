@@ -7,11 +7,15 @@
 // as a level holds all rows of a page row and its borders, those pages are cut, their NoiseValues
 // computed, and written at their place in the file, in parallel. No level is ever whole in memory.
 //
-// Memory bound: sum over levels of (P + 2 B' + 2 + 2 r) rows of side_m * c bytes, where
-// B' = max(B, 2 + r) and r is the filter's reach (0 box, 1 tent): below
-// 2 (P + 2 B' + 2 + 2 r) * side_L * c bytes, plus one page per thread, one scanline per open
-// image, and each image of region placements whole while rows pass its placements
-// (build/image_rows.h). For 16384^2 RGB texels, P = 128, B = 4, box: under 14 MB.
+// Memory bound: each level's ring holds C = P + 2 B' + 2 + 2 r rows, where B' = max(B, 2 + r)
+// and r is the filter's reach (0 box, 1 tent), but only in strips of 256 columns that an image
+// influenced within the last C rows (row_ring.h): at most, per level, the largest number of
+// strips the footprints of the images near one row cover, times C * 256 * c bytes, never more
+// than C rows of side_m * c bytes; plus a column table of side_m / 64 bytes per level, one page
+// per thread, one scanline per open image, and each image of region placements whole while rows
+// pass its placements (build/image_rows.h). ringBytesBound computes it from the layout. For
+// 16384^2 RGB texels covered by images, P = 128, B = 4, box: under 14 MB; one 1 x 1 image placed
+// near column 2^22: one strip per level, about 2 MB in all.
 
 #include <cstdint>
 #include <filesystem>
@@ -36,7 +40,7 @@ struct BuildReport {
 };
 
 // The bound of the documented formula above for the rings, in bytes.
-uint64_t ringBytesBound(const TextureDescription& description, MipFilter filter);
+uint64_t ringBytesBound(const Layout& layout);
 
 // Builds `output` from a validated layout. Checks first the rings' memory (at most
 // kMaxBuildRingBytes, common/resource_limits.h), the stored pages and the free disk space; writes

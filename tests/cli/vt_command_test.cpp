@@ -197,7 +197,7 @@ TEST_F(VtCommand, BuildPeakMemoryStaysFarBelowTheFinestLevel) {
   const long baselineKb = vt({"--version"}).maxRssKb;
   const Layout layout = readLayout(dir_ / "layout.json");
   const long boundKb =
-      static_cast<long>(ringBytesBound(layout.description, layout.filter) / 1024) + 32 * 1024;
+      static_cast<long>(ringBytesBound(layout) / 1024) + 32 * 1024;
   EXPECT_LT(build.maxRssKb - baselineKb, boundKb)
       << "build " << build.maxRssKb << " KB, vt --version " << baselineKb << " KB";
   EXPECT_LT(boundKb, 1024 * 1024 / 16);

@@ -73,12 +73,14 @@ Layout layoutOf(const std::string& text, ImageInfo image) {
 }
 
 TEST(ResourceLimits, BuildWhoseRowRingsNeedMoreMemoryThanTheLimitIsRefusedBeforeAnyAllocation) {
-  // The widest texture the format allows: 4096 * 2^15 texels a side, one small image in it.
+  // The widest texture the format allows, 4096 * 2^15 texels a side, with a small image repeated
+  // across its whole width: every 256-column strip of the finest level holds 4,114 rows.
   test::ScratchDirectory dir;
   const Layout layout = layoutOf(R"({"page_size": 4096, "side": 134217728,
-                                      "images": [{"file": "a.png", "x": 0, "y": 0}]})",
+                                      "images": [{"file": "a.png", "x": 0, "y": 0,
+                                                  "width": 134217728, "height": 64}]})",
                                  {64, 64, 3});
-  const uint64_t asked = ringBytesBound(layout.description, layout.filter);
+  const uint64_t asked = ringBytesBound(layout);
   EXPECT_GT(asked, kMaxBuildRingBytes);
   EXPECT_THAT([&] { buildVirtualTexture(layout, dir / "huge.vt", {.progress = false}); },
               ThrowsMessage<InputError>(

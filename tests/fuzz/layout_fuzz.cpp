@@ -31,7 +31,7 @@ ImageInfo imageNamed(const std::filesystem::path& image, const std::string& name
 void layoutFile(Input input) {
   const std::string_view text(reinterpret_cast<const char*>(input.data()), input.size());
   const Layout layout = parseLayout(text, "/nonexistent/vt-fuzz/layout.json", {}, imageNamed);
-  ringBytesBound(layout.description, layout.filter);
+  ringBytesBound(layout);
 }
 
 }  // namespace vt::fuzz
