@@ -219,7 +219,8 @@ FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const Cam
       if (!expected.empty()) {
         const ImageView got{screen.width, screen.height, color},
             want{screen.width, screen.height, expected};
-        frame.quality = FrameQuality{rmse(got, want), ssim(got, want), wssim(got, want)};
+        const SsimAndWssim structure = ssimAndWssim(got, want);
+        frame.quality = FrameQuality{rmse(got, want), structure.ssim, structure.wssim};
       }
       result.qualitySeconds += secondsSince(qualityStart);
     }

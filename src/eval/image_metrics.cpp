@@ -64,54 +64,96 @@ Window window(const SsimOptions& options) {
   return w;
 }
 
-// Mean of SSIM over the windows, each weighted by weight(centre x, centre y).
-template <class Weight>
-double meanSsim(const ImageView& a, const ImageView& b, const SsimOptions& options, Weight weight) {
+// Windowed sums of luminance x and y, their squares and product, for one row of window centres:
+// the window is separable, so each image row is first summed across (once), and a centre row
+// sums the `taps` rows of those sums below its window's first row.
+struct WindowMoments {
+  std::vector<double> x, y, xx, yy, xy;
+  explicit WindowMoments(size_t n) : x(n), y(n), xx(n), yy(n), xy(n) {}
+};
+
+// SSIM and WSSIM in one pass over the windows.
+SsimAndWssim meanSsims(const ImageView& a, const ImageView& b, const SsimOptions& options) {
   requireSameSize(a, b);
   constexpr double kC1 = (0.01 * 255) * (0.01 * 255), kC2 = (0.03 * 255) * (0.03 * 255);
   const Window w = window(options);
   const int taps = static_cast<int>(w.taps.size()), W = a.width, H = a.height;
   if (W < taps || H < taps) throw std::invalid_argument("images smaller than the SSIM window");
   const std::vector<double> x = luminance(a), y = luminance(b);
-  double sum = 0.0, weights = 0.0;
-  for (int cy = -w.first; cy + w.first + taps <= H; ++cy)
-    for (int cx = -w.first; cx + w.first + taps <= W; ++cx) {
+  const auto columns = static_cast<size_t>(W - taps + 1);  // window positions across
+
+  // Horizontal sums of the last `taps` image rows, in a ring: row r in slot r mod taps.
+  std::vector<WindowMoments> across(static_cast<size_t>(taps), WindowMoments(columns));
+  const auto sumAcross = [&](int row) {
+    WindowMoments& m = across[static_cast<size_t>(row % taps)];
+    const size_t first = static_cast<size_t>(row) * static_cast<size_t>(W);
+    for (size_t c = 0; c < columns; ++c) {
+      double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+      for (int i = 0; i < taps; ++i) {
+        const double k = w.taps[static_cast<size_t>(i)];
+        const double px = x[first + c + static_cast<size_t>(i)];
+        const double py = y[first + c + static_cast<size_t>(i)];
+        sx += k * px;
+        sy += k * py;
+        sxx += k * px * px;
+        syy += k * py * py;
+        sxy += k * px * py;
+      }
+      m.x[c] = sx;
+      m.y[c] = sy;
+      m.xx[c] = sxx;
+      m.yy[c] = syy;
+      m.xy[c] = sxy;
+    }
+  };
+
+  // WSSIM's weight (thesis 4.2.3.1): pixel centres at +0.5, as the WeightedPixel heuristic.
+  const double centreX = 0.5 * W, centreY = 0.5 * H, radius = std::hypot(centreX, centreY);
+  double sum = 0.0, weightedSum = 0.0, weights = 0.0;
+  size_t windows = 0;
+  for (int row = 0; row < taps - 1; ++row) sumAcross(row);
+  for (int top = 0; top + taps <= H; ++top) {
+    sumAcross(top + taps - 1);
+    const int cy = top - w.first;
+    for (size_t c = 0; c < columns; ++c) {
       double mx = 0, my = 0, xx = 0, yy = 0, xy = 0;
-      for (int j = 0; j < taps; ++j)
-        for (int i = 0; i < taps; ++i) {
-          const double k = w.taps[static_cast<size_t>(i)] * w.taps[static_cast<size_t>(j)];
-          const size_t p =
-              static_cast<size_t>(cy + w.first + j) * W + static_cast<size_t>(cx + w.first + i);
-          mx += k * x[p];
-          my += k * y[p];
-          xx += k * x[p] * x[p];
-          yy += k * y[p] * y[p];
-          xy += k * x[p] * y[p];
-        }
+      for (int j = 0; j < taps; ++j) {
+        const double k = w.taps[static_cast<size_t>(j)];
+        const WindowMoments& m = across[static_cast<size_t>((top + j) % taps)];
+        mx += k * m.x[c];
+        my += k * m.y[c];
+        xx += k * m.xx[c];
+        yy += k * m.yy[c];
+        xy += k * m.xy[c];
+      }
       const double vx = xx - mx * mx, vy = yy - my * my, cxy = xy - mx * my;
       const double q =
           ((2 * mx * my + kC1) * (2 * cxy + kC2)) / ((mx * mx + my * my + kC1) * (vx + vy + kC2));
-      const double k = weight(cx, cy);
-      sum += k * q;
-      weights += k;
+      const int cx = static_cast<int>(c) - w.first;
+      const double r = std::hypot(cx + 0.5 - centreX, cy + 0.5 - centreY);
+      const double weight = std::max(0.0, 1.0 - r / radius);
+      sum += q;
+      weightedSum += weight * q;
+      weights += weight;
+      ++windows;
     }
-  return weights > 0.0 ? sum / weights : 1.0;
+  }
+  return {windows > 0 ? sum / static_cast<double>(windows) : 1.0,
+          weights > 0.0 ? weightedSum / weights : 1.0};
 }
 
 }  // namespace
 
+SsimAndWssim ssimAndWssim(const ImageView& a, const ImageView& b, const SsimOptions& options) {
+  return meanSsims(a, b, options);
+}
+
 double ssim(const ImageView& a, const ImageView& b, const SsimOptions& options) {
-  return meanSsim(a, b, options, [](int, int) { return 1.0; });
+  return meanSsims(a, b, options).ssim;
 }
 
 double wssim(const ImageView& a, const ImageView& b, const SsimOptions& options) {
-  // Pixel centres at +0.5, as the WeightedPixel heuristic weighs pixels.
-  const double centreX = 0.5 * a.width, centreY = 0.5 * a.height;
-  const double radius = std::hypot(centreX, centreY);
-  return meanSsim(a, b, options, [&](int x, int y) {
-    const double r = std::hypot(x + 0.5 - centreX, y + 0.5 - centreY);
-    return std::max(0.0, 1.0 - r / radius);
-  });
+  return meanSsims(a, b, options).wssim;
 }
 
 }  // namespace vt

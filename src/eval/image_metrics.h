@@ -40,5 +40,11 @@ double rmse(const ImageView& a, const ImageView& b);
 // Throws std::invalid_argument for images of different sizes or smaller than the window.
 double ssim(const ImageView& a, const ImageView& b, const SsimOptions& options = {});
 double wssim(const ImageView& a, const ImageView& b, const SsimOptions& options = {});
+// Both at the cost of one: the window statistics are computed once, separably (a row pass, then
+// a column pass over a ring of `taps` rows), in O(width * height * taps).
+struct SsimAndWssim {
+  double ssim = 1.0, wssim = 1.0;
+};
+SsimAndWssim ssimAndWssim(const ImageView& a, const ImageView& b, const SsimOptions& options = {});
 
 }  // namespace vt
