@@ -21,6 +21,7 @@
 #include "common/error.h"
 #include "common/output_path.h"
 #include "common/posix_file.h"
+#include "common/resource_limits.h"
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
 #include "reference/precision_model_file.h"
@@ -89,11 +90,16 @@ void addCrosscheckCommand(CLI::App& app) {
       ->capture_default_str();
   command->callback([o] {
     requireOutputFolder(o->output, {o->texture, o->captures, o->mesh, o->path});
+    if (!o->captures.empty() && !o->texture.empty())
+      throw CLI::ValidationError("TEXTURE", "--captures takes none: each capture names its own");
+    // The report goes into a temporary folder that takes the output's place once it is complete
+    // (a verdict of mismatched pixels included): a failure leaves the previous report or none.
+    TemporaryFolder staging(o->output, "summary.json");
     if (!o->captures.empty()) {
-      if (!o->texture.empty())
-        throw CLI::ValidationError("TEXTURE", "--captures takes none: each capture names its own");
-      const CapturesCheckOptions options{o->captures, o->output, o->profile, o->threads};
-      if (!crosscheckCaptures(options))
+      const CapturesCheckOptions options{o->captures, staging.path(), o->profile, o->threads};
+      const bool passed = crosscheckCaptures(options);
+      staging.commit();
+      if (!passed)
         throw InputError(o->captures,
                          "crosscheck found unexplained pixels or unreadable "
                          "captures (see " +
@@ -111,6 +117,11 @@ void addCrosscheckCommand(CLI::App& app) {
         throw CLI::ValidationError("--mesh/--path", "a flythrough needs both");
       const Mesh mesh = loadObjMesh(o->mesh);
       const CameraPath path = CameraPath::load(o->path);
+      // Each frame drawn in two modes by two renderers.
+      requirePathPixelsFit(o->path,
+                           static_cast<uint64_t>((path.frameCount() + o->every - 1) / o->every),
+                           static_cast<uint64_t>(settings.viewport.width),
+                           static_cast<uint64_t>(settings.viewport.height), 4);
       for (int frame = 0; frame < path.frameCount(); frame += o->every) {
         char name[32];
         std::snprintf(name, sizeof name, "frame%04d", frame);
@@ -143,8 +154,7 @@ void addCrosscheckCommand(CLI::App& app) {
     GlFrameRenderer gl(cache);
     const oracle::Texture texture = oracle::Texture::open(o->texture);
     const oracle::PreparedCache prepared(texture, publicCacheState(cache));
-    const std::filesystem::path folder = o->output;
-    std::filesystem::create_directories(folder);
+    const std::filesystem::path folder = staging.path();
 
     std::vector<Mode> modes = {{"texelfetch-trilinear-need32", true, true, false},
                                {"linear-bilinear-need8", false, false, true}};
@@ -189,12 +199,14 @@ void addCrosscheckCommand(CLI::App& app) {
     summary["totals"] = totals.json();
     summary["passed"] = totals.unexplained == 0;
     writeFileAtomically(folder / "summary.json", summary.dump(2) + "\n");
+    staging.commit();
     std::printf("crosscheck: %s: %s\n", totals.line().c_str(),
                 totals.unexplained == 0 ? "passed" : "FAILED");
     std::fflush(stdout);
     if (totals.unexplained != 0)
-      throw InputError(o->texture, "crosscheck found unexplained pixels (see " +
-                                       (folder / "summary.json").string() + ")");
+      throw InputError(o->texture,
+                       "crosscheck found unexplained pixels (see " +
+                           (std::filesystem::path(o->output) / "summary.json").string() + ")");
   });
 }
 

@@ -17,6 +17,7 @@
 #include "cli/texture_report.h"
 #include "common/image_file.h"
 #include "common/output_path.h"
+#include "common/posix_file.h"
 #include "format/level_image.h"
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
@@ -33,7 +34,10 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 // Renders the box room from a cache state holding every page, with the oracle and with GL, and
 // compares colour and needbuffer.
-void renderAndCrossCheck(const VirtualTextureReader& reader, const std::filesystem::path& folder) {
+// Writes frame.png and needbuffer.png into `folder`, naming them in `shown` (the output folder that
+// `folder` becomes).
+void renderAndCrossCheck(const VirtualTextureReader& reader, const std::filesystem::path& folder,
+                         const std::filesystem::path& shown) {
   std::vector<uint64_t> pages(reader.storedPageCount());
   for (uint64_t slot = 0; slot < pages.size(); ++slot) pages[slot] = reader.storedPage(slot);
   const auto frames =
@@ -62,7 +66,7 @@ void renderAndCrossCheck(const VirtualTextureReader& reader, const std::filesyst
   writeImage8(folder / "needbuffer.png", width, height, 4, std::as_bytes(std::span(need)));
   std::cout << "oracle (profile " << reference::toString(settings.profile) << "): " << width
             << " x " << height << " in " << oracleSeconds * 1000.0 << " ms, wrote "
-            << (folder / "frame.png").string() << " and " << (folder / "needbuffer.png").string()
+            << (shown / "frame.png").string() << " and " << (shown / "needbuffer.png").string()
             << "\n";
   if (!context) return;
 
@@ -93,32 +97,38 @@ void addDemoCommand(CLI::App& app) {
       "demo", "Build the default scene's virtual texture, verify it and summarise it");
   command->add_option("-o,--output", options->output, "Output folder")->capture_default_str();
   command->callback([options] {
-    const std::filesystem::path folder = options->output;
-    requireOutputFolder(folder, {});
+    const std::filesystem::path shown = options->output;
+    requireOutputFolder(shown, {});
+    // Everything goes into a temporary folder that takes the output's place once complete: a
+    // failure leaves the previous output or none. Messages name the files by their final paths.
+    TemporaryFolder staging(shown, "scene.vt");
+    const std::filesystem::path folder = staging.path();
     auto start = std::chrono::steady_clock::now();
     const std::filesystem::path layoutFile = writeDemoScene(folder / "scene");
-    std::cout << "wrote the default scene " << layoutFile.string() << " in " << secondsSince(start)
-              << " s\n";
+    std::cout << "wrote the default scene " << (shown / "scene" / layoutFile.filename()).string()
+              << " in " << secondsSince(start) << " s\n";
 
     const Layout layout = readLayout(layoutFile);
     const std::filesystem::path file = folder / "scene.vt";
     const BuildReport build = buildVirtualTexture(layout, file);
-    std::cout << "built " << file.string() << " in " << build.seconds << " s\n";
+    std::cout << "built " << (shown / "scene.vt").string() << " in " << build.seconds << " s\n";
 
     start = std::chrono::steady_clock::now();
     const VirtualTextureReader reader(file);
     nlohmann::json report = textureReport(reader);
     report["verified_pages"] = verifyAllPages(reader);
+    report["file"] = (shown / "scene.vt").string();
     std::cout << "read and verified in " << secondsSince(start) << " s\n\n"
               << formatTextureReport(report) << '\n';
 
     const uint32_t level = reader.description().finestLevel() - 1;
-    const std::filesystem::path image = folder / ("level" + std::to_string(level) + ".png");
+    const std::string image = "level" + std::to_string(level) + ".png";
     const LevelImage pixels = assembleLevel(reader, level);
-    writeImage8(image, pixels.side, pixels.side, pixels.channels, pixels.texels);
-    std::cout << "wrote " << image.string() << " (level " << level << ", " << pixels.side << " x "
-              << pixels.side << " texels)\n\n";
-    renderAndCrossCheck(reader, folder);
+    writeImage8(folder / image, pixels.side, pixels.side, pixels.channels, pixels.texels);
+    std::cout << "wrote " << (shown / image).string() << " (level " << level << ", " << pixels.side
+              << " x " << pixels.side << " texels)\n\n";
+    renderAndCrossCheck(reader, folder, shown);
+    staging.commit();
   });
 }
 

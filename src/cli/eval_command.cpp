@@ -233,6 +233,10 @@ void addEvalCommand(CLI::App& app) {
                            " reference image for each of its " + std::to_string(path.frameCount()) +
                            " frames",
                        referenceBytes, kMaxReferenceImageBytes, " bytes");
+    // The reference run and one run per configuration, each drawing every frame.
+    requirePathPixelsFit(o->scene.path.empty() ? "the box room's path" : o->scene.path,
+                         static_cast<uint64_t>(path.frameCount()), static_cast<uint64_t>(v.width),
+                         static_cast<uint64_t>(v.height), 1 + configurations.size());
     options.settings.need8 = need8Encodes(reader.description().finestLevel());
     options.settings.profile = reference::parsePrecisionProfile(o->profile);
     options.jobs = o->jobs;

@@ -4,10 +4,12 @@
 // summary.json) that are the same bytes for any thread count, the run time separately
 // (timing.json), and optionally every n-th frame as an image.
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "cli/argument_checks.h"
 #include "cli/commands.h"
@@ -16,6 +18,7 @@
 #include "cli/size_argument.h"
 #include "common/output_path.h"
 #include "common/posix_file.h"
+#include "common/resource_limits.h"
 #include "eval/flight.h"
 #include "eval/flight_records.h"
 #include "gl/headless_context.h"
@@ -27,6 +30,24 @@
 #include "shader/needbuffer.h"
 
 namespace vt {
+namespace {
+
+// One folder is the other or lies inside it (compared as absolute paths, links resolved).
+bool nested(const std::filesystem::path& a, const std::filesystem::path& b) {
+  const auto resolved = [](const std::filesystem::path& p) {
+    // Without a trailing separator, whose empty last component would compare as a name.
+    const std::filesystem::path r = std::filesystem::weakly_canonical(std::filesystem::absolute(p));
+    return r.filename().empty() ? r.parent_path() : r;
+  };
+  const std::filesystem::path x = resolved(a), y = resolved(b);
+  const auto within = [](const std::filesystem::path& inner, const std::filesystem::path& outer) {
+    return std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end()).first ==
+           outer.end();
+  };
+  return within(x, y) || within(y, x);
+}
+
+}  // namespace
 
 void addFlyCommand(CLI::App& app) {
   struct Options {
@@ -84,7 +105,14 @@ void addFlyCommand(CLI::App& app) {
     std::vector<std::filesystem::path> inputs = o->scene.inputs();
     inputs.push_back(configurationOptions->file());
     requireOutputFolder(o->output, inputs);
-    if (!o->capture.empty()) requireOutputFolder(o->capture, inputs);
+    if (!o->capture.empty()) {
+      // Each folder takes its place whole once the flight is complete.
+      if (nested(o->capture, o->output))
+        throw CLI::ValidationError("--capture",
+                                   "the capture folder and the output folder may not lie in "
+                                   "one another");
+      requireOutputFolder(o->capture, inputs);
+    }
     FlightOptions options;
     options.settings.viewport = parseSize(o->scene.size);
     options.settings.threads = o->threads;
@@ -92,6 +120,11 @@ void addFlyCommand(CLI::App& app) {
     // The narrowest needbuffer encoding that fits.
     options.settings.need8 = need8Encodes(reader.description().finestLevel());
     const CameraPath path = o->scene.cameraPath();
+    requirePathPixelsFit(o->scene.path.empty() ? "the box room's path" : o->scene.path,
+                         static_cast<uint64_t>(path.frameCount()),
+                         static_cast<uint64_t>(options.settings.viewport.width),
+                         static_cast<uint64_t>(options.settings.viewport.height),
+                         o->quality ? 2 : 1);
     const Mesh mesh = o->scene.loadMesh();
 
     const FlightConfiguration configuration = configurationOptions->configuration();
@@ -113,10 +146,13 @@ void addFlyCommand(CLI::App& app) {
         return referenceImage(*everything, mesh, path.at(frame), options.settings);
       };
     }
-    // The frames and records go into a temporary folder that takes the output's place once the
-    // flight is complete: a failure, early or late, leaves the previous output or none.
+    // The frames and records, and the captures, go into temporary folders that take the outputs'
+    // places once the flight is complete: a failure, early or late, leaves the previous outputs or
+    // none. Frame 0 is always captured, so its manifest marks a previous capture folder.
     TemporaryFolder staging(o->output, "summary.json");
     const std::filesystem::path folder = staging.path();
+    std::optional<TemporaryFolder> captureStaging;
+    if (!o->capture.empty()) captureStaging.emplace(o->capture, "frame0000.json");
     if (o->imagesEvery > 0) {
       options.wantsColor = [&](int frame) { return frame % o->imagesEvery == 0; };
       options.observe = [&](const FlightFrameView& view) {
@@ -128,13 +164,12 @@ void addFlyCommand(CLI::App& app) {
     }
 
     if (!o->capture.empty()) {
-      std::filesystem::create_directories(o->capture);
       const std::string renderer =
           context ? context->renderer()
                   : "vt oracle (" + reference::toString(options.settings.profile) + ")";
       options.wantsCapture = [&](int frame) { return frame % o->captureEvery == 0; };
       options.capture = [&, renderer](const FlightCaptureView& view) {
-        writeFlightCapture(o->capture, view, reader, options.settings, renderer);
+        writeFlightCapture(captureStaging->path(), view, reader, options.settings, renderer);
       };
     }
 
@@ -157,6 +192,7 @@ void addFlyCommand(CLI::App& app) {
                                        {"quality_seconds", result.qualitySeconds}}
                                 .dump(2) +
                             "\n");
+    if (captureStaging) captureStaging->commit();
     staging.commit();
     const FrameStatistics& totals = result.totals;
     std::cout << "flew " << path.frameCount() << " frames in " << result.seconds << " s ("

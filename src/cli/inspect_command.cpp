@@ -15,6 +15,7 @@
 #include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/output_path.h"
+#include "common/resource_limits.h"
 #include "eval/flight.h"
 #include "eval/inspect_images.h"
 #include "eval/inspect_page.h"
@@ -84,6 +85,11 @@ void addInspectCommand(CLI::App& app) {
 
     FlightOptions options;
     options.settings.viewport = parseSize(o->scene.size);
+    // Every frame is flown; the frames shown are drawn again as reference images.
+    requirePathPixelsFit(o->scene.path.empty() ? "the box room's path" : o->scene.path,
+                         static_cast<uint64_t>(path.frameCount() + shown),
+                         static_cast<uint64_t>(options.settings.viewport.width),
+                         static_cast<uint64_t>(options.settings.viewport.height), 1);
     options.settings.need8 = need8Encodes(reader.description().finestLevel());
     options.keepAnalysis = true;
     const reference::ResidentTexture everything(reader);

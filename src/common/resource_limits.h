@@ -8,6 +8,7 @@
 // Each limit lies far above what the real inputs of this project use (next to each: the largest
 // we know) and far below what would exhaust a machine.
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -34,6 +35,23 @@ inline constexpr uint64_t kMaxWholeImageBytes = uint64_t{4} << 30;
 inline constexpr uint64_t kMaxMapVertices = uint64_t{1} << 24;
 inline constexpr uint64_t kMaxMapIndices = uint64_t{1} << 26;
 
+// Texel rows `vt retexture` walks to count the texels a layout's triangles reference
+// (layout_quality.h): each triangle's rows in its area, 2^27. The OpenArena maps need at most
+// 9.0 million (suspended; q3dm6ish 0.9 million). A triangle spans as many rows as its texture
+// has texels along its coordinates' range, so an image header claiming 65535^2 texels gives 65535
+// rows to each triangle of a face that spans the image once, and repeated coordinates multiply
+// that.
+inline constexpr uint64_t kMaxCoverageRows = uint64_t{1} << 27;
+
+// Pairs of faces that share a vertex position, counted at each position they share, that
+// `vt retexture` tries to join into charts (face_charts.h): 2^22; and the vertices it checks for
+// them (each pair's second face's indices): 2^26. The OpenArena maps need at most 50,306 pairs and
+// 268,155 vertices (czest2ctf; q3dm6ish 5,536 and 26,853). Every two faces meeting at a position
+// form a pair, so faces that share their vertices many times over would give pairs by the square
+// of their number.
+inline constexpr uint64_t kMaxChartPairs = uint64_t{1} << 22;
+inline constexpr uint64_t kMaxChartVertexChecks = uint64_t{1} << 26;
+
 // Bytes one file of a .pk3 archive may inflate to: 256 MiB (the largest file of OpenArena's
 // archives is a 10.2 MB map). A zip entry may claim, or inflate to, far more than its compressed
 // size.
@@ -52,6 +70,15 @@ inline constexpr int64_t kMaxCameraPathFrames = 1'000'000;
 // every run is compared with: 8 GiB. (The q3dm6ish tour, 1,500 frames of 320 x 200, keeps 384 MB;
 // a path of 10^6 frames at that size would keep 256 GB.)
 inline constexpr uint64_t kMaxReferenceImageBytes = uint64_t{8} << 30;
+
+// Pixels a command may draw along a camera path: its frames x the viewport's pixels x the passes
+// over the path (a flight with --quality also draws each frame's reference image; `vt eval` draws
+// the reference and every configuration; `vt golden` its frames once): 2^35, checked before the
+// first frame. The longest run of this project's own, chapter 4's indoor evaluation of
+// am_thornish at the thesis's 1280 x 800 (24 passes over 723 frames), draws 1.8 * 10^10 pixels;
+// at 320 x 200, as reproduced here, 1.1 * 10^9. A path of 10^6 frames (kMaxCameraPathFrames) at
+// 320 x 200 would draw 6.4 * 10^10 pixels, days of the oracle's time.
+inline constexpr uint64_t kMaxPathPixels = uint64_t{1} << 35;
 
 // Texels per side of a page cache texture, and pixels per side of a captured frame: 16384, the
 // GL_MAX_TEXTURE_SIZE of llvmpipe and of current GPUs. (The flights' default cache, 16 x 16 frames
@@ -90,6 +117,22 @@ inline uint32_t requirePageTablesFit(const std::filesystem::path& file, uint32_t
                      entries * kPageTableBytesPerEntry,
                      kMaxPageTableEntries * kPageTableBytesPerEntry, " bytes");
   return levelCount;
+}
+
+// Checks, before the first frame is drawn, that `passes` runs over the `frames` frames of the
+// camera path `file` at width x height pixels stay within kMaxPathPixels; throws limitError
+// naming the path and the pixels they would draw otherwise.
+inline void requirePathPixelsFit(const std::filesystem::path& file, uint64_t frames, uint64_t width,
+                                 uint64_t height, uint64_t passes) {
+  const uint64_t perPass = frames * width * height;  // below 2^20 * 2^14 * 2^14: no overflow
+  const uint64_t pixels =
+      passes > UINT64_MAX / std::max<uint64_t>(perPass, 1) ? UINT64_MAX : perPass * passes;
+  if (pixels > kMaxPathPixels)
+    throw limitError(file,
+                     "drawing its " + std::to_string(frames) + " frames at " +
+                         std::to_string(width) + " x " + std::to_string(height) + " " +
+                         std::to_string(passes) + (passes == 1 ? " time" : " times"),
+                     pixels, kMaxPathPixels, " pixels");
 }
 
 }  // namespace vt

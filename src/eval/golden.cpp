@@ -13,6 +13,7 @@
 #include "common/json_text.h"
 #include "common/output_path.h"
 #include "common/posix_file.h"
+#include "common/resource_limits.h"
 #include "eval/flight_records.h"
 #include "format/virtual_texture_reader.h"
 #include "reference/frame_comparison.h"
@@ -130,6 +131,9 @@ void generateGolden(const GoldenRequest& request, const std::filesystem::path& d
   const VirtualTextureReader reader(request.texture);
   const Mesh mesh = loadObjMesh(request.mesh);
   const CameraPath path = CameraPath::load(request.path);
+  requirePathPixelsFit(request.path, static_cast<uint64_t>(path.frameCount()),
+                       static_cast<uint64_t>(request.viewport.width),
+                       static_cast<uint64_t>(request.viewport.height), 1);
   // The set is written into a temporary folder that replaces `destination` once complete.
   TemporaryFolder staging(destination, "golden.json");
   const std::filesystem::path& folder = staging.path();
@@ -227,11 +231,15 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
   check.backend = gl ? "gl" : "oracle";
   check.profile = gl ? glProfile : profile;
   check.model = gl ? glModel.name : reference::toString(profile);
+  const CameraPath cameraPath = CameraPath::load(path);
+  requirePathPixelsFit(path, static_cast<uint64_t>(cameraPath.frameCount()),
+                       static_cast<uint64_t>(viewport.width),
+                       static_cast<uint64_t>(viewport.height), 1);
   TemporaryFolder staging(reportFolder, "check.json");  // replaces the report once complete
   const std::filesystem::path& report = staging.path();
   const std::vector<Recorded> recorded =
-      flyAndRecord(reader, loadObjMesh(mesh), CameraPath::load(path), configuration, viewport,
-                   check.profile, every, gl, gl ? &glModel : nullptr);
+      flyAndRecord(reader, loadObjMesh(mesh), cameraPath, configuration, viewport, check.profile,
+                   every, gl, gl ? &glModel : nullptr);
   const bool exact = !gl || glModel.pinned();
   nlohmann::json frames = nlohmann::json::array();
   for (const auto& expected : golden["frames"]) {

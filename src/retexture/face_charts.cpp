@@ -9,6 +9,8 @@
 #include <optional>
 #include <set>
 
+#include "common/resource_limits.h"
+
 namespace vt {
 namespace {
 
@@ -104,6 +106,14 @@ std::vector<Chart> buildCharts(const TexturedScene& scene, const ChartOptions& o
       if (faces.empty() || faces.back() != f) faces.push_back(f);
     }
   }
+  // Every two faces at a position form a pair: faces that share their vertices many times over
+  // would give pairs by the square of their number. Counted, and refused, before any is formed.
+  uint64_t visits = 0;
+  for (const auto& [position, faces] : facesAt) visits += faces.size() * (faces.size() - 1) / 2;
+  if (visits > kMaxChartPairs)
+    throw limitError(scene.name,
+                     "pairing the faces that share a vertex position (every two at each position)",
+                     visits, kMaxChartPairs, " pairs");
   std::set<std::pair<uint32_t, uint32_t>> pairs;
   for (const auto& [position, faces] : facesAt)
     for (size_t i = 0; i < faces.size(); ++i)
@@ -111,6 +121,14 @@ std::vector<Chart> buildCharts(const TexturedScene& scene, const ChartOptions& o
         if (faces[i] != faces[j] && scene.faces[faces[i]].texture == scene.faces[faces[j]].texture)
           pairs.emplace(std::min(faces[i], faces[j]), std::max(faces[i], faces[j]));
 
+  // Each pair checks the vertices of its second face (repetitionShift).
+  uint64_t checks = 0;
+  for (const auto& pair : pairs) checks += scene.faces[pair.second].indexCount;
+  if (checks > kMaxChartVertexChecks)
+    throw limitError(scene.name,
+                     "checking whether the faces of " + std::to_string(pairs.size()) +
+                         " pairs lie in one plane with one texture map",
+                     checks, kMaxChartVertexChecks, " vertices");
   std::vector<PlaneMapping> mappings;
   mappings.reserve(faceCount);
   for (const TexturedFace& face : scene.faces) mappings.push_back(planeMapping(scene, face));

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <set>
 
+#include "common/resource_limits.h"
 #include "format/page_address.h"
 
 namespace vt {
@@ -38,48 +39,126 @@ uint64_t pagesWithAncestors(std::vector<uint64_t> pages, uint64_t pagesPerSide) 
   return total;
 }
 
-// Texels of the area (local coordinates) whose squares overlap a triangle of its faces.
+// A triangle of a face in its area's texel coordinates (the area's first texel at the origin).
+struct AreaTriangle {
+  glm::dvec2 p[3];
+  double sign = 1.0;                       // orients the edge functions so that the inside is >= 0
+  int64_t x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // texels [x0, x1) x [y0, y1) of its bounds, clamped
+
+  AreaTriangle(const TexturedScene& scene, const Retexturing& layout,
+               const std::vector<glm::vec2>& uvs, const TextureArea& area, uint32_t first) {
+    const auto side = static_cast<double>(layout.side);
+    for (int k = 0; k < 3; ++k)
+      p[k] = glm::dvec2(uvs[scene.indices[first + k]]) * side -
+             glm::dvec2(static_cast<double>(area.x), static_cast<double>(area.y));
+    const double orientation =
+        (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x);
+    if (orientation == 0.0) return;  // no area, no texel: empty bounds
+    sign = orientation < 0.0 ? -1.0 : 1.0;
+    const auto clampTo = [](double v, uint32_t n) {
+      return static_cast<int64_t>(std::clamp(v, 0.0, static_cast<double>(n)));
+    };
+    x0 = clampTo(std::floor(std::min({p[0].x, p[1].x, p[2].x})), area.width);
+    x1 = clampTo(std::ceil(std::max({p[0].x, p[1].x, p[2].x})), area.width);
+    y0 = clampTo(std::floor(std::min({p[0].y, p[1].y, p[2].y})), area.height);
+    y1 = clampTo(std::ceil(std::max({p[0].y, p[1].y, p[2].y})), area.height);
+  }
+
+  // Texel (x, y)'s square overlaps the triangle: inside every edge's half-plane (the bounds test
+  // is the rows and columns walked).
+  bool overlaps(int64_t x, int64_t y) const {
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec2 a = p[k], b = p[(k + 1) % 3];
+      const glm::dvec2 normal = sign * glm::dvec2(-(b.y - a.y), b.x - a.x);
+      // The square's corner furthest along the inward normal.
+      const double cx = static_cast<double>(x) + (normal.x > 0.0 ? 1.0 : 0.0);
+      const double cy = static_cast<double>(y) + (normal.y > 0.0 ? 1.0 : 0.0);
+      if (normal.x * (cx - a.x) + normal.y * (cy - a.y) < 0.0) return false;
+    }
+    return true;
+  }
+
+  // The texels of row y that overlap, [first, last] (empty when first > last). A row of a convex
+  // triangle overlaps one run of texels: the x-extent of the triangle within the row's strip
+  // [y, y + 1] gives it; the texel test then settles the run's ends exactly as it would texel by
+  // texel.
+  std::pair<int64_t, int64_t> run(int64_t y) const {
+    double lo = 1e300, hi = -1e300;
+    const auto extend = [&](double x) { lo = std::min(lo, x), hi = std::max(hi, x); };
+    const auto top = static_cast<double>(y), bottom = top + 1.0;
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec2 a = p[k], b = p[(k + 1) % 3];
+      if (a.y >= top && a.y <= bottom) extend(a.x);
+      for (const double line : {top, bottom})
+        if ((a.y - line) * (b.y - line) < 0.0)
+          extend(a.x + (line - a.y) * (b.x - a.x) / (b.y - a.y));
+    }
+    if (lo > hi) return {1, 0};
+    int64_t first = std::max(x0, static_cast<int64_t>(std::ceil(lo)) - 1);
+    int64_t last = std::min(x1 - 1, static_cast<int64_t>(std::floor(hi)));
+    while (first > x0 && overlaps(first - 1, y)) --first;
+    while (first <= last && !overlaps(first, y)) ++first;
+    while (last < x1 - 1 && overlaps(last + 1, y)) ++last;
+    while (last >= first && !overlaps(last, y)) --last;
+    return {first, last};
+  }
+};
+
+// Texels of the area (local coordinates) whose squares overlap a triangle of its faces, counted
+// row by row: the runs of the triangles that span a row, merged where they meet. Work grows with
+// the rows the triangles span and memory with the triangles, never with the texels of the area
+// (an image header may claim 65535^2 of them).
 uint64_t referencedTexels(const TexturedScene& scene, const Retexturing& layout,
                           const std::vector<glm::vec2>& uvs, const TextureArea& area,
                           const std::vector<uint32_t>& faces) {
-  std::vector<uint8_t> touched(uint64_t{area.width} * area.height, 0);
-  const auto side = static_cast<double>(layout.side);
+  std::vector<AreaTriangle> triangles;
   for (const uint32_t f : faces) {
     const TexturedFace& face = scene.faces[f];
     for (uint32_t t = face.firstIndex; t < face.firstIndex + face.indexCount; t += 3) {
-      glm::dvec2 p[3];
-      for (int k = 0; k < 3; ++k)
-        p[k] = glm::dvec2(uvs[scene.indices[t + k]]) * side -
-               glm::dvec2(static_cast<double>(area.x), static_cast<double>(area.y));
-      // Edge functions oriented so the inside is >= 0.
-      const double orientation =
-          (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x);
-      if (orientation == 0.0) continue;  // no area, no texel
-      const double sign = orientation < 0.0 ? -1.0 : 1.0;
-      const auto clampTo = [](double v, uint32_t n) {
-        return static_cast<int64_t>(std::clamp(v, 0.0, static_cast<double>(n)));
-      };
-      const int64_t x0 = clampTo(std::floor(std::min({p[0].x, p[1].x, p[2].x})), area.width);
-      const int64_t x1 = clampTo(std::ceil(std::max({p[0].x, p[1].x, p[2].x})), area.width);
-      const int64_t y0 = clampTo(std::floor(std::min({p[0].y, p[1].y, p[2].y})), area.height);
-      const int64_t y1 = clampTo(std::ceil(std::max({p[0].y, p[1].y, p[2].y})), area.height);
-      for (int64_t y = y0; y < y1; ++y)
-        for (int64_t x = x0; x < x1; ++x) {
-          bool overlaps = true;
-          for (int k = 0; k < 3 && overlaps; ++k) {
-            const glm::dvec2 a = p[k], b = p[(k + 1) % 3];
-            const glm::dvec2 normal = sign * glm::dvec2(-(b.y - a.y), b.x - a.x);
-            // The square's corner furthest along the inward normal.
-            const double cx = static_cast<double>(x) + (normal.x > 0.0 ? 1.0 : 0.0);
-            const double cy = static_cast<double>(y) + (normal.y > 0.0 ? 1.0 : 0.0);
-            overlaps = normal.x * (cx - a.x) + normal.y * (cy - a.y) >= 0.0;
-          }
-          if (overlaps)
-            touched[static_cast<uint64_t>(y) * area.width + static_cast<uint64_t>(x)] = 1;
-        }
+      AreaTriangle triangle(scene, layout, uvs, area, t);
+      if (triangle.y0 < triangle.y1) triangles.push_back(triangle);
     }
   }
-  return static_cast<uint64_t>(std::count(touched.begin(), touched.end(), uint8_t{1}));
+  std::sort(triangles.begin(), triangles.end(),
+            [](const AreaTriangle& a, const AreaTriangle& b) { return a.y0 < b.y0; });
+  uint64_t texels = 0;
+  std::vector<const AreaTriangle*> spanning;  // the triangles that span row y
+  std::vector<std::pair<int64_t, int64_t>> runs;
+  size_t next = 0;
+  for (int64_t y = 0; next < triangles.size() || !spanning.empty(); ++y) {
+    if (spanning.empty()) y = std::max(y, triangles[next].y0);  // skip rows no triangle spans
+    for (; next < triangles.size() && triangles[next].y0 <= y; ++next)
+      spanning.push_back(&triangles[next]);
+    runs.clear();
+    for (const AreaTriangle* triangle : spanning) {
+      const auto run = triangle->run(y);
+      if (run.first <= run.second) runs.push_back(run);
+    }
+    std::sort(runs.begin(), runs.end());
+    for (size_t i = 0; i < runs.size();) {
+      auto [first, last] = runs[i];
+      for (++i; i < runs.size() && runs[i].first <= last + 1; ++i)
+        last = std::max(last, runs[i].second);
+      texels += static_cast<uint64_t>(last - first + 1);
+    }
+    std::erase_if(spanning, [y](const AreaTriangle* triangle) { return triangle->y1 <= y + 1; });
+  }
+  return texels;
+}
+
+// The texel rows that referencedTexels walks for every area: each triangle's rows.
+uint64_t coverageRows(const TexturedScene& scene, const Retexturing& layout,
+                      const std::vector<glm::vec2>& uvs) {
+  uint64_t rows = 0;
+  for (size_t f = 0; f < scene.faces.size(); ++f) {
+    const TexturedFace& face = scene.faces[f];
+    const TextureArea& area = layout.areas[layout.faceArea[f]];
+    for (uint32_t t = face.firstIndex; t < face.firstIndex + face.indexCount; t += 3) {
+      const AreaTriangle triangle(scene, layout, uvs, area, t);
+      rows += static_cast<uint64_t>(triangle.y1 - triangle.y0);
+    }
+  }
+  return rows;
 }
 
 }  // namespace
@@ -88,6 +167,14 @@ LayoutQuality measureLayout(const TexturedScene& scene, const Retexturing& layou
                             const std::vector<glm::vec2>& uvs) {
   std::vector<std::vector<uint32_t>> facesOfArea(layout.areas.size());
   for (uint32_t f = 0; f < scene.faces.size(); ++f) facesOfArea[layout.faceArea[f]].push_back(f);
+  // The rows bound the work of measuring the referenced texels: refused before it starts.
+  const uint64_t rows = coverageRows(scene, layout, uvs);
+  if (rows > kMaxCoverageRows)
+    throw limitError(scene.name,
+                     "measuring the texels its faces reference (a run of texels in each texel "
+                     "row of each triangle, " +
+                         layout.method + " layout)",
+                     rows, kMaxCoverageRows, " rows");
   const std::vector<uint64_t> pages = touchedPages(layout);
   LayoutQuality quality{.finestPages = pages.size(),
                         .allPages = pagesWithAncestors(pages, layout.side / layout.pageSize)};

@@ -36,7 +36,20 @@ class HostileInput : public ::testing::Test {
   test::CommandResult vt(const std::vector<std::string>& args) {
     return test::runCommand(VT_EXECUTABLE, args, dir_.path());
   }
+  // `vt` run by the shell after `limits` (ulimit commands). SIGXFSZ is ignored, so a write beyond
+  // `ulimit -f` fails (EFBIG) as on a full disk instead of killing the process.
+  test::CommandResult vtUnder(const std::string& limits, const std::vector<std::string>& args) {
+    std::vector<std::string> shell = {"-c", "trap '' XFSZ; " + limits + "; exec \"$0\" \"$@\"",
+                                      VT_EXECUTABLE};
+    shell.insert(shell.end(), args.begin(), args.end());
+    return test::runCommand("/bin/sh", shell, dir_.path());
+  }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  // No entry of the scratch folder has `name` in its name (the output, or a temporary beside it).
+  void expectNothingNamed(const std::string& name) const {
+    for (const auto& entry : std::filesystem::directory_iterator(dir_.path()))
+      EXPECT_THAT(entry.path().filename().string(), Not(HasSubstr(name))) << "left behind";
+  }
   std::string fifo(const std::string& name) const {
     EXPECT_EQ(::mkfifo(path(name).c_str(), 0600), 0);
     return path(name);
@@ -181,13 +194,37 @@ TEST_F(HostileInput, AFailedFlightLeavesNoOutput) {
       EXPECT_THAT(entry.path().filename().string(), Not(HasSubstr(out))) << "left behind";
   };
   // Early: the root page, loaded before the first frame.
-  expectNothingLeft(
-      vt({"fly", corrupt("root.vt", dataOffset), "--size", "32x32", "-o", path("early")}), "early");
+  expectNothingLeft(vt({"fly", corrupt("root.vt", dataOffset), "--size", "32x32", "--capture",
+                        path("early-captures"), "-o", path("early")}),
+                    "early");
   // Late: the pages of the finest level (beyond the 21 of levels 0 to 2), streamed after frames
-  // were drawn and written.
-  expectNothingLeft(vt({"fly", corrupt("finest.vt", dataOffset + 21 * pageBytes), "--size", "32x32",
-                        "--images-every", "1", "-o", path("late")}),
-                    "late");
+  // were drawn, captured and written.
+  expectNothingLeft(
+      vt({"fly", corrupt("finest.vt", dataOffset + 21 * pageBytes), "--size", "32x32",
+          "--images-every", "1", "--capture", path("late-captures"), "-o", path("late")}),
+      "late");
+  // Each folder takes its place whole, so one may not lie in the other (a bad argument).
+  const auto nested = vt(
+      {"fly", path("t.vt"), "--size", "16x16", "--capture", path("n/captures"), "-o", path("n")});
+  EXPECT_EQ(nested.exitCode, 2) << nested.err;
+  EXPECT_THAT(nested.err, HasSubstr("may not lie in one another"));
+}
+
+// Class 7: `vt crosscheck -o` and `vt demo` that fail part way (here on a disk that fills up:
+// files of at most 2 KiB) leave no output folder and nothing beside it.
+TEST_F(HostileInput, ACrosscheckOrDemoThatFailsLeavesNoOutput) {
+  const auto flown = vt({"fly", path("t.vt"), "--size", "32x32", "--capture", path("captures"),
+                         "--capture-every", "10", "-o", path("f")});
+  ASSERT_EQ(flown.exitCode, 0) << flown.err;
+  const auto checked =
+      vtUnder("ulimit -f 4", {"crosscheck", "--captures", path("captures"), "-o", path("check")});
+  EXPECT_EQ(checked.exitCode, 1) << checked.err;
+  EXPECT_THAT(checked.err, HasSubstr("File too large"));
+  expectNothingNamed("check");
+  const auto demo = vtUnder("ulimit -f 4", {"demo", "-o", path("demo")});
+  EXPECT_EQ(demo.exitCode, 1) << demo.err;
+  EXPECT_THAT(demo.err, HasSubstr("File too large"));
+  expectNothingNamed("demo");
 }
 
 // Class 7: a map whose entity lump is malformed, read after its images were extracted, leaves no
@@ -255,6 +292,50 @@ TEST_F(HostileInput, AnEvaluationKeepingTooManyReferenceImagesIsRefusedUpFront) 
     "yaw": 0}]})";
   expectOneLine(vt({"fly", path("t.vt"), "--path", path("nopitch.json"), "-o", path("f")}),
                 path("nopitch.json"), "not a camera path: key 'pitch' not found");
+}
+
+// Class 5: a path of a million frames (a 150-byte file) is refused before the first frame with
+// the pixels it would draw; `vt eval` counts every configuration's run over the path.
+TEST_F(HostileInput, APathDrawingTooManyPixelsIsRefusedUpFront) {
+  const auto pathOf = [&](const std::string& name, int frames) {
+    std::ofstream(path(name)) << R"({"keyframes": [
+      {"frame": 0, "position": [6, 1.6, 4.5], "yaw": 0, "pitch": 0},
+      {"frame": )" << frames - 1
+                              << R"(, "position": [6, 1.6, 4.5], "yaw": 90, "pitch": 0}]})";
+    return path(name);
+  };
+  expectOneLine(vt({"fly", path("t.vt"), "--path", pathOf("long.json", 1'000'000), "--size",
+                    "320x200", "-o", path("out")}),
+                path("long.json"),
+                "drawing its 1000000 frames at 320 x 200 1 time asks for 64000000000 pixels, the "
+                "limit is 34359738368 pixels");
+  // 33,000 frames keep 8.4 GB of reference images, within that limit; 18 runs draw too much.
+  expectOneLine(
+      vt({"eval", path("t.vt"), "--path", pathOf("eval.json", 33'000), "--size", "320x200",
+          "--budget", "1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17", "-o", path("out")}),
+      path("eval.json"),
+      "drawing its 33000 frames at 320 x 200 18 times asks for 38016000000 pixels, the "
+      "limit is 34359738368 pixels");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out"));
+}
+
+// Class 3: an image whose 18-byte header claims 65535^2 texels, on a face that spans it once, is
+// measured by texel rows: `vt retexture` stays within 3 GB of address space (it needed a byte
+// per claimed texel, 4.3 GB, and failed with std::bad_alloc).
+TEST_F(HostileInput, AnImageHeaderClaimingBillionsOfTexelsIsMeasuredByRows) {
+  std::vector<std::byte> tga(18, std::byte{0});  // uncompressed true colour, 24 bits, no data
+  tga[2] = std::byte{2};
+  for (const size_t at : {12u, 13u, 14u, 15u}) tga[at] = std::byte{0xff};
+  tga[16] = std::byte{24};
+  test::writeBytes(path("huge.tga"), tga);
+  std::ofstream(path("huge.mtl")) << "newmtl m\nmap_Kd huge.tga\n";
+  std::ofstream(path("huge.obj")) << "mtllib huge.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                     "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl m\n"
+                                     "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+  const auto result = vtUnder("ulimit -v 3000000",
+                              {"retexture", path("huge.obj"), "-o", path("out"), "--no-coherence"});
+  EXPECT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_THAT(result.out, HasSubstr("50.0% of their texels referenced"));
 }
 
 }  // namespace

@@ -16,10 +16,12 @@
 #include "common/little_endian.h"
 #include "format/file_header.h"
 #include "format/page_address.h"
+#include "retexture/face_charts.h"
 #include "scene/camera_path.h"
 #include "scene/package_files.h"
 #include "scene/quake3_fixtures.h"
 #include "scene/quake3_scene.h"
+#include "scene/texture_resolver.h"
 #include "test_support.h"
 
 namespace vt {
@@ -224,6 +226,69 @@ TEST(ResourceLimits, ArchiveEntryInflatingBeyondWhatItClaimsStopsThere) {
       PackageFiles::fromMemory("bomb.pk3", archiveClaiming(dir, std::string(16 << 20, '\0'), 10));
   EXPECT_THAT([&] { files.read("maps/a.bsp"); },
               ThrowsMessage<InputError>(StartsWith("bomb.pk3: entry 'maps/a.bsp': ")));
+}
+
+// A shader script is tokenised whole, so a 5 MiB one (of spaces, deflated to a few KB) is refused
+// from the archive's directory before it is inflated.
+TEST(ResourceLimits, ShaderScriptLargerThanTheLimitIsRefusedBeforeTokenising) {
+  test::ScratchDirectory dir;
+  test::writeZip(dir / "big.pk3", {{"scripts/big.shader", std::string(5 << 20, ' ')}});
+  const PackageFiles files = PackageFiles::fromFolders({dir.path()});
+  EXPECT_THAT(
+      [&] { TextureResolver resolver(files); },
+      ThrowsMessage<InputError>(
+          (dir / "big.pk3").string() +
+          ": entry 'scripts/big.shader' asks for 5242880 bytes, the limit is 4194304 bytes"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Retexturing
+
+// `faces` faces of one texture, each a fan of `triangles` triangles around the origin, all in the
+// plane z = 0 with one texture map: every two meet at the origin, and with `shared`, at every
+// vertex.
+TexturedScene facesMeetingAtTheOrigin(uint32_t faces, uint32_t triangles, bool shared) {
+  TexturedScene scene;
+  scene.name = "fans";
+  SourceTexture texture;
+  texture.name = "t", texture.width = 64, texture.height = 64;
+  scene.textures.push_back(texture);
+  for (uint32_t f = 0; f < faces; ++f) {
+    const auto first = static_cast<uint32_t>(scene.indices.size());
+    const auto center = static_cast<uint32_t>(scene.positions.size());
+    scene.positions.emplace_back(0.0f);
+    scene.uvs.emplace_back(0.0f);
+    for (uint32_t k = 0; k <= triangles; ++k) {
+      // Points on a line, distinct between faces unless shared.
+      const float x = 1.0f + static_cast<float>(k),
+                  y = shared ? 1.0f : 1.0f + static_cast<float>(f);
+      scene.positions.emplace_back(x, y, 0.0f);
+      scene.uvs.emplace_back(x / 64.0f, y / 64.0f);
+    }
+    for (uint32_t k = 0; k < triangles; ++k)
+      scene.indices.insert(scene.indices.end(), {center, center + 1 + k, center + 2 + k});
+    scene.faces.push_back({.texture = 0, .firstIndex = first, .indexCount = 3 * triangles});
+  }
+  return scene;
+}
+
+// Faces that share their vertices many times over (a map whose surfaces name one index range
+// again and again) would pair every two faces at every shared position: refused from the count
+// before any pair is formed, and so are pairs whose vertex checks would exceed their limit.
+TEST(ResourceLimits, FacesSharingVerticesManyTimesOverAreRefusedBeforeTheyArePaired) {
+  // 300 faces at 102 shared positions: 102 * 300 * 299 / 2 pairs.
+  EXPECT_THAT([&] { buildCharts(facesMeetingAtTheOrigin(300, 100, true), ChartOptions{}); },
+              ThrowsMessage<InputError>("fans: pairing the faces that share a vertex position "
+                                        "(every two at each position) asks for 4574700 pairs, "
+                                        "the limit is 4194304 pairs"));
+  // 2,000 faces meeting at the origin only: 1,999,000 pairs of 12 triangles each.
+  EXPECT_THAT(
+      [&] { buildCharts(facesMeetingAtTheOrigin(2000, 12, false), ChartOptions{}); },
+      ThrowsMessage<InputError>("fans: checking whether the faces of 1999000 pairs lie in one "
+                                "plane with one texture map asks for 71964000 vertices, the limit "
+                                "is 67108864 vertices"));
+  // Fewer make ordinary charts.
+  EXPECT_EQ(buildCharts(facesMeetingAtTheOrigin(30, 100, true), ChartOptions{}).size(), 1u);
 }
 
 // ---------------------------------------------------------------------------------------------
