@@ -72,13 +72,6 @@ std::optional<glm::i64vec2> repetitionShift(const TexturedScene& scene, const Pl
   return glm::i64vec2(*shift);
 }
 
-// The rectangle of `chart` moved by `texels`.
-Chart shifted(Chart chart, glm::i64vec2 texels) {
-  chart.x0 += texels.x, chart.x1 += texels.x, chart.y0 += texels.y, chart.y1 += texels.y;
-  for (glm::i64vec2& offset : chart.offsets) offset += texels;
-  return chart;
-}
-
 }  // namespace
 
 Chart faceChart(const TexturedScene& scene, uint32_t face, uint32_t margin) {
@@ -133,42 +126,69 @@ std::vector<Chart> buildCharts(const TexturedScene& scene, const ChartOptions& o
   mappings.reserve(faceCount);
   for (const TexturedFace& face : scene.faces) mappings.push_back(planeMapping(scene, face));
 
-  // Each face's chart and its offset (texels) from its own unrolled space into the chart's.
-  std::vector<uint32_t> chartOf(faceCount);
-  std::iota(chartOf.begin(), chartOf.end(), 0u);
-  std::vector<glm::i64vec2> offsetOf(faceCount, glm::i64vec2(0));
+  // Charts joined as a forest: each chart points to the chart it joined, with the shift from its
+  // space into that one's, so a join copies no faces. A face's chart is its root (chart f starts
+  // as face f alone) and its offset the sum of the shifts on the way; lookups shorten the way.
+  // A chart's faces are a list, in the order they joined: a root's list starts at its own face.
+  std::vector<uint32_t> joined(faceCount);
+  std::iota(joined.begin(), joined.end(), 0u);
+  std::vector<glm::i64vec2> shiftTo(faceCount, glm::i64vec2(0));
+  constexpr uint32_t kEnd = UINT32_MAX;
+  std::vector<uint32_t> nextFace(faceCount, kEnd), lastFace(faceCount);
+  std::iota(lastFace.begin(), lastFace.end(), 0u);
+  const auto chartOf = [&](uint32_t face) {
+    glm::i64vec2 offset(0);
+    uint32_t root = face;
+    for (; joined[root] != root; root = joined[root]) offset += shiftTo[root];
+    glm::i64vec2 remaining = offset;
+    for (uint32_t c = face; joined[c] != c;) {
+      const uint32_t up = joined[c];
+      const glm::i64vec2 step = shiftTo[c];
+      joined[c] = root;
+      shiftTo[c] = remaining;
+      remaining -= step;
+      c = up;
+    }
+    return std::pair{root, offset};
+  };
   for (const auto& [p, q] : pairs) {
-    const uint32_t a = chartOf[p], b = chartOf[q];
+    const auto [a, offsetP] = chartOf(p);
+    const auto [b, offsetQ] = chartOf(q);
     if (a == b) continue;
     const auto shift = repetitionShift(scene, mappings[p], scene.faces[q]);
     if (!shift) continue;
     // q's coordinates + shift are p's; chart b's space -> chart a's space:
     const SourceTexture& texture = scene.textures[scene.faces[p].texture];
     const glm::i64vec2 move =
-        *shift * glm::i64vec2(texture.width, texture.height) + offsetOf[p] - offsetOf[q];
-    const Chart moved = shifted(charts[b], move);
-    Chart merged = charts[a];
-    merged.x0 = std::min(merged.x0, moved.x0);
-    merged.y0 = std::min(merged.y0, moved.y0);
-    merged.x1 = std::max(merged.x1, moved.x1);
-    merged.y1 = std::max(merged.y1, moved.y1);
+        *shift * glm::i64vec2(texture.width, texture.height) + offsetP - offsetQ;
+    Chart merged;
+    merged.texture = charts[a].texture;
+    merged.x0 = std::min(charts[a].x0, charts[b].x0 + move.x);
+    merged.y0 = std::min(charts[a].y0, charts[b].y0 + move.y);
+    merged.x1 = std::max(charts[a].x1, charts[b].x1 + move.x);
+    merged.y1 = std::max(charts[a].y1, charts[b].y1 + move.y);
     if (merged.width() > options.maxSide || merged.height() > options.maxSide ||
         double(area(merged)) > (1.0 + options.slack) * double(area(charts[a]) + area(charts[b])))
       continue;
-    for (size_t k = 0; k < moved.faces.size(); ++k) {
-      chartOf[moved.faces[k]] = a;
-      offsetOf[moved.faces[k]] = moved.offsets[k];
-    }
-    merged.faces.insert(merged.faces.end(), moved.faces.begin(), moved.faces.end());
-    merged.offsets.insert(merged.offsets.end(), moved.offsets.begin(), moved.offsets.end());
-    charts[a] = std::move(merged);
-    charts[b].faces.clear();
-    charts[b].offsets.clear();
+    charts[a].x0 = merged.x0, charts[a].y0 = merged.y0;
+    charts[a].x1 = merged.x1, charts[a].y1 = merged.y1;
+    joined[b] = a;
+    shiftTo[b] = move;
+    nextFace[lastFace[a]] = b;
+    lastFace[a] = lastFace[b];
   }
 
   std::vector<Chart> result;
-  for (Chart& chart : charts)
-    if (!chart.faces.empty()) result.push_back(std::move(chart));
+  for (uint32_t c = 0; c < faceCount; ++c) {
+    if (joined[c] != c) continue;
+    Chart& chart = result.emplace_back(std::move(charts[c]));
+    chart.faces.clear();
+    chart.offsets.clear();
+    for (uint32_t face = c; face != kEnd; face = nextFace[face]) {
+      chart.faces.push_back(face);
+      chart.offsets.push_back(chartOf(face).second);
+    }
+  }
   return result;
 }
 

@@ -309,6 +309,13 @@ TEST_F(HostileInput, APathDrawingTooManyPixelsIsRefusedUpFront) {
                 path("long.json"),
                 "drawing its 1000000 frames at 320 x 200 1 time asks for 64000000000 pixels, the "
                 "limit is 34359738368 pixels");
+  // A tiny screen does not make a frame free: each counts as at least kFrameFixedPixels.
+  // (10^6 frames of 16 x 16, ten times over, would pass as 2.6 * 10^9 pixels: hours.)
+  expectOneLine(vt({"eval", path("t.vt"), "--path", pathOf("tiny.json", 1'000'000), "--size",
+                    "16x16", "--budget", "1,2,3,4,5,6,7,8,9", "-o", path("out")}),
+                path("tiny.json"),
+                "drawing its 1000000 frames at 16 x 16 10 times (a frame counts as at least 4096 "
+                "pixels) asks for 40960000000 pixels, the limit is 34359738368 pixels");
   // 33,000 frames keep 8.4 GB of reference images, within that limit; 18 runs draw too much.
   expectOneLine(
       vt({"eval", path("t.vt"), "--path", pathOf("eval.json", 33'000), "--size", "320x200",
