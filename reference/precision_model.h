@@ -38,7 +38,8 @@ enum class Log2Arithmetic {
 
 struct PrecisionModel {
   std::string name;
-  std::string renderer;  // the GL_RENDERER a measured model describes; empty for shipped ones
+  std::string renderer;   // the GL_RENDERER a measured model describes; empty for shipped ones
+  std::string glVersion;  // the GL_VERSION (driver) it was measured with; empty for shipped ones
   // The oracle's own arithmetic, the centre of every set.
   PrecisionProfile arithmetic = PrecisionProfile::kExact;
 

@@ -113,6 +113,13 @@ PrecisionModel readModelFile(const std::filesystem::path& file) {
       throw InputError(file, "field sources." + parameter + " is not a string");
     m.sources[parameter] = source.get<std::string>();
   }
+  if (json.contains("calibration")) {
+    const nlohmann::json& calibration = json.at("calibration");
+    if (!calibration.is_object() || !calibration.contains("gl_version") ||
+        !calibration.at("gl_version").is_string())
+      throw InputError(file, "field calibration.gl_version is missing or not a string");
+    m.glVersion = calibration.at("gl_version").get<std::string>();
+  }
   if (m.filter == FilterArithmetic::kBounded && m.subTexelBits == 0)
     throw InputError(file, "field sub_texel_bits is 0 for a bounded filter");
   if (m.arithmetic == PrecisionProfile::kLlvmpipe && m.log2 == Log2Arithmetic::kIeee)
@@ -145,6 +152,18 @@ std::string modelJson(const PrecisionModel& m) {
       {"denormals", m.denormalsPinned ? "pinned" : "free"},
       {"sources", m.sources}};
   return json.dump(2) + "\n";
+}
+
+std::string calibrationMismatch(const PrecisionModel& model, const std::string& glRenderer,
+                                const std::string& glVersion) {
+  if (model.renderer.empty() && model.glVersion.empty()) return "";
+  if (model.renderer != glRenderer)
+    return "warning: precision model '" + model.name + "' was measured on " + model.renderer +
+           ", this is " + glRenderer + ": run vt calibrate here";
+  if (!model.glVersion.empty() && model.glVersion != glVersion)
+    return "warning: precision model '" + model.name + "' was measured with " + model.glVersion +
+           ", this driver is " + glVersion + ": re-run vt calibrate";
+  return "";
 }
 
 PrecisionModel resolveModel(const std::string& nameOrFile, const std::string& glRenderer) {

@@ -27,6 +27,15 @@ namespace vt::reference {
 PrecisionModel readModelFile(const std::filesystem::path& file);
 std::string modelJson(const PrecisionModel& model);
 
+// A measured model may carry "calibration": {"gl_version": ...} (`vt calibrate` writes it with its
+// evidence); it is read into PrecisionModel::glVersion.
+
+// A one-line warning when `model` was measured on another implementation or driver version than
+// the current one (GL_RENDERER, GL_VERSION): a driver update can change what the model pins, so
+// re-calibrate. Empty when they agree or the model is a shipped one.
+std::string calibrationMismatch(const PrecisionModel& model, const std::string& glRenderer,
+                                const std::string& glVersion);
+
 // A model by name (llvmpipe, exact, gl45), "auto" (modelForRenderer), or else a model file.
 PrecisionModel resolveModel(const std::string& nameOrFile, const std::string& glRenderer);
 

@@ -7,6 +7,7 @@
 namespace vt {
 
 void addBuildCommand(CLI::App& app);
+void addCalibrateCommand(CLI::App& app);
 void addCrosscheckCommand(CLI::App& app);
 void addInfoCommand(CLI::App& app);
 void addInspectCommand(CLI::App& app);

@@ -140,7 +140,12 @@ void addCrosscheckCommand(CLI::App& app) {
              1);
     const HeadlessContext context;
     const std::string renderer = context.renderer();
-    reference::applyModel(settings, reference::resolveModel(o->profile, renderer));
+    const reference::PrecisionModel model = reference::resolveModel(o->profile, renderer);
+    if (const std::string warning =
+            reference::calibrationMismatch(model, renderer, context.version());
+        !warning.empty())
+      std::cerr << "vt crosscheck: " << warning << "\n";
+    reference::applyModel(settings, model);
 
     // A model file travels to the oracle's API by its name.
     const std::string modelFile = o->profile == "auto" || o->profile == "exact" ||

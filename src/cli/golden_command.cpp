@@ -83,6 +83,10 @@ void addGoldenCommand(CLI::App& app) {
     if (c->backend == "gl") {
       context = std::make_unique<HeadlessContext>();
       glModel = reference::resolveModel(c->model, context->renderer());
+      if (const std::string warning = reference::calibrationMismatch(
+              glModel, context->renderer(), context->version());
+          !warning.empty())
+        std::cerr << "vt golden check: " << warning << "\n";
     }
     const GoldenCheck result = checkGolden(c->golden, c->texture, c->mesh, c->path,
                                            context != nullptr, glModel, c->output);

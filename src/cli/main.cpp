@@ -48,6 +48,7 @@ int main(int argc, char** argv) {
                        std::string("vt " VT_VERSION " (virtual-texture file format 1)"));
   app.require_subcommand(1);
   vt::addBuildCommand(app);
+  vt::addCalibrateCommand(app);
   vt::addCrosscheckCommand(app);
   vt::addInfoCommand(app);
   vt::addInspectCommand(app);

@@ -1,0 +1,241 @@
+#include "calibrate/probe_draws.h"
+
+#include <epoxy/gl.h>
+
+#include <cstddef>
+#include <random>
+#include <stdexcept>
+
+#include "gl/gl_program.h"
+
+namespace vt::calibrate {
+namespace {
+
+// GL names released when the draw is done, also when it throws.
+struct Names {
+  std::vector<GLuint> textures, framebuffers, buffers, arrays;
+  ~Names() {
+    if (!textures.empty()) glDeleteTextures(static_cast<GLsizei>(textures.size()), textures.data());
+    if (!framebuffers.empty())
+      glDeleteFramebuffers(static_cast<GLsizei>(framebuffers.size()), framebuffers.data());
+    if (!buffers.empty()) glDeleteBuffers(static_cast<GLsizei>(buffers.size()), buffers.data());
+    if (!arrays.empty()) glDeleteVertexArrays(static_cast<GLsizei>(arrays.size()), arrays.data());
+  }
+  GLuint texture(GLenum format, int width, int height) {
+    GLuint name = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &name);
+    textures.push_back(name);
+    glTextureStorage2D(name, 1, format, width, height);
+    return name;
+  }
+  GLuint framebuffer() {
+    GLuint name = 0;
+    glCreateFramebuffers(1, &name);
+    framebuffers.push_back(name);
+    return name;
+  }
+};
+
+void requireNoError(const char* what) {
+  if (const GLenum error = glGetError(); error != GL_NO_ERROR)
+    throw std::runtime_error(std::string("calibration draw (") + what + ") failed: GL error " +
+                             std::to_string(error));
+}
+
+// A triangle covering the viewport, from gl_VertexID alone.
+const char* kFullScreenVertex = R"(#version 450 core
+void main() {
+  vec2 p = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1));
+  gl_Position = vec4(p, 0.0, 1.0);
+}
+)";
+
+std::string fragmentSource(const ShaderProbe& probe, const char* outputType) {
+  return std::string("#version 450 core\n") +
+         "layout(binding = 0) uniform sampler2D uInputs;\n"
+         "layout(binding = 1) uniform sampler2D uTexture;\n"
+         "layout(location = 0) out " + outputType + " outResult;\n"
+         "void main() {\n"
+         "  vec4 x = texelFetch(uInputs, ivec2(gl_FragCoord.xy), 0);\n"
+         "  precise vec4 result;\n  " + probe.body + "\n  outResult = result;\n}\n";
+}
+
+// Draws the probe into a `format` target and reads it back as `readFormat`/`readType`.
+template <class Texel>
+std::vector<Texel> drawProbe(const ShaderProbe& probe, GLenum format, GLenum readFormat,
+                             GLenum readType, const char* outputType) {
+  if (probe.width < 1 || probe.inputs.empty() || probe.inputs.size() % probe.width != 0)
+    throw std::invalid_argument("calibration probe: inputs are not whole rows");
+  const int width = probe.width, height = static_cast<int>(probe.inputs.size()) / probe.width;
+  const GlProgram program(kFullScreenVertex, fragmentSource(probe, outputType));
+  Names names;
+  const GLuint inputs = names.texture(GL_RGBA32F, width, height);
+  glTextureSubImage2D(inputs, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, probe.inputs.data());
+  glBindTextureUnit(0, inputs);
+  if (!probe.texels.empty()) {
+    const GLuint texture = names.texture(GL_RGBA8, probe.textureSize.x, probe.textureSize.y);
+    glTextureSubImage2D(texture, 0, 0, 0, probe.textureSize.x, probe.textureSize.y, GL_RGBA,
+                        GL_UNSIGNED_BYTE, probe.texels.data());
+    const GLint filter = probe.linear ? GL_LINEAR : GL_NEAREST;
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, filter);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glBindTextureUnit(1, texture);
+  }
+  const GLuint target = names.texture(format, width, height);
+  const GLuint framebuffer = names.framebuffer();
+  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, target, 0);
+  GLuint array = 0;
+  glCreateVertexArrays(1, &array);
+  names.arrays.push_back(array);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_DITHER);
+  glUseProgram(program.id());
+  glBindVertexArray(array);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  std::vector<Texel> result(probe.inputs.size());
+  glGetTextureImage(target, 0, readFormat, readType,
+                    static_cast<GLsizei>(result.size() * sizeof(Texel)), result.data());
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glUseProgram(0);
+  requireNoError("shader probe");
+  return result;
+}
+
+}  // namespace
+
+std::vector<glm::vec4> runShaderProbe(const ShaderProbe& probe) {
+  return drawProbe<glm::vec4>(probe, GL_RGBA32F, GL_RGBA, GL_FLOAT, "vec4");
+}
+
+std::vector<glm::u8vec4> runColourProbe(const ShaderProbe& probe) {
+  return drawProbe<glm::u8vec4>(probe, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, "vec4");
+}
+
+// Random triangles of all sizes, perspective, overlapping, some crossing the near plane and the
+// frustum's sides, some slivers and a coplanar duplicate of the first.
+reference::ClipSpaceMesh randomTriangles(unsigned seed, int triangles) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), wRange(0.3f, 3.0f);
+  reference::ClipSpaceMesh mesh;
+  const auto add = [&](glm::vec4 p, glm::vec2 uv) {
+    mesh.vertices.push_back({p, uv});
+    mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
+  };
+  for (int k = 0; k < triangles; ++k) {
+    const float scale = k % 3 == 0 ? 0.05f : (k % 3 == 1 ? 0.4f : 1.6f);
+    const glm::vec2 centre(unit(random), unit(random));
+    for (int corner = 0; corner < 3; ++corner) {
+      const float w = k % 7 == 0 && corner == 0 ? -0.5f : wRange(random);
+      const glm::vec2 xy = centre + scale * glm::vec2(unit(random), unit(random));
+      const float z = 0.8f * unit(random);
+      add({xy.x * std::fabs(w), xy.y * std::fabs(w), z * std::fabs(w) - (w < 0 ? 1.0f : 0.0f), w},
+          {0.5f + 0.5f * unit(random), 0.5f + 0.5f * unit(random)});
+    }
+  }
+  for (int corner = 0; corner < 3; ++corner)
+    add(mesh.vertices[static_cast<size_t>(corner)].position, {0.1f, 0.9f});
+  return mesh;
+}
+
+RasterReadback drawTriangles(const reference::ClipSpaceMesh& mesh, reference::Viewport viewport) {
+  static const char* kVertex = R"(#version 450 core
+layout(location = 0) in vec4 aClipPosition;
+layout(location = 1) in vec2 aUV;
+out vec2 vUV;
+flat out float vTriangle;
+void main() {
+  vUV = aUV;
+  vTriangle = float(gl_VertexID / 3 + 1);
+  gl_Position = aClipPosition;
+}
+)";
+  // The triangle as a flat float from its vertices (each triangle has its own three, in order),
+  // not gl_PrimitiveID, into a float target: an implementation that loses integer clears
+  // (softpipe, tests/gl/softpipe_rules_test.cpp) is still measured.
+  static const char* kFragment = R"(#version 450 core
+in vec2 vUV;
+flat in float vTriangle;
+layout(location = 0) out vec4 outTriangle;
+layout(location = 1) out vec4 outUV;
+layout(location = 2) out vec4 outDerivatives;
+void main() {
+  outTriangle = vec4(vTriangle, 0.0, 0.0, 0.0);
+  outUV = vec4(vUV, 0.0, 0.0);
+  outDerivatives = vec4(dFdxFine(vUV), dFdyFine(vUV));
+}
+)";
+  const GlProgram program(kVertex, kFragment);
+  const int width = viewport.width, height = viewport.height;
+  Names names;
+  const GLuint triangles = names.texture(GL_RGBA32F, width, height);
+  const GLuint uvs = names.texture(GL_RGBA32F, width, height);
+  const GLuint derivatives = names.texture(GL_RGBA32F, width, height);
+  const GLuint depth = names.texture(GL_DEPTH_COMPONENT32F, width, height);
+  const GLuint framebuffer = names.framebuffer();
+  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, triangles, 0);
+  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT1, uvs, 0);
+  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT2, derivatives, 0);
+  glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, depth, 0);
+  const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+  glNamedFramebufferDrawBuffers(framebuffer, 3, buffers);
+  const GLfloat zeros[4] = {0, 0, 0, 0}, one = 1.0f;
+  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, zeros);
+  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 1, zeros);
+  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 2, zeros);
+  glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &one);
+
+  GLuint array = 0, buffer[2] = {0, 0};
+  glCreateVertexArrays(1, &array);
+  names.arrays.push_back(array);
+  glCreateBuffers(2, buffer);
+  names.buffers.assign(buffer, buffer + 2);
+  glNamedBufferData(buffer[0],
+                    static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(reference::ClipVertex)),
+                    mesh.vertices.data(), GL_STATIC_DRAW);
+  glNamedBufferData(buffer[1], static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(uint32_t)),
+                    mesh.indices.data(), GL_STATIC_DRAW);
+  glVertexArrayVertexBuffer(array, 0, buffer[0], 0, sizeof(reference::ClipVertex));
+  glVertexArrayElementBuffer(array, buffer[1]);
+  glEnableVertexArrayAttrib(array, 0);
+  glEnableVertexArrayAttrib(array, 1);
+  glVertexArrayAttribFormat(array, 0, 4, GL_FLOAT, GL_FALSE,
+                            offsetof(reference::ClipVertex, position));
+  glVertexArrayAttribFormat(array, 1, 2, GL_FLOAT, GL_FALSE, offsetof(reference::ClipVertex, uv));
+  glVertexArrayAttribBinding(array, 0, 0);
+  glVertexArrayAttribBinding(array, 1, 0);
+
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glViewport(0, 0, width, height);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glUseProgram(program.id());
+  glBindVertexArray(array);
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.indices.size()), GL_UNSIGNED_INT, nullptr);
+  glDisable(GL_DEPTH_TEST);
+
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  std::vector<glm::vec4> triangle(pixels);
+  std::vector<glm::vec4> uv(pixels);
+  RasterReadback result{{}, std::vector<glm::vec2>(pixels), std::vector<glm::vec4>(pixels),
+                        std::vector<float>(pixels)};
+  const auto bytes = [&](size_t element) { return static_cast<GLsizei>(pixels * element); };
+  glGetTextureImage(triangles, 0, GL_RGBA, GL_FLOAT, bytes(16), triangle.data());
+  glGetTextureImage(uvs, 0, GL_RGBA, GL_FLOAT, bytes(16), uv.data());
+  glGetTextureImage(derivatives, 0, GL_RGBA, GL_FLOAT, bytes(16), result.derivatives.data());
+  glGetTextureImage(depth, 0, GL_DEPTH_COMPONENT, GL_FLOAT, bytes(4), result.depth.data());
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glUseProgram(0);
+  requireNoError("triangles");
+  result.triangle.resize(pixels);
+  for (size_t i = 0; i < pixels; ++i) {
+    result.triangle[i] = static_cast<int32_t>(triangle[i].x) - 1;
+    result.uv[i] = glm::vec2(uv[i]);
+  }
+  return result;
+}
+
+}  // namespace vt::calibrate

@@ -1,0 +1,49 @@
+#pragma once
+// The draws `vt calibrate` measures an OpenGL implementation with, on the current context: each
+// feeds chosen inputs through one GL feature and reads the results back exactly (32-bit float
+// and integer targets), so that calibration.h can compare them with the oracle's arithmetic.
+
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+#include "reference/renderer.h"
+
+namespace vt::calibrate {
+
+// A full-screen draw of `width` x (inputs / width) pixels. The fragment shader reads its pixel's
+// input as `vec4 x` (an RGBA32F texelFetch), may read `uTexture` (an RGBA8 sampler of `texels`,
+// `textureSize`, clamp to edge, GL_LINEAR or GL_NEAREST, no mipmaps) and assigns `precise vec4
+// result` in `body`; the results come back as floats, row by row.
+struct ShaderProbe {
+  std::string body;
+  std::vector<glm::vec4> inputs;
+  int width = 256;
+  std::vector<glm::u8vec4> texels;  // empty: no texture bound
+  glm::ivec2 textureSize{0, 0};
+  bool linear = false;
+};
+std::vector<glm::vec4> runShaderProbe(const ShaderProbe& probe);
+
+// The same draw into an RGBA8 target: `result` is converted by the implementation's colour
+// conversion (GL 4.5 section 2.3.5.2), read back as bytes.
+std::vector<glm::u8vec4> runColourProbe(const ShaderProbe& probe);
+
+// What a draw of `mesh` leaves per pixel (bottom row first): the triangle that passed GL_LESS
+// against a 32F depth buffer cleared to 1 (-1 for none; each triangle must have its own three
+// vertices, in order, as randomTriangles in calibration.cpp makes them), its texture coordinates, their
+// fine derivatives (ds/dx, dt/dx, ds/dy, dt/dy) and the depth stored.
+struct RasterReadback {
+  std::vector<int32_t> triangle;
+  std::vector<glm::vec2> uv;
+  std::vector<glm::vec4> derivatives;
+  std::vector<float> depth;
+};
+// `triangles` random triangles (a fixed `seed`) of all sizes, perspective, overlapping, some
+// crossing the near plane and the frustum's sides, some slivers, and last a coplanar duplicate of
+// the first: each with its own three vertices.
+reference::ClipSpaceMesh randomTriangles(unsigned seed, int triangles);
+
+RasterReadback drawTriangles(const reference::ClipSpaceMesh& mesh, reference::Viewport viewport);
+
+}  // namespace vt::calibrate
