@@ -1,6 +1,9 @@
 #include "reference/precision_model_file.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
@@ -166,8 +169,27 @@ std::string calibrationMismatch(const PrecisionModel& model, const std::string& 
   return "";
 }
 
+std::optional<std::filesystem::path> measuredModelFile(const std::string& glRenderer) {
+  const char* folder = std::getenv("VT_PRECISION_MODELS");
+  if (!folder || !*folder) return std::nullopt;
+  std::error_code error;
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, error))
+    if (entry.path().extension() == ".json") files.push_back(entry.path());
+  if (error)
+    throw InputError(folder, "cannot list the precision models (VT_PRECISION_MODELS): " +
+                                 error.message());
+  std::sort(files.begin(), files.end());
+  for (const std::filesystem::path& file : files)
+    if (readModelFile(file).renderer == glRenderer) return file;
+  return std::nullopt;
+}
+
 PrecisionModel resolveModel(const std::string& nameOrFile, const std::string& glRenderer) {
-  if (nameOrFile == "auto") return modelForRenderer(glRenderer);
+  if (nameOrFile == "auto") {
+    if (const auto file = measuredModelFile(glRenderer)) return readModelFile(*file);
+    return modelForRenderer(glRenderer);
+  }
   if (nameOrFile == "llvmpipe" || nameOrFile == "exact" || nameOrFile == "gl45")
     return namedModel(nameOrFile);
   return readModelFile(nameOrFile);

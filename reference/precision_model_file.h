@@ -18,6 +18,7 @@
 // anything, and is a mistake).
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "reference/precision_model.h"
@@ -36,7 +37,14 @@ std::string modelJson(const PrecisionModel& model);
 std::string calibrationMismatch(const PrecisionModel& model, const std::string& glRenderer,
                                 const std::string& glVersion);
 
-// A model by name (llvmpipe, exact, gl45), "auto" (modelForRenderer), or else a model file.
+// The measured model for an implementation: the first model file (by name) in the folder
+// $VT_PRECISION_MODELS whose renderer is `glRenderer`; none when the variable is unset or no file
+// matches. Files there that are not models are refused (InputError naming the file).
+std::optional<std::filesystem::path> measuredModelFile(const std::string& glRenderer);
+
+// A model by name (llvmpipe, exact, gl45), a model file, or "auto": the measured model of
+// `glRenderer` (measuredModelFile), else modelForRenderer (llvmpipe on llvmpipe with FMA, else
+// gl45).
 PrecisionModel resolveModel(const std::string& nameOrFile, const std::string& glRenderer);
 
 }  // namespace vt::reference

@@ -10,6 +10,7 @@
 #include "cli/comparison_report.h"
 #include "cli/junit_report.h"
 #include "common/posix_file.h"
+#include "reference/precision_model_file.h"
 #include "vt/oracle.h"
 
 namespace vt {
@@ -72,15 +73,20 @@ bool crosscheckCaptures(const CapturesCheckOptions& options) {
       if (!texture)
         texture = std::make_unique<oracle::Texture>(oracle::Texture::open(capture.texture));
       // A shipped model by name, auto (from the capture's renderer), or a model file.
-      const bool named = options.profile == "auto" || options.profile == "exact" ||
-                         options.profile == "llvmpipe" || options.profile == "gl45";
+      // auto prefers a measured model of the capture's renderer ($VT_PRECISION_MODELS).
+      const std::optional<std::filesystem::path> measured =
+          options.profile == "auto" ? reference::measuredModelFile(capture.renderer)
+                                    : std::nullopt;
+      const bool named = !measured && (options.profile == "auto" || options.profile == "exact" ||
+                                       options.profile == "llvmpipe" || options.profile == "gl45");
       const oracle::CaptureCheck check =
           named ? oracle::checkCapture(capture, *texture,
                                        options.profile == "auto"
                                            ? oracle::profileForRenderer(capture.renderer)
                                            : oracle::parseProfile(options.profile),
                                        options.threads)
-                : oracle::checkCapture(capture, *texture, std::filesystem::path(options.profile),
+                : oracle::checkCapture(capture, *texture,
+                                       measured ? *measured : std::filesystem::path(options.profile),
                                        options.threads);
       const oracle::Comparison& c = check.comparison;
       const oracle::Viewport v = capture.scene.viewport;

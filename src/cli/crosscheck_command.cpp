@@ -148,7 +148,10 @@ void addCrosscheckCommand(CLI::App& app) {
     reference::applyModel(settings, model);
 
     // A model file travels to the oracle's API by its name.
-    const std::string modelFile = o->profile == "auto" || o->profile == "exact" ||
+    const std::optional<std::filesystem::path> measured =
+        o->profile == "auto" ? reference::measuredModelFile(renderer) : std::nullopt;
+    const std::string modelFile = measured ? measured->string()
+                                  : o->profile == "auto" || o->profile == "exact" ||
                                           o->profile == "llvmpipe" || o->profile == "gl45"
                                       ? ""
                                       : o->profile;

@@ -114,6 +114,19 @@ TEST(CalibrateCommand, TheCalibratedModelGivesTheCrosscheckItsVerdict) {
   EXPECT_EQ(summary["model"], "calibrated");
   EXPECT_EQ(summary["totals"]["unexplained"], 0u);
   EXPECT_EQ(err, "");  // measured here: no warning
+  // `auto` (the default) picks the measured model of this renderer from $VT_PRECISION_MODELS.
+  std::filesystem::create_directory(dir / "models");
+  std::filesystem::copy_file(dir / "model.json", dir / "models" / "here.json");
+  ::setenv("VT_PRECISION_MODELS", (dir / "models").c_str(), 1);
+  const auto automatic = test::runCommand(
+      VT_EXECUTABLE,
+      {"crosscheck", (dir / "t.vt").string(), "--size", "160x100", "--scenes", "room", "-o",
+       (dir / "auto").string()},
+      dir.path());
+  ::unsetenv("VT_PRECISION_MODELS");
+  EXPECT_EQ(automatic.exitCode, 0) << automatic.out << automatic.err;
+  std::ifstream in(dir / "auto" / "summary.json");
+  EXPECT_EQ(nlohmann::json::parse(in)["model"], "calibrated");
   if (summary["gl_renderer"].get<std::string>().find("llvmpipe") != std::string::npos &&
       __builtin_cpu_supports("fma")) {
     EXPECT_EQ(summary["totals"]["identical"], summary["totals"]["pixels"]);
