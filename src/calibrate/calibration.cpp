@@ -317,7 +317,9 @@ class ScratchFolder {
   std::filesystem::path path_;
 };
 
-RasterFits measureRasterization() {
+// `flushesDenormals`: what the shader-math probes found, which decides the arithmetic when no
+// plane evaluation reproduces the attributes bit for bit (llvmpipe's arithmetic flushes them).
+RasterFits measureRasterization(bool flushesDenormals) {
   const ScratchFolder folder;
   writeSyntheticTexture(
       folder.path() / "t.vt",
@@ -371,16 +373,15 @@ RasterFits measureRasterization() {
                    fits.coveragePinned
                        ? "every pixel shows the triangle of 8-bit snapping and the oracle's tie "
                          "rule (DESIGN section 7, rules 2 and 4)"
-                       : describe(coverageMismatches, llvm.pixels) +
-                             " pixels show another triangle: sub-pixel bits and fill rule not "
+                       : std::to_string(coverageMismatches) + " of " +
+                             std::to_string(llvm.pixels) + " pixels show another triangle: sub-pixel bits and fill rule not "
                              "pinned, the gl45 values kept",
                    llvm.pixels, coverageMismatches, 0, fits.coveragePinned, !fits.coveragePinned};
   // The arithmetic whose planes reproduce every attribute, llvmpipe's fused first.
   const bool llvmExact = llvm.coverage == 0 && llvm.attributes == 0;
   const bool ieeeExact = ieee.coverage == 0 && ieee.attributes == 0;
-  fits.arithmetic = llvmExact || (!ieeeExact && llvm.attributes < ieee.attributes)
-                        ? PrecisionProfile::kLlvmpipe
-                        : PrecisionProfile::kExact;
+  fits.arithmetic = llvmExact || (!ieeeExact && flushesDenormals) ? PrecisionProfile::kLlvmpipe
+                                                                    : PrecisionProfile::kExact;
   const RasterCounts& chosen = fits.arithmetic == PrecisionProfile::kLlvmpipe ? llvm : ieee;
   const bool attributesPinned = llvmExact || ieeeExact;
   fits.attributeUlps = attributesPinned ? 0.0 : widened(chosen.attributeUlps, 1.0);
@@ -389,8 +390,8 @@ RasterFits measureRasterization() {
                                    "planes give them (DESIGN section 7, rules 1, 3 and 6), bit for bit"
                      : ieeeExact ? "texture coordinates and fine derivatives as IEEE planes give "
                                    "them, bit for bit"
-                                 : describe(chosen.attributes, chosen.shared) +
-                                       " pixels' coordinates or derivatives differ, largest "
+                                 : std::to_string(chosen.attributes) + " of " +
+                                       std::to_string(chosen.shared) + " pixels' coordinates or derivatives differ, largest "
                                        "relative error " + std::to_string(chosen.attributeUlps) +
                                        " ulps",
                      chosen.shared, attributesPinned ? 0 : chosen.attributes,
@@ -399,8 +400,8 @@ RasterFits measureRasterization() {
   fits.depthUlps = fits.depthPinned ? 0.0 : widened(chosen.depthUlps, 1.0);
   fits.depth = {"depth",
                 fits.depthPinned ? "the stored 32F depth as the oracle computes it, bit for bit"
-                                 : describe(chosen.depth, chosen.shared) +
-                                       " pixels' depth differs, largest " +
+                                 : std::to_string(chosen.depth) + " of " +
+                                       std::to_string(chosen.shared) + " pixels' depth differs, largest " +
                                        std::to_string(chosen.depthUlps) + " ulps",
                 chosen.shared, chosen.depth, fits.depthPinned ? 0.0 : chosen.depthUlps,
                 fits.depthPinned, false};
@@ -417,7 +418,7 @@ Calibration calibrate() {
   const ShaderMath math = measureShaderMath();
   const FilterFit filter = measureFilter();
   const ParameterFit colour = measureColourConversion();
-  const RasterFits raster = measureRasterization();
+  const RasterFits raster = measureRasterization(math.flushesDenormals);
 
   // Start from gl45: what no probe pins keeps the specification's slack.
   reference::PrecisionModel& m = c.model;
