@@ -31,6 +31,7 @@
 #include "eval/evaluation.h"
 #include "eval/evaluation_report.h"
 #include "eval/flight_records.h"
+#include "runtime/needbuffer_scale.h"
 #include "scene/box_room.h"
 #include "scene/obj_mesh.h"
 #include "shader/needbuffer.h"
@@ -135,21 +136,25 @@ void addEvalCommand(CLI::App& app) {
   command->add_option("--budget", o->budgets, "Pages per frame, comma-separated")
       ->check(wholeNumbersIn(0, 1 << 20))
       ->capture_default_str();
-  command->add_option("--ancestors", o->ancestors, "none, intern, extern; comma-separated")
+  command
+      ->add_option("--ancestors", o->ancestors,
+                   joinedNames(kAncestorStrategyNames) + "; comma-separated")
       ->capture_default_str();
   command->add_option("--locked-levels", o->locked, "Locked levels, comma-separated")
       ->check(wholeNumbersIn(0, 24))
       ->capture_default_str();
   command
-      ->add_option("--need-scale", o->needScales, "Needbuffer scales 1, 2, 4, 8; comma-separated")
+      ->add_option("--need-scale", o->needScales,
+                   "Needbuffer scales " + joinedNames(kNeedScaleNames) + "; comma-separated")
       ->capture_default_str();
-  command->add_option("--lookahead", o->lookAheads, "none, plain, stopfix; comma-separated")
+  command
+      ->add_option("--lookahead", o->lookAheads, joinedNames(kLookAheadNames) + "; comma-separated")
       ->capture_default_str();
   command
       ->add_option("--trilinear-parents", o->parents,
                    "off, on: whether a needed page's parent counts as needed; comma-separated")
       ->capture_default_str();
-  command->add_option("--hotspot", o->hotSpot, "HotSpot centre: fixed, shifted, sliding")
+  command->add_option("--hotspot", o->hotSpot, "HotSpot centre: " + joinedNames(kHotSpotModeNames))
       ->capture_default_str();
   command->add_flag("--noise-skipping", o->noiseSkipping, "NoiseValueSkipping (with extern)");
   command->add_option("--cache-frames", o->cacheFrames, "The cache holds N x N frames")
