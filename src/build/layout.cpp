@@ -294,17 +294,17 @@ Layout singleImageLayout(const std::filesystem::path& image, const LayoutOverrid
 }
 
 MipFilter parseMipFilter(const std::string& name) {
-  if (name == "box") return MipFilter::kBox;
-  if (name == "tent") return MipFilter::kTent;
-  throw std::invalid_argument("filter: '" + name + "' is not one of box, tent");
+  if (const auto filter = findByName(kMipFilterNames, name)) return *filter;
+  throw std::invalid_argument("filter: '" + name + "' is not one of " +
+                              joinedNames(kMipFilterNames));
 }
 
 ColorSpace parseColorSpace(const std::string& name) {
-  if (name == "srgb") return ColorSpace::kSrgb;
-  if (name == "linear") return ColorSpace::kLinear;
-  throw std::invalid_argument("color_space: '" + name + "' is not one of srgb, linear");
+  if (const auto colorSpace = findByName(kColorSpaceNames, name)) return *colorSpace;
+  throw std::invalid_argument("color_space: '" + name + "' is not one of " +
+                              joinedNames(kColorSpaceNames));
 }
 
-std::string toString(MipFilter filter) { return filter == MipFilter::kBox ? "box" : "tent"; }
+std::string toString(MipFilter filter) { return std::string(nameOf(kMipFilterNames, filter)); }
 
 }  // namespace vt

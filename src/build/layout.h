@@ -37,6 +37,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "format/texture_description.h"
 
 namespace vt {
@@ -106,7 +107,18 @@ Layout parseLayout(std::string_view text, const std::filesystem::path& file,
 // A layout of one image at (0, 0).
 Layout singleImageLayout(const std::filesystem::path& image, const LayoutOverrides& overrides = {});
 
-MipFilter parseMipFilter(const std::string& name);  // throws std::invalid_argument
+// Layout files and `vt build` name the filter and the colour space so.
+inline constexpr EnumNames<MipFilter, 2> kMipFilterNames = {{
+    {MipFilter::kBox, "box"},
+    {MipFilter::kTent, "tent"},
+}};
+inline constexpr EnumNames<ColorSpace, 2> kColorSpaceNames = {{
+    {ColorSpace::kSrgb, "srgb"},
+    {ColorSpace::kLinear, "linear"},
+}};
+
+// Throw std::invalid_argument naming the field, the value and the table's names.
+MipFilter parseMipFilter(const std::string& name);
 ColorSpace parseColorSpace(const std::string& name);
 std::string toString(MipFilter filter);
 

@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "runtime/page_priority.h"
+#include "runtime/heuristic.h"
 
 namespace vt {
 namespace {
@@ -52,7 +52,7 @@ CLI::Validator heuristicArgument(bool list) {
   return validatorFrom(
       [list](const std::string& text) {
         for (const std::string& heuristic : list ? items(text) : std::vector{text})
-          validateHeuristic(heuristic);
+          Heuristic::parse(heuristic);
       },
       "HEURISTIC");
 }

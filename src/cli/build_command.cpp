@@ -34,9 +34,9 @@ void addBuildCommand(CLI::App& app) {
   command
       ->add_option("--color-space", options->colorSpace,
                    "srgb: filter colour in linear light (default); linear: as stored")
-      ->check(CLI::IsMember({"srgb", "linear"}));
+      ->check(CLI::IsMember(namesOf(kColorSpaceNames)));
   command->add_option("--filter", options->filter, "Mip filter: box (default) or tent")
-      ->check(CLI::IsMember({"box", "tent"}));
+      ->check(CLI::IsMember(namesOf(kMipFilterNames)));
   command->add_option("--threads", options->threads, "Worker threads (0: every core)")
       ->check(workerCount());
   command->add_option("--keep-free", options->keepFree,

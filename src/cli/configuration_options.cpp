@@ -8,6 +8,7 @@
 #include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/json_text.h"
+#include "runtime/needbuffer_scale.h"
 #include "scene/box_room.h"
 #include "scene/obj_mesh.h"
 
@@ -54,24 +55,30 @@ ConfigurationOptions::ConfigurationOptions(CLI::App* command)
       ->capture_default_str();
   command
       ->add_option("--need-scale", v.needScale,
-                   "Needbuffer at 1/N of the resolution per axis, jittered per frame: 1, 2, 4, 8")
-      ->check(CLI::IsMember({"1", "2", "4", "8"}))
+                   "Needbuffer at 1/N of the resolution per axis, jittered per frame: " +
+                       joinedNames(kNeedScaleNames))
+      ->check(CLI::IsMember(namesOf(kNeedScaleNames)))
       ->capture_default_str();
   command
       ->add_option("--heuristic", v.heuristic,
-                   "Factors joined by '*': random, pixelsum, distance, weightedpixel, "
-                   "hotspot, noisevalue, mipgap")
+                   "Factors joined by '*': " + joinedNames(kPriorityFactorNames))
       ->check(heuristicArgument())
       ->capture_default_str();
-  command->add_option("--ancestors", v.ancestors, "Ancestor streaming: none, intern, extern")
-      ->check(CLI::IsMember({"none", "intern", "extern"}))
+  command
+      ->add_option("--ancestors", v.ancestors,
+                   "Ancestor streaming: " + joinedNames(kAncestorStrategyNames))
+      ->check(CLI::IsMember(namesOf(kAncestorStrategyNames)))
       ->capture_default_str();
   command->add_flag("--noise-skipping", v.noiseSkipping, "NoiseValueSkipping (with extern)");
-  command->add_option("--lookahead", v.lookAhead, "LookAhead camera (4.2.4): none, plain, stopfix")
-      ->check(CLI::IsMember({"none", "plain", "stopfix"}))
+  command
+      ->add_option("--lookahead", v.lookAhead,
+                   "LookAhead camera (4.2.4): " + joinedNames(kLookAheadNames))
+      ->check(CLI::IsMember(namesOf(kLookAheadNames)))
       ->capture_default_str();
-  command->add_option("--hotspot", v.hotSpot, "HotSpot centre (4.2.3.1): fixed, shifted, sliding")
-      ->check(CLI::IsMember({"fixed", "shifted", "sliding"}))
+  command
+      ->add_option("--hotspot", v.hotSpot,
+                   "HotSpot centre (4.2.3.1): " + joinedNames(kHotSpotModeNames))
+      ->check(CLI::IsMember(namesOf(kHotSpotModeNames)))
       ->capture_default_str();
   command
       ->add_option("--noise-threshold", v.noiseThreshold,
@@ -97,7 +104,7 @@ ConfigurationOptions::ConfigurationOptions(CLI::App* command)
       ->add_option("--readback", v.readback,
                    "sync, or async: the analysis sees the previous frame's needbuffer (GL: "
                    "pixel-buffer objects and a fence)")
-      ->check(CLI::IsMember({"sync", "async"}))
+      ->check(CLI::IsMember(namesOf(kReadbackNames)))
       ->capture_default_str();
 }
 

@@ -80,7 +80,8 @@ void addViewCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--heuristic", o->heuristic, "Page priority (as vt fly)")
       ->capture_default_str();
-  command->add_option("--ancestors", o->ancestors, "none, intern, extern")->capture_default_str();
+  command->add_option("--ancestors", o->ancestors, joinedNames(kAncestorStrategyNames))
+      ->capture_default_str();
   command->add_option("--cache-frames", o->frames, "The cache holds N x N frames")
       ->check(CLI::Range(1u, 256u))
       ->capture_default_str();
@@ -110,7 +111,7 @@ void addViewCommand(CLI::App& app) {
 
     RuntimeOptions options;
     options.framesX = options.framesY = o->frames;
-    options.priority.heuristic = o->heuristic;
+    options.priority.heuristic = Heuristic::parse(o->heuristic);
     options.priority.ancestors = parseAncestorStrategy(o->ancestors);
     VirtualTextureRuntime runtime(reader, options);
     std::vector<uint64_t> initial;  // levels 0..2 (thesis 4.2.1)

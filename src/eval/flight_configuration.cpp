@@ -8,49 +8,16 @@
 
 namespace vt {
 
-std::string toString(AncestorStrategy strategy) {
-  switch (strategy) {
-    case AncestorStrategy::kIntern:
-      return "intern";
-    case AncestorStrategy::kExtern:
-      return "extern";
-    default:
-      return "none";
-  }
-}
-
-std::string toString(LookAhead mode) {
-  switch (mode) {
-    case LookAhead::kPlain:
-      return "plain";
-    case LookAhead::kStopFix:
-      return "stopfix";
-    default:
-      return "none";
-  }
-}
-
-std::string toString(HotSpotMode mode) {
-  switch (mode) {
-    case HotSpotMode::kFixed:
-      return "fixed";
-    case HotSpotMode::kSliding:
-      return "sliding";
-    default:
-      return "shifted";
-  }
-}
-
 std::string FlightConfiguration::label() const {
   if (!name.empty()) return name;
   // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string.
-  std::string text = heuristic;
+  std::string text = heuristic.text();
   const auto add = [&text](const std::string& key, const std::string& value) {
     text.append(" ").append(key).append(value);
   };
   add("", std::to_string(budget) + "/frame");
   if (lookAhead != LookAhead::kNone) add("lookahead=", toString(lookAhead));
-  if (heuristic.find("hotspot") != std::string::npos && hotSpot != HotSpotMode::kShifted)
+  if (heuristic.uses(PriorityFactor::kHotSpot) && hotSpot != HotSpotMode::kShifted)
     add("hotspot=", toString(hotSpot));
   if (ancestors != AncestorStrategy::kNone) add("", toString(ancestors));
   if (noiseSkipping) add("", "skipping");
@@ -64,7 +31,7 @@ std::string FlightConfiguration::label() const {
 
 nlohmann::json FlightConfiguration::toJson() const {
   return {{"name", label()},
-          {"heuristic", heuristic},
+          {"heuristic", heuristic.text()},
           {"ancestors", toString(ancestors)},
           {"noise_skipping", noiseSkipping},
           {"noise_threshold", noiseThreshold},
@@ -77,7 +44,7 @@ nlohmann::json FlightConfiguration::toJson() const {
           {"initial_levels", initialLevels},
           {"preload_visible", preloadVisible},
           {"need_scale", 1 << needScaleLog2},
-          {"readback", asyncReadback ? "async" : "sync"},
+          {"readback", std::string(nameOf(kReadbackNames, asyncReadback))},
           {"trilinear_parents", trilinearParents}};
 }
 
@@ -103,8 +70,7 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
     if (key == "name") {
       c.name = text();
     } else if (key == "heuristic") {
-      c.heuristic = text();
-      validateHeuristic(c.heuristic);
+      c.heuristic = Heuristic::parse(text());
     } else if (key == "ancestors") {
       c.ancestors = parseAncestorStrategy(text());
     } else if (key == "noise_skipping") {
@@ -136,10 +102,10 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
     } else if (key == "trilinear_parents") {
       c.trilinearParents = flag();
     } else if (key == "readback") {
-      const std::string mode = text();
-      if (mode != "sync" && mode != "async")
-        throw std::invalid_argument("'readback' must be sync or async");
-      c.asyncReadback = mode == "async";
+      const auto mode = findByName(kReadbackNames, text());
+      if (!mode)
+        throw std::invalid_argument("'readback' must be " + joinedNames(kReadbackNames, " or "));
+      c.asyncReadback = *mode;
     } else {
       throw std::invalid_argument("unknown configuration key '" + key + "'");
     }

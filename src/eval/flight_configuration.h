@@ -13,14 +13,15 @@
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 
+#include "common/enum_names.h"
 #include "runtime/page_priority.h"
 #include "scene/camera_motion.h"
 
 namespace vt {
 
 struct FlightConfiguration {
-  std::string name;  // label in tables and plots; empty: label() describes the settings
-  std::string heuristic = "pixelsum";  // runtime/page_priority.h
+  std::string name;     // label in tables and plots; empty: label() describes the settings
+  Heuristic heuristic;  // pixelsum; runtime/page_priority.h
   AncestorStrategy ancestors = AncestorStrategy::kNone;
   bool noiseSkipping = false;
   float noiseThreshold = -1.0f;  // NoiseValueSkipping; negative: the texture's mean NoiseValue
@@ -44,8 +45,7 @@ struct FlightConfiguration {
                                       const FlightConfiguration& defaults);
 };
 
-std::string toString(AncestorStrategy strategy);
-std::string toString(LookAhead mode);
-std::string toString(HotSpotMode mode);
+// How the analysis reads the needbuffer back: the frame's own (sync), or the previous frame's.
+inline constexpr EnumNames<bool, 2> kReadbackNames = {{{false, "sync"}, {true, "async"}}};
 
 }  // namespace vt

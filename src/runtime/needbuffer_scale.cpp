@@ -26,11 +26,9 @@ glm::vec2 needJitter(uint64_t frame, int scaleLog2) {
 }
 
 int parseNeedScale(const std::string& text) {
-  if (text == "1") return 0;
-  if (text == "2") return 1;
-  if (text == "4") return 2;
-  if (text == "8") return 3;
-  throw std::invalid_argument("needbuffer scale '" + text + "' is not 1, 2, 4 or 8");
+  if (const auto scaleLog2 = findByName(kNeedScaleNames, text)) return *scaleLog2;
+  throw std::invalid_argument("needbuffer scale '" + text + "' is not " +
+                              joinedNames(kNeedScaleNames, " or "));
 }
 
 }  // namespace vt

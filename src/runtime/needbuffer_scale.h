@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 #include <string>
 
+#include "common/enum_names.h"
 #include "scene/clip_space_mesh.h"
 
 namespace vt {
@@ -19,7 +20,10 @@ Viewport reducedViewport(Viewport screen, int scaleLog2);
 // Halton sequence in bases 2 and 3 (k = 0: no jitter).
 glm::vec2 needJitter(uint64_t frame, int scaleLog2);
 
-// "1" -> 0, "2" -> 1, "4" -> 2, "8" -> 3; throws std::invalid_argument otherwise.
+// The scales by their written name: "1" -> k = 0, "2" -> 1, "4" -> 2, "8" -> 3.
+inline constexpr EnumNames<int, 4> kNeedScaleNames = {{{0, "1"}, {1, "2"}, {2, "4"}, {3, "8"}}};
+
+// Throws std::invalid_argument for a name not in kNeedScaleNames.
 int parseNeedScale(const std::string& text);
 
 }  // namespace vt

@@ -3,21 +3,10 @@
 #include <algorithm>
 #include <map>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 namespace vt {
 namespace {
-
-const std::set<std::string> kFactors = {"random",  "pixelsum",   "distance", "weightedpixel",
-                                        "hotspot", "noisevalue", "mipgap"};
-
-std::vector<std::string> factorsOf(const std::string& heuristic) {
-  std::vector<std::string> factors;
-  std::stringstream stream(heuristic);
-  for (std::string factor; std::getline(stream, factor, '*');) factors.push_back(factor);
-  return factors;
-}
 
 // A uniform value in [0, 1) from the page and the seed (splitmix64).
 double hashUnit(uint64_t page, uint64_t seed) {
@@ -41,32 +30,39 @@ double noiseToResident(PageId page, uint32_t residentLevel, const NoiseValues& n
   return sum;
 }
 
+// The value of one factor of the heuristic for one needed page.
+double termOf(PriorityFactor factor, uint64_t absolute, PageId page, uint32_t residentLevel,
+              const PageStatistics& statistics, const NoiseValues& noise,
+              const PriorityOptions& options) {
+  switch (factor) {
+    case PriorityFactor::kRandom:
+      return hashUnit(absolute, options.seed);
+    case PriorityFactor::kPixelSum:
+      return static_cast<double>(statistics.pixels);
+    case PriorityFactor::kDistance:
+      return 1.0 - statistics.meanDepth();
+    case PriorityFactor::kWeightedPixel:
+      return statistics.centreWeight;
+    case PriorityFactor::kHotSpot:
+      return statistics.hotSpotWeight;
+    case PriorityFactor::kNoiseValue:
+      return noiseToResident(page, residentLevel, noise);
+    case PriorityFactor::kMipGap:
+      return residentLevel == PageTable::kNone ? page.level + 1.0
+                                               : static_cast<double>(page.level - residentLevel);
+  }
+  return 1.0;
+}
+
 // The value of each factor of the heuristic for one needed page, in the heuristic's order.
-std::vector<std::pair<std::string, double>> termsOf(
-    const std::vector<std::string>& factors, uint64_t absolute, const PageStatistics& statistics,
-    const PageTable& table, const NoiseValues& noise, const PriorityOptions& options) {
+std::vector<double> termsOf(uint64_t absolute, const PageStatistics& statistics,
+                            const PageTable& table, const NoiseValues& noise,
+                            const PriorityOptions& options) {
   const PageId page = fromAbsoluteIndex(absolute);
   const uint32_t residentLevel = table.entry(page).z;
-  std::vector<std::pair<std::string, double>> terms;
-  for (const std::string& factor : factors) {
-    double value = 1.0;
-    if (factor == "random")
-      value = hashUnit(absolute, options.seed);
-    else if (factor == "pixelsum")
-      value = static_cast<double>(statistics.pixels);
-    else if (factor == "distance")
-      value = 1.0 - statistics.meanDepth();
-    else if (factor == "weightedpixel")
-      value = statistics.centreWeight;
-    else if (factor == "hotspot")
-      value = statistics.hotSpotWeight;
-    else if (factor == "noisevalue")
-      value = noiseToResident(page, residentLevel, noise);
-    else if (factor == "mipgap")
-      value = residentLevel == PageTable::kNone ? page.level + 1.0
-                                                : static_cast<double>(page.level - residentLevel);
-    terms.emplace_back(factor, value);
-  }
+  std::vector<double> terms;
+  for (const PriorityFactor factor : options.heuristic.factors())
+    terms.push_back(termOf(factor, absolute, page, residentLevel, statistics, noise, options));
   return terms;
 }
 
@@ -79,42 +75,35 @@ std::vector<std::pair<std::string, double>> priorityTerms(uint64_t page,
                                                           const PriorityOptions& options) {
   const auto found = analysis.pages.find(page);
   if (found == analysis.pages.end()) return {};
-  return termsOf(factorsOf(options.heuristic), page, found->second, table, noise, options);
-}
-
-void validateHeuristic(const std::string& heuristic) {
-  const auto factors = factorsOf(heuristic);
-  if (factors.empty()) throw std::invalid_argument("heuristic: empty");
-  for (const std::string& factor : factors)
-    if (!kFactors.count(factor))
-      throw std::invalid_argument(
-          "heuristic: '" + factor +
-          "' is not one of random, pixelsum, distance, weightedpixel, hotspot, "
-          "noisevalue, mipgap");
+  const std::vector<double> values = termsOf(page, found->second, table, noise, options);
+  std::vector<std::pair<std::string, double>> terms;
+  for (size_t i = 0; i < values.size(); ++i)
+    terms.emplace_back(nameOf(kPriorityFactorNames, options.heuristic.factors()[i]), values[i]);
+  return terms;
 }
 
 AncestorStrategy parseAncestorStrategy(const std::string& name) {
-  if (name == "none") return AncestorStrategy::kNone;
-  if (name == "intern") return AncestorStrategy::kIntern;
-  if (name == "extern") return AncestorStrategy::kExtern;
-  throw std::invalid_argument("ancestor strategy '" + name +
-                              "' is not one of none, intern, extern");
+  if (const auto strategy = findByName(kAncestorStrategyNames, name)) return *strategy;
+  throw std::invalid_argument("ancestor strategy '" + name + "' is not one of " +
+                              joinedNames(kAncestorStrategyNames));
+}
+
+std::string toString(AncestorStrategy strategy) {
+  return std::string(nameOf(kAncestorStrategyNames, strategy));
 }
 
 std::vector<StreamRequest> prioritizePages(const NeedBufferAnalysis& analysis,
                                            const PageTable& table, const NoiseValues& noise,
                                            const PriorityOptions& options) {
-  validateHeuristic(options.heuristic);
-  const std::vector<std::string> factors = factorsOf(options.heuristic);
-
   // Priorities of the needed, non-resident pages, by absolute index (ordered: deterministic).
   std::map<uint64_t, double> priority;
   for (const auto& [absolute, statistics] : analysis.pages) {
     const PageId page = fromAbsoluteIndex(absolute);
     if (page.level >= table.levelCount() || table.resident(page)) continue;
+    const uint32_t residentLevel = table.entry(page).z;
     double value = 1.0;
-    for (const auto& [factor, term] : termsOf(factors, absolute, statistics, table, noise, options))
-      value *= term;
+    for (const PriorityFactor factor : options.heuristic.factors())
+      value *= termOf(factor, absolute, page, residentLevel, statistics, noise, options);
     priority[absolute] = value;
   }
 

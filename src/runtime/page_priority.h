@@ -2,7 +2,8 @@
 // Page priority heuristics (thesis 4.2) and ancestor streaming (4.3): from one frame's needbuffer
 // analysis and the page table, the pages to stream, most important first.
 //
-// A heuristic is a product of factors named in a string, e.g. "pixelsum" or "pixelsum*noisevalue":
+// A heuristic (runtime/heuristic.h) is a product of factors, written e.g. "pixelsum" or
+// "pixelsum*noisevalue":
 //   random         uniform in [0, 1), from a hash of the page and the frame's seed (4.2.2)
 //   pixelsum       pixels that need the page (4.2.2)
 //   distance       1 - mean window depth of those pixels: nearer is more important (4.2.2)
@@ -26,6 +27,8 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.h"
+#include "runtime/heuristic.h"
 #include "runtime/needbuffer_analysis.h"
 #include "runtime/page_table.h"
 
@@ -33,8 +36,14 @@ namespace vt {
 
 enum class AncestorStrategy { kNone, kIntern, kExtern };
 
+inline constexpr EnumNames<AncestorStrategy, 3> kAncestorStrategyNames = {{
+    {AncestorStrategy::kNone, "none"},
+    {AncestorStrategy::kIntern, "intern"},
+    {AncestorStrategy::kExtern, "extern"},
+}};
+
 struct PriorityOptions {
-  std::string heuristic = "pixelsum";
+  Heuristic heuristic;  // pixelsum
   AncestorStrategy ancestors = AncestorStrategy::kNone;
   bool noiseValueSkipping = false;
   float noiseThreshold = 0.0f;  // used with noiseValueSkipping
@@ -50,9 +59,9 @@ struct StreamRequest {
 // The NoiseValue of a stored page (VirtualTextureReader::noiseValue, or a test's table).
 using NoiseValues = std::function<float(PageId)>;
 
-// Throws std::invalid_argument naming an unknown factor.
-void validateHeuristic(const std::string& heuristic);
+// Throws std::invalid_argument naming an unknown strategy.
 AncestorStrategy parseAncestorStrategy(const std::string& name);  // none, intern, extern
+std::string toString(AncestorStrategy strategy);
 
 // The value of each factor of the heuristic for a page the analysis holds, in the heuristic's
 // order (the priority is their product); empty for other pages, such as ancestors, whose priority

@@ -32,7 +32,6 @@ VirtualTextureRuntime::VirtualTextureRuntime(const VirtualTextureReader& reader,
       // The root is always locked: every lookup falls back to it, so it must never leave.
       pageCache_(options.framesX, options.framesY, std::max(1u, options.lockedLevels)),
       table_(requirePageTablesFit(reader.path(), reader.description().levelCount)) {
-  validateHeuristic(options.priority.heuristic);
   const TextureDescription& d = reader.description();
   cache_.description = d;
   cache_.framesX = options.framesX;
@@ -98,18 +97,18 @@ std::pair<uint64_t, uint64_t> VirtualTextureRuntime::apply(std::vector<StreamedP
 }
 
 bool VirtualTextureRuntime::needsDepth() const {
-  return options_.priority.heuristic.find("distance") != std::string::npos;
+  return options_.priority.heuristic.uses(PriorityFactor::kDistance);
 }
 
 std::vector<StreamRequest> VirtualTextureRuntime::analyze(
     std::span<const glm::uvec4> need, std::span<const float> depth, int width, int height,
     bool need8, uint64_t frameNumber, FrameStatistics& statistics, const Prediction& prediction) {
-  const std::string& heuristic = options_.priority.heuristic;
+  const Heuristic& heuristic = options_.priority.heuristic;
   AnalysisOptions analysisOptions;
   analysisOptions.need8 = need8;
   analysisOptions.depth = needsDepth();
-  analysisOptions.centreWeight = heuristic.find("weightedpixel") != std::string::npos;
-  if (heuristic.find("hotspot") != std::string::npos)
+  analysisOptions.centreWeight = heuristic.uses(PriorityFactor::kWeightedPixel);
+  if (heuristic.uses(PriorityFactor::kHotSpot))
     analysisOptions.hotSpot = prediction.hotSpot.value_or(
         glm::vec2(static_cast<float>(width), static_cast<float>(height)) * 0.5f);
   const NeedBufferAnalysis analysis =

@@ -24,18 +24,20 @@ float wrapAngle(float a) {
 }  // namespace
 
 LookAhead parseLookAhead(const std::string& name) {
-  if (name == "none") return LookAhead::kNone;
-  if (name == "plain") return LookAhead::kPlain;
-  if (name == "stopfix") return LookAhead::kStopFix;
-  throw std::invalid_argument("lookahead '" + name + "' is not one of none, plain, stopfix");
+  if (const auto mode = findByName(kLookAheadNames, name)) return *mode;
+  throw std::invalid_argument("lookahead '" + name + "' is not one of " +
+                              joinedNames(kLookAheadNames));
 }
 
 HotSpotMode parseHotSpotMode(const std::string& name) {
-  if (name == "fixed") return HotSpotMode::kFixed;
-  if (name == "shifted") return HotSpotMode::kShifted;
-  if (name == "sliding") return HotSpotMode::kSliding;
-  throw std::invalid_argument("hot spot '" + name + "' is not one of fixed, shifted, sliding");
+  if (const auto mode = findByName(kHotSpotModeNames, name)) return *mode;
+  throw std::invalid_argument("hot spot '" + name + "' is not one of " +
+                              joinedNames(kHotSpotModeNames));
 }
+
+std::string toString(LookAhead mode) { return std::string(nameOf(kLookAheadNames, mode)); }
+
+std::string toString(HotSpotMode mode) { return std::string(nameOf(kHotSpotModeNames, mode)); }
 
 Camera lookAheadCamera(const Camera& beforePrevious, const Camera& previous, const Camera& current,
                        LookAhead mode) {

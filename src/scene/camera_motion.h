@@ -13,7 +13,9 @@
 // the turn's share of half the field of view, up to the border.
 
 #include <glm/glm.hpp>
+#include <string>
 
+#include "common/enum_names.h"
 #include "scene/camera.h"
 
 namespace vt {
@@ -21,8 +23,22 @@ namespace vt {
 enum class LookAhead { kNone, kPlain, kStopFix };
 enum class HotSpotMode { kFixed, kShifted, kSliding };
 
-LookAhead parseLookAhead(const std::string& name);      // none, plain, stopfix
-HotSpotMode parseHotSpotMode(const std::string& name);  // fixed, shifted, sliding
+inline constexpr EnumNames<LookAhead, 3> kLookAheadNames = {{
+    {LookAhead::kNone, "none"},
+    {LookAhead::kPlain, "plain"},
+    {LookAhead::kStopFix, "stopfix"},
+}};
+inline constexpr EnumNames<HotSpotMode, 3> kHotSpotModeNames = {{
+    {HotSpotMode::kFixed, "fixed"},
+    {HotSpotMode::kShifted, "shifted"},
+    {HotSpotMode::kSliding, "sliding"},
+}};
+
+// Throw std::invalid_argument naming the value and the table's names.
+LookAhead parseLookAhead(const std::string& name);
+HotSpotMode parseHotSpotMode(const std::string& name);
+std::string toString(LookAhead mode);
+std::string toString(HotSpotMode mode);
 
 Camera lookAheadCamera(const Camera& beforePrevious, const Camera& previous, const Camera& current,
                        LookAhead mode);

@@ -109,10 +109,10 @@ TEST(Evaluation, PerFrameResultsAreTheSameForOneJobOrSeveral) {
   Fixture f;
   const VirtualTextureReader reader(f.texture);
   std::vector<FlightConfiguration> configurations(3);
-  configurations[0].heuristic = "pixelsum";
-  configurations[1].heuristic = "hotspot*noisevalue";
+  configurations[0].heuristic = Heuristic::parse("pixelsum");
+  configurations[1].heuristic = Heuristic::parse("hotspot*noisevalue");
   configurations[1].lookAhead = LookAhead::kStopFix;
-  configurations[2].heuristic = "random";
+  configurations[2].heuristic = Heuristic::parse("random");
   configurations[2].ancestors = AncestorStrategy::kExtern;
   for (FlightConfiguration& c : configurations) c.budget = 2;
   const auto csv = [&](unsigned jobs) {
@@ -137,7 +137,7 @@ TEST(Evaluation, WritesTheSummaryTablePerMotionMeansAndPlots) {
   FlightConfiguration a, b;
   a.name = "PixelSum | 2";  // a '|' must not break the Markdown table
   a.budget = 2;
-  b.heuristic = "weightedpixel";
+  b.heuristic = Heuristic::parse("weightedpixel");
   b.budget = 4;
   const EvaluationOptions options = smallScreen(reader, 2);
   const Evaluation evaluation = evaluate(reader, boxRoom(), path, {a, b}, options);

@@ -53,7 +53,7 @@ TEST_F(PagePriority, DistanceOrdersByMeanDepthNearestFirst) {
   EXPECT_DOUBLE_EQ(analysis.pages.at(absoluteIndex(a_)).meanDepth(),
                    (double{0.9f} + double{0.7f}) / 2);
   PriorityOptions priority;
-  priority.heuristic = "distance";
+  priority.heuristic = Heuristic::parse("distance");
   EXPECT_EQ(order(prioritizePages(analysis, table_, kNoNoise, priority)),
             (std::vector<uint64_t>{11, 48, 10}));
 }
@@ -67,11 +67,11 @@ TEST_F(PagePriority, WeightedPixelPrefersTheCentreAndHotSpotItsShiftedCentre) {
   options.hotSpot = glm::vec2(0.5f, 0.5f);  // shifted onto pixel (0, 0)
   const auto analysis = analyzeNeedBuffer(need, {}, 4, 2, options);
   PriorityOptions weighted;
-  weighted.heuristic = "weightedpixel";
+  weighted.heuristic = Heuristic::parse("weightedpixel");
   EXPECT_EQ(order(prioritizePages(analysis, table_, kNoNoise, weighted)),
             (std::vector<uint64_t>{11, 10}));
   PriorityOptions hotSpot;
-  hotSpot.heuristic = "hotspot";
+  hotSpot.heuristic = Heuristic::parse("hotspot");
   EXPECT_EQ(order(prioritizePages(analysis, table_, kNoNoise, hotSpot)),
             (std::vector<uint64_t>{10, 11}));
 }
@@ -85,7 +85,7 @@ TEST_F(PagePriority, NoiseValueScalesByTheNoiseUpToTheResidentAncestor) {
   const std::map<uint64_t, float> noise = {{10, 0.5f}, {11, 0.1f}, {1, 0.0f}, {2, 0.2f}};
   const NoiseValues values = [&](PageId p) { return noise.at(absoluteIndex(p)); };
   PriorityOptions options;
-  options.heuristic = "pixelsum*noisevalue";
+  options.heuristic = Heuristic::parse("pixelsum*noisevalue");
   const auto requests = prioritizePages(analysis, table_, values, options);
   ASSERT_EQ(order(requests), (std::vector<uint64_t>{10, 11}));
   EXPECT_DOUBLE_EQ(requests[0].priority, 2 * (double{0.5f} + double{0.0f}));
@@ -97,7 +97,7 @@ TEST_F(PagePriority, MipGapRanksBigJumpsFirst) {
   const auto need =
       needBuffer({a_, a_, a_, b_, std::nullopt, std::nullopt, std::nullopt, std::nullopt});
   PriorityOptions options;
-  options.heuristic = "mipgap";
+  options.heuristic = Heuristic::parse("mipgap");
   EXPECT_EQ(
       order(prioritizePages(analyzeNeedBuffer(need, {}, 4, 2, {}), table_, kNoNoise, options)),
       (std::vector<uint64_t>{11, 10}));
@@ -149,7 +149,7 @@ TEST_F(PagePriority, RandomIsDeterministicPerSeedAndUnknownFactorsAreRejected) {
       {a_, b_, c_, std::nullopt, std::nullopt, std::nullopt, std::nullopt, std::nullopt});
   const auto analysis = analyzeNeedBuffer(need, {}, 4, 2, {});
   PriorityOptions options;
-  options.heuristic = "random";
+  options.heuristic = Heuristic::parse("random");
   options.seed = 7;
   EXPECT_EQ(prioritizePages(analysis, table_, kNoNoise, options),
             prioritizePages(analysis, table_, kNoNoise, options));
@@ -157,8 +157,7 @@ TEST_F(PagePriority, RandomIsDeterministicPerSeedAndUnknownFactorsAreRejected) {
     EXPECT_GE(r.priority, 0.0);
     EXPECT_LT(r.priority, 1.0);
   }
-  options.heuristic = "pixelsum*speed";
-  EXPECT_THROW(prioritizePages(analysis, table_, kNoNoise, options), std::invalid_argument);
+  EXPECT_THROW(Heuristic::parse("pixelsum*speed"), std::invalid_argument);
   EXPECT_THROW(parseAncestorStrategy("sideways"), std::invalid_argument);
 }
 

@@ -1,0 +1,135 @@
+// `vt eval`'s configurations, checked without flying: a configurations file's defaults, labels and
+// figures, each mistake refused with the message the command prints, and the product of lists.
+
+#include "eval/configurations_file.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "common/error.h"
+#include "test_support.h"
+
+namespace vt {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string errorOf(const std::string& text) {
+  try {
+    parseConfigurationsFile(nlohmann::json::parse(text));
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  } catch (const nlohmann::json::exception& e) {
+    return std::string("json: ") + e.what();
+  }
+  return "";
+}
+
+TEST(ConfigurationsFile, DefaultsFillWhatAConfigurationLeavesOut) {
+  const ConfigurationsFile file = parseConfigurationsFile(nlohmann::json::parse(R"({
+    "defaults": {"budget": 2, "ancestors": "extern"},
+    "configurations": [{"name": "A"}, {"heuristic": "hotspot*noisevalue", "budget": 7}],
+    "figures": [{"file": "ab.png", "measure": "wssim", "runs": ["hotspot*noisevalue 7/frame extern", "A"]}]})"));
+  ASSERT_EQ(file.configurations.size(), 2u);
+  EXPECT_EQ(file.configurations[0].budget, 2u);
+  EXPECT_EQ(file.configurations[0].ancestors, AncestorStrategy::kExtern);
+  EXPECT_EQ(file.configurations[1].budget, 7u);
+  EXPECT_EQ(file.configurations[1].heuristic, Heuristic::parse("hotspot*noisevalue"));
+  ASSERT_EQ(file.figures.size(), 1u);
+  EXPECT_EQ(file.figures[0].title, "ab.png");  // the file when no title is given
+  EXPECT_EQ(file.figures[0].measure, "wssim");
+  EXPECT_EQ(file.figures[0].runs,
+            (std::vector<std::string>{"hotspot*noisevalue 7/frame extern", "A"}));
+}
+
+TEST(ConfigurationsFile, APlainListIsAFileWithoutDefaultsOrFigures) {
+  const ConfigurationsFile file =
+      parseConfigurationsFile(nlohmann::json::parse(R"([{"budget": 3}, {"budget": 4}])"));
+  ASSERT_EQ(file.configurations.size(), 2u);
+  EXPECT_EQ(file.configurations[1].label(), "pixelsum 4/frame");
+  EXPECT_TRUE(file.figures.empty());
+}
+
+TEST(ConfigurationsFile, RefusesEachMistakeWithItsMessage) {
+  EXPECT_EQ(errorOf(R"({"configurations": [{"budgt": 3}]})"),
+            "configuration 1: unknown configuration key 'budgt'");
+  EXPECT_EQ(errorOf(R"({"configurations": [{"name": "A"}, {"name": "A", "budget": 3}]})"),
+            "configuration 2: the name 'A' is taken");
+  EXPECT_EQ(errorOf(R"([{"budget": 3}, {"budget": 3}])"),
+            "configuration 2: the name 'pixelsum 3/frame' is taken");
+  EXPECT_EQ(errorOf(R"({"configurations": [{"heuristic": "pixelsum*luck"}]})"),
+            "configuration 1: heuristic: 'luck' is not one of random, pixelsum, distance, "
+            "weightedpixel, hotspot, noisevalue, mipgap");
+  EXPECT_EQ(errorOf(R"({"configurations": [{"ancestors": "sideways"}]})"),
+            "configuration 1: ancestor strategy 'sideways' is not one of none, intern, extern");
+  EXPECT_EQ(errorOf(R"({"configurations": []})"), "expected a non-empty list of configurations");
+  EXPECT_EQ(errorOf(R"({"configurations": {}})"), "expected a non-empty list of configurations");
+  EXPECT_EQ(
+      errorOf(
+          R"({"configurations": [{"name": "A"}], "figures": [{"file": "x.png", "runs": ["B"]}]})"),
+      "figure 'x.png': no configuration named 'B'");
+  EXPECT_EQ(
+      errorOf(
+          R"({"configurations": [{"name": "A"}], "figures": [{"file": "a/x.png", "runs": []}]})"),
+      "figure 'a/x.png': the file must be a plain name.png");
+  EXPECT_EQ(
+      errorOf(
+          R"({"configurations": [{"name": "A"}], "figures": [{"file": "x.png", "measure": "psnr", "runs": []}]})"),
+      "figure 'x.png': measure 'psnr' is not ssim, wssim or rmse");
+  EXPECT_THAT(errorOf(R"({"defaults": {"budget": -1}, "configurations": [{}]})"),
+              HasSubstr("'budget' must be a whole number from 0 to 1048576"));
+  EXPECT_THAT(errorOf(R"({"defaults": {}})"), HasSubstr("json: "));  // no configurations key
+}
+
+TEST(ConfigurationsFile, NamesTheFileInItsErrors) {
+  test::ScratchDirectory dir;
+  std::ofstream(dir / "bad.json") << R"({"configurations": [{"budget": 3}])";
+  try {
+    loadConfigurationsFile(dir / "bad.json");
+    ADD_FAILURE() << "a truncated file was read";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("bad.json: not a configurations file: "));
+  }
+  std::ofstream(dir / "taken.json") << R"([{"name": "A"}, {"name": "A"}])";
+  try {
+    loadConfigurationsFile(dir / "taken.json");
+    ADD_FAILURE() << "a taken name was accepted";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("taken.json: configuration 2: the name 'A' is taken"));
+  }
+}
+
+TEST(ConfigurationProduct, VariesTheLastListFastest) {
+  ConfigurationLists lists;
+  lists.heuristics = "pixelsum,random";
+  lists.budgets = "2,4";
+  lists.parents = "off,on";
+  const auto configurations = configurationProduct(lists, FlightConfiguration{});
+  ASSERT_EQ(configurations.size(), 8u);
+  EXPECT_EQ(configurations[0].label(), "pixelsum 2/frame");
+  EXPECT_EQ(configurations[1].label(), "pixelsum 2/frame parents");
+  EXPECT_EQ(configurations[2].label(), "pixelsum 4/frame");
+  EXPECT_EQ(configurations[7].label(), "random 4/frame parents");
+}
+
+TEST(ConfigurationProduct, RefusesBadItems) {
+  const auto refuse = [](ConfigurationLists lists, const std::string& message) {
+    try {
+      configurationProduct(lists, FlightConfiguration{});
+      ADD_FAILURE() << message;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_THAT(e.what(), HasSubstr(message));
+    }
+  };
+  refuse({.parents = "maybe"}, "--trilinear-parents takes off and on, not 'maybe'");
+  refuse({.budgets = "x"}, "not a whole number in 'x', '0' or '1'");
+  refuse({.heuristics = ","}, "empty list ','");
+  refuse({.lookAheads = "far"}, "lookahead 'far' is not one of none, plain, stopfix");
+  refuse({.needScales = "3"}, "needbuffer scale '3' is not 1, 2, 4 or 8");
+}
+
+}  // namespace
+}  // namespace vt
