@@ -109,6 +109,7 @@ RuntimeOptions runtimeOptions(const VirtualTextureReader& reader,
   options.priority.ancestors = configuration.ancestors;
   options.priority.noiseValueSkipping = configuration.noiseSkipping;
   options.trilinearParents = configuration.trilinearParents;
+  options.randomSeed = configuration.seed;
   double meanNoise = 0.0;
   for (const float n : reader.noiseValues()) meanNoise += n;
   meanNoise /= static_cast<double>(std::max<size_t>(1, reader.noiseValues().size()));

@@ -26,6 +26,7 @@ std::string FlightConfiguration::label() const {
   if (asyncReadback) add("", "async");
   if (trilinearParents) add("", "parents");
   if (latency > 0) add("latency=", std::to_string(latency));
+  if (seed > 0) add("seed=", std::to_string(seed));
   return text;
 }
 
@@ -45,7 +46,8 @@ nlohmann::json FlightConfiguration::toJson() const {
           {"preload_visible", preloadVisible},
           {"need_scale", 1 << needScaleLog2},
           {"readback", std::string(nameOf(kReadbackNames, asyncReadback))},
-          {"trilinear_parents", trilinearParents}};
+          {"trilinear_parents", trilinearParents},
+          {"seed", seed}};
 }
 
 FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
@@ -101,6 +103,8 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
       c.needScaleLog2 = parseNeedScale(std::to_string(value.get<int64_t>()));
     } else if (key == "trilinear_parents") {
       c.trilinearParents = flag();
+    } else if (key == "seed") {
+      c.seed = count(0, 1u << 30);
     } else if (key == "readback") {
       const auto mode = findByName(kReadbackNames, text());
       if (!mode)

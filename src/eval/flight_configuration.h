@@ -6,7 +6,7 @@
 // The JSON form uses the names of `vt fly`'s options, e.g.
 //   { "name": "HotSpot x NoiseValue, LookAhead", "heuristic": "hotspot*noisevalue",
 //     "lookahead": "stopfix", "budget": 5, "ancestors": "extern", "noise_skipping": true,
-//     "locked_levels": 4, "need_scale": 4, "trilinear_parents": true }
+//     "locked_levels": 4, "need_scale": 4, "trilinear_parents": true, "seed": 3 }
 // Keys left out keep their defaults (below, or the defaults given to fromJson); unknown keys and
 // values out of range are errors.
 
@@ -37,6 +37,7 @@ struct FlightConfiguration {
   bool asyncReadback = false;     // the analysis sees the previous frame's needbuffer
   bool trilinearParents = false;  // the parent of a needed page counts as needed too: trilinear
                                   // filtering reads it (runtime/virtual_texture_runtime.h)
+  uint32_t seed = 0;  // of the `random` factor: runs differing only in it are independent draws
 
   std::string label() const;  // the name, or a short description of the settings
   nlohmann::json toJson() const;

@@ -148,7 +148,7 @@ std::vector<StreamRequest> VirtualTextureRuntime::analyze(
   if (options_.trilinearParents) addTrilinearParents(combined);
 
   PriorityOptions priority = options_.priority;
-  priority.seed = frameNumber;
+  priority.seed = frameSeed(frameNumber);
   const NoiseValues noise = [this](PageId page) {
     return reader_.contains(page) ? reader_.noiseValue(page) : 0.0f;
   };
@@ -169,7 +169,7 @@ std::vector<StreamRequest> VirtualTextureRuntime::analyze(
 std::vector<std::pair<std::string, double>> VirtualTextureRuntime::priorityTerms(
     uint64_t page) const {
   PriorityOptions priority = options_.priority;
-  priority.seed = lastFrame_;
+  priority.seed = frameSeed(lastFrame_);
   const NoiseValues noise = [this](PageId p) {
     return reader_.contains(p) ? reader_.noiseValue(p) : 0.0f;
   };

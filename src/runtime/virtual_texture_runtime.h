@@ -30,6 +30,9 @@ struct RuntimeOptions {
   // parent is kept fresh in the LRU order, a missing one is requested. Off: the thesis's runtime.
   bool trilinearParents = false;
   bool keepAnalysis = false;  // keep each frame's analysis for priorityTerms (inspection)
+  // The run's seed of the `random` factor, mixed with the frame number: runs with different seeds
+  // draw independent random priorities (0: the frame number alone).
+  uint64_t randomSeed = 0;
 };
 
 struct FrameStatistics {
@@ -79,6 +82,11 @@ class VirtualTextureRuntime {
   std::vector<std::pair<std::string, double>> priorityTerms(uint64_t page) const;
 
  private:
+  // The `random` factor's seed of a frame: the frame number, shifted by the run's seed times the
+  // golden-ratio constant, so that seeds s and s + 1 share no frame's sequence.
+  uint64_t frameSeed(uint64_t frameNumber) const {
+    return frameNumber + options_.randomSeed * 0x9e3779b97f4a7c15ull;
+  }
   void insert(uint64_t page, std::span<const std::byte> texels, uint64_t& evicted);
   void syncIndirection();
 

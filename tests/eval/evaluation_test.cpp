@@ -127,6 +127,23 @@ TEST(Evaluation, PerFrameResultsAreTheSameForOneJobOrSeveral) {
   EXPECT_EQ(std::count(one.begin(), one.end(), '\n'), 3 * boxRoomPath().frameCount());
 }
 
+// Random with another seed is another draw: its streamed pages differ; the same seed repeats.
+TEST(Evaluation, RandomRunsWithDifferentSeedsDrawDifferentPages) {
+  Fixture f;
+  const VirtualTextureReader reader(f.texture);
+  std::vector<FlightConfiguration> configurations(3);
+  for (FlightConfiguration& c : configurations) {
+    c.heuristic = Heuristic::parse("random");
+    c.budget = 2;
+  }
+  configurations[1].seed = configurations[2].seed = 1;
+  const Evaluation e =
+      evaluate(reader, boxRoom(), boxRoomPath(), configurations, smallScreen(reader, 2));
+  const auto csv = [&](size_t run) { return flightCsvRows(e.runs[run].result, true); };
+  EXPECT_NE(csv(0), csv(1));
+  EXPECT_EQ(csv(1), csv(2));
+}
+
 TEST(Evaluation, WritesTheSummaryTablePerMotionMeansAndPlots) {
   Fixture f;
   const VirtualTextureReader reader(f.texture);
@@ -168,11 +185,11 @@ TEST(FlightConfiguration, ReadsTheOptionNamesAndRejectsUnknownKeysAndBadValues) 
   const FlightConfiguration c = FlightConfiguration::fromJson(
       nlohmann::json::parse(R"({"heuristic": "hotspot*noisevalue", "lookahead": "stopfix",
         "budget": 5, "ancestors": "extern", "noise_skipping": true, "locked_levels": 4,
-        "need_scale": 4, "readback": "async", "trilinear_parents": true})"),
+        "need_scale": 4, "readback": "async", "trilinear_parents": true, "seed": 3})"),
       {});
   EXPECT_EQ(c.label(),
             "hotspot*noisevalue 5/frame lookahead=stopfix extern skipping locked=4 need=1/4 async "
-            "parents");
+            "parents seed=3");
   EXPECT_TRUE(c.trilinearParents);
   const FlightConfiguration back = FlightConfiguration::fromJson(c.toJson(), {});
   EXPECT_EQ(back.toJson(), c.toJson());
@@ -190,6 +207,7 @@ TEST(FlightConfiguration, ReadsTheOptionNamesAndRejectsUnknownKeysAndBadValues) 
   EXPECT_THAT(error(R"({"need_scale": 3})"), HasSubstr("need"));
   EXPECT_THAT(error(R"({"lookahead": "far"})"), HasSubstr("lookahead 'far'"));
   EXPECT_THAT(error(R"([1])"), HasSubstr("must be a JSON object"));
+  EXPECT_THAT(error(R"({"seed": 1.5})"), HasSubstr("'seed' must be a whole number"));
   EXPECT_THAT(error(R"({"trilinear_parents": "yes"})"),
               HasSubstr("'trilinear_parents' must be true or false"));
 }
