@@ -1,0 +1,122 @@
+#pragma once
+// The shader's two views of the texture in the oracle (src/shader/shader_cpp.h instantiates the
+// shared GLSL with one of them): every page resident, read from the file (golden images and
+// reference frames), or a cache state as the GL renderer holds it. Also the framebuffer's
+// conversion of a colour and the shader's uniform parameters, which every oracle pass shares.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <glm/glm.hpp>
+
+#include "reference/cache_state.h"
+#include "reference/linear_filter.h"
+#include "reference/renderer.h"
+#include "reference/texture_source.h"
+#include "shader/shader_cpp.h"
+
+namespace vt::reference {
+
+// The shader's view of a ResidentTexture: the indirection names the page (or its stored
+// ancestor) in frame (0, 0) of a cache of one frame and remembers it; texel fetches read that
+// page. The shader fetches texels only of the page it just looked up.
+class ResidentBackend {
+ public:
+  ResidentBackend(const ResidentTexture* texture, PrecisionProfile profile)
+      : texture_(texture), profile_(profile) {}
+
+  float log2(float x) { return profileLog2(profile_, x); }
+
+  shader::uvec4 vtFetchIndirection(shader::ivec2 page, int level) {
+    current_ =
+        texture_->residentPage(PageId{static_cast<uint32_t>(page.x), static_cast<uint32_t>(page.y),
+                                      static_cast<uint32_t>(level)});
+    texels_ = &texture_->texels(current_);
+    return shader::uvec4(0u, 0u, current_.level, 0u);
+  }
+
+  glm::u8vec4 fetch8(shader::ivec2 texel) const {
+    const TextureDescription& d = texture_->description();
+    const int side = static_cast<int>(d.storedPageSide());
+    const int x = std::clamp(texel.x, 0, side - 1), y = std::clamp(texel.y, 0, side - 1);
+    return expandToRgba(texels_->data() + (static_cast<size_t>(y) * side + x) * d.channels,
+                        d.channels);
+  }
+
+  shader::vec4 vtFetchCacheTexel(shader::ivec2 texel) { return unorm8ToFloat(fetch8(texel)); }
+
+  shader::vec4 vtSampleCacheLinear(shader::vec2 texel) {
+    const int side = static_cast<int>(texture_->description().storedPageSide());
+    return sampleLinear([this](shader::ivec2 t) { return fetch8(t); }, texel, shader::ivec2(side), profile_);
+  }
+
+ private:
+  const ResidentTexture* texture_;
+  PrecisionProfile profile_;
+  PageId current_{};
+  const std::vector<std::byte>* texels_ = nullptr;
+};
+
+// The shader's view of a CacheState: the indirection table and the cache texture as uploaded.
+class CacheBackend {
+ public:
+  CacheBackend(const CacheState* state, PrecisionProfile profile)
+      : state_(state), profile_(profile) {}
+
+  float log2(float x) { return profileLog2(profile_, x); }
+
+  shader::uvec4 vtFetchIndirection(shader::ivec2 page, int level) {
+    const glm::u16vec4 e =
+        state_->entry(PageId{static_cast<uint32_t>(page.x), static_cast<uint32_t>(page.y),
+                             static_cast<uint32_t>(level)});
+    return shader::uvec4(e.x, e.y, e.z, e.w);
+  }
+
+  const uint8_t* texelAt(shader::ivec2 texel) const {
+    const int x = std::clamp(texel.x, 0, static_cast<int>(state_->widthTexels) - 1);
+    const int y = std::clamp(texel.y, 0, static_cast<int>(state_->heightTexels) - 1);
+    return state_->texels.data() +
+           (static_cast<size_t>(y) * state_->widthTexels + static_cast<size_t>(x)) * 4;
+  }
+
+  glm::u8vec4 fetch8(shader::ivec2 texel) const {
+    const uint8_t* t = texelAt(texel);
+    return {t[0], t[1], t[2], t[3]};
+  }
+
+  shader::vec4 vtFetchCacheTexel(shader::ivec2 texel) { return unorm8ToFloat(texelAt(texel)); }
+
+  shader::vec4 vtSampleCacheLinear(shader::vec2 texel) {
+    return sampleLinear(
+        [this](shader::ivec2 t) { return fetch8(t); }, texel,
+        shader::ivec2(static_cast<int>(state_->widthTexels), static_cast<int>(state_->heightTexels)),
+        profile_);
+  }
+
+ private:
+  const CacheState* state_;
+  PrecisionProfile profile_;
+};
+
+// The framebuffer's conversion: clamp, then round to nearest even. NaN becomes 0.
+inline uint8_t toUnorm8(float c) {
+  const float clamped = c >= 0.0f ? (c <= 1.0f ? c : 1.0f) : 0.0f;
+  return static_cast<uint8_t>(std::nearbyint(clamped * 255.0f));
+}
+
+// The shader's uniforms for texture `d`, a cache texture of `cacheSize` texels, and `settings`.
+inline shader::VtParameters shaderParameters(const TextureDescription& d, glm::vec2 cacheSize,
+                                      const RenderSettings& settings) {
+  shader::VtParameters parameters{};
+  parameters.pageSize = static_cast<int>(d.pageSize);
+  parameters.border = static_cast<int>(d.border);
+  parameters.finestLevel = static_cast<int>(d.finestLevel());
+  parameters.trilinear = settings.trilinear ? 1 : 0;
+  parameters.exactFilter = settings.exactFilter ? 1 : 0;
+  parameters.need8 = settings.need8 ? 1 : 0;
+  parameters.needScaleLog2 = settings.needScaleLog2;
+  parameters.cacheSize = cacheSize;
+  return parameters;
+}
+
+}  // namespace vt::reference
