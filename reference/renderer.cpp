@@ -203,7 +203,10 @@ class TileShader {
     const Attributes below = at[static_cast<size_t>(column)],
                      above = at[static_cast<size_t>(2 + column)];
     const vec2 dUVdx = right.uv - left.uv, dUVdy = above.uv - below.uv;
-    const shader::VtFragment f = shader_.vtShadeFragment(here.uv, dUVdx, dUVdy, job_.parameters);
+    const shader::VtFragment f = job_.settings.needOnly
+                                     ? needOfFragment(here.uv, dUVdx, dUVdy)
+                                     : shader_.vtShadeFragment(here.uv, dUVdx, dUVdy,
+                                                               job_.parameters);
 
     Frame& frame = job_.frame;
     const size_t index = indexOf(px, py);
@@ -225,6 +228,22 @@ class TileShader {
                             glm::u8vec4(frame.color[index * 4], frame.color[index * 4 + 1],
                                         frame.color[index * 4 + 2], frame.color[index * 4 + 3]),
                             here.uv, f.neededLevel, f.lod});
+  }
+
+  // The first steps of vtShadeFragment (src/shader/virtual_texture.glsl), through the same
+  // functions: the LOD, the needed level and the needbuffer entry, without sampling.
+  shader::VtFragment needOfFragment(vec2 uvIn, vec2 dUVdx, vec2 dUVdy) {
+    const shader::VtParameters& p = job_.parameters;
+    shader::VtFragment f{};
+    const vec2 uv(shader_.vtClampOrZero(uvIn.x, 1.0f), shader_.vtClampOrZero(uvIn.y, 1.0f));
+    f.lod = shader_.vtLevelOfDetail(dUVdx, dUVdy, p);
+    f.neededLevel = shader_.vtNeededLevel(f.lod);
+    const shader::ivec2 page = shader_.vtPageAt(uv, f.neededLevel);
+    f.need = p.need8 != 0 ? shader_.vtEncodeNeed8(page, f.neededLevel)
+                          : shader_.vtEncodeNeed32(page, f.neededLevel);
+    f.color = vec4(0.0f);
+    f.residentLevel = -1;
+    return f;
   }
 
   // The pixel's result set under the model, after the oracle's own value.

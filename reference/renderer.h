@@ -37,6 +37,9 @@ struct RenderSettings {
   // (virtual_texture_types.glsl). 0: full resolution.
   int needScaleLog2 = 0;
   bool debugChannels = false;  // also fill Frame's uv, derivatives, lod and residentLevel
+  // The needbuffer and depth only (a LookAhead camera's pass): no texel is read, the colour is
+  // left (0, 0, 0, 0). The needbuffer is the same as with colour: it does not depend on texels.
+  bool needOnly = false;
   unsigned threads = 0;        // 0: every core
 };
 

@@ -1,13 +1,16 @@
 #include "eval/evaluation.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
-#include <exception>
-#include <mutex>
+#include <map>
+#include <memory>
 #include <thread>
 
+#include "eval/flight_run.h"
+#include "reference/parallel_for.h"
+#include "reference/recolor.h"
 #include "reference/texture_source.h"
+#include "runtime/needbuffer_scale.h"
 
 namespace vt {
 namespace {
@@ -18,74 +21,181 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// The needbuffers an evaluation draws besides each view's own: a camera (the view, or a LookAhead
+// camera) at a needbuffer scale. The view at full scale is the shared frame itself.
+struct NeedPass {
+  LookAhead camera = LookAhead::kNone;  // kNone: the view
+  int scaleLog2 = 0;
+  auto operator<=>(const NeedPass&) const = default;
+};
+
+struct NeedImage {
+  std::vector<glm::uvec4> need;
+  std::vector<float> depth;
+  double seconds = 0.0;
+};
+
+// Every camera view of the path, drawn once for all configurations: with every page resident and
+// the fragment inputs recorded (the reference image, its needbuffer and depth), and the extra
+// needbuffer passes the configurations ask for. Needbuffers and depth do not depend on the cache
+// state; each configuration's colour is the recorded frame shaded again under its own cache state
+// (reference/recolor.h), the same bytes as drawing it.
+class SharedViews {
+ public:
+  SharedViews(const VirtualTextureReader& reader, const Mesh& mesh, const CameraPath& path,
+              const reference::RenderSettings& settings,
+              const std::vector<FlightConfiguration>& configurations)
+      : mesh_(mesh), path_(path), everything_(reader), settings_(settings) {
+    settings_.needScaleLog2 = 0;
+    settings_.debugChannels = true;
+    for (const FlightConfiguration& c : configurations) {
+      if (c.needScaleLog2 > 0) passes_[NeedPass{LookAhead::kNone, c.needScaleLog2}];
+      if (c.lookAhead != LookAhead::kNone) passes_[NeedPass{c.lookAhead, c.needScaleLog2}];
+    }
+  }
+
+  // Draws frame `frameNumber`'s view and its extra passes, each with every thread.
+  void draw(int frameNumber) {
+    const auto start = Clock::now();
+    const Camera current = path_.at(frameNumber);
+    reference::renderFrame(toClipSpace(mesh_, current, settings_.viewport), everything_, settings_,
+                           view_);
+    viewSeconds_ = secondsSince(start);
+    const Camera previous = path_.at(std::max(0, frameNumber - 1)),
+                 beforePrevious = path_.at(std::max(0, frameNumber - 2));
+    for (auto& [pass, image] : passes_) {
+      const auto passStart = Clock::now();
+      const Camera camera = pass.camera == LookAhead::kNone
+                                ? current
+                                : lookAheadCamera(beforePrevious, previous, current, pass.camera);
+      reference::RenderSettings settings = settings_;
+      settings.debugChannels = false;
+      settings.needOnly = true;
+      settings.needScaleLog2 = pass.scaleLog2;
+      settings.viewport = reducedViewport(settings_.viewport, pass.scaleLog2);
+      const glm::vec2 jitter = needJitter(static_cast<uint64_t>(frameNumber), pass.scaleLog2);
+      reference::renderFrame(toClipSpace(mesh_, camera, settings.viewport, jitter), everything_,
+                             settings, scratch_);
+      image.need = std::move(scratch_.need);
+      image.depth = std::move(scratch_.depth);
+      image.seconds = secondsSince(passStart);
+    }
+  }
+
+  const reference::Frame& view() const { return view_; }
+  double viewSeconds() const { return viewSeconds_; }
+  // The pass's needbuffer (and depth) of the current frame; the view's own at full scale.
+  const NeedImage* pass(LookAhead camera, int scaleLog2) const {
+    const auto found = passes_.find(NeedPass{camera, scaleLog2});
+    return found == passes_.end() ? nullptr : &found->second;
+  }
+  double totalSeconds() const {
+    double seconds = viewSeconds_;
+    for (const auto& [pass, image] : passes_) seconds += image.seconds;
+    return seconds;
+  }
+
+ private:
+  const Mesh& mesh_;
+  const CameraPath& path_;
+  const reference::ResidentTexture everything_;
+  reference::RenderSettings settings_;
+  reference::Frame view_, scratch_;
+  double viewSeconds_ = 0.0;
+  std::map<NeedPass, NeedImage> passes_;
+};
+
+// One configuration's run inside the evaluation: its flight, and its own buffers (the colour of
+// each frame, and the previous frame's needbuffer under asynchronous readback).
+struct RunState {
+  std::unique_ptr<FlightRun> run;
+  std::vector<uint8_t> color;
+  std::vector<glm::uvec4> delayedNeed;
+  std::vector<float> delayedDepth;
+};
+
+// Frame `f` of one run from the shared views: its colour shaded under its cache state, the
+// needbuffers its configuration reads, then the run's analysis, quality and streaming.
+void flyFrame(RunState& state, const SharedViews& views, const CameraPath& path, int f,
+              const reference::RenderSettings& settings) {
+  const FlightConfiguration& c = state.run->configuration();
+  const auto start = Clock::now();
+  reference::RenderSettings own = settings;
+  own.threads = 1;
+  reference::recolor(views.view(), state.run->runtime().cacheState(), own, state.color);
+  double drawSeconds = secondsSince(start) + views.viewSeconds();
+
+  std::span<const glm::uvec4> need = views.view().need;
+  std::span<const float> depth = views.view().depth;
+  if (c.needScaleLog2 > 0) {
+    const NeedImage* reduced = views.pass(LookAhead::kNone, c.needScaleLog2);
+    need = reduced->need;
+    depth = reduced->depth;
+    drawSeconds += reduced->seconds;
+  }
+  std::span<const glm::uvec4> lookAheadNeed;
+  if (c.lookAhead != LookAhead::kNone) {
+    const NeedImage* ahead = views.pass(c.lookAhead, c.needScaleLog2);
+    lookAheadNeed = ahead->need;
+    drawSeconds += ahead->seconds;
+  }
+  if (!state.run->runtime().needsDepth()) depth = {};
+  std::vector<glm::uvec4> currentNeed;
+  std::vector<float> currentDepth;
+  if (c.asyncReadback) {  // the analysis sees the previous frame's needbuffer
+    currentNeed.assign(need.begin(), need.end());
+    currentDepth.assign(depth.begin(), depth.end());
+    std::swap(currentNeed, state.delayedNeed);
+    std::swap(currentDepth, state.delayedDepth);
+    need = currentNeed;
+    depth = currentDepth;
+  }
+  state.run->frame(f, path.at(std::max(0, f - 1)), path.at(f),
+                   DrawnFrame{state.color, need, depth, lookAheadNeed, views.view().color},
+                   drawSeconds);
+}
+
 }  // namespace
 
 Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const CameraPath& path,
                     const std::vector<FlightConfiguration>& configurations,
                     const EvaluationOptions& options) {
   const auto start = Clock::now();
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const unsigned jobs =
-      std::clamp(options.jobs ? options.jobs : cores, 1u,
-                 static_cast<unsigned>(std::max<size_t>(1, configurations.size())));
-  const auto frames = static_cast<uint64_t>(path.frameCount());
-  const uint64_t total = frames * (1 + configurations.size());
-  std::atomic<uint64_t> done{0};
-  const auto report = [&] {
-    if (options.progress) options.progress(done.load(), total);
+  const unsigned threads =
+      options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
+  const reference::ThreadLimit parallelism(threads);
+  reference::RenderSettings settings = options.settings;
+  settings.threads = threads;
+  settings.needScaleLog2 = 0;
+  const int frames = path.frameCount();
+  const uint64_t total = static_cast<uint64_t>(frames) * configurations.size();
+  const auto report = [&](uint64_t done) {
+    if (options.progress) options.progress(done, total);
   };
 
-  // The reference images, once for every run: the oracle with every page resident, each frame
-  // drawn by all cores.
+  SharedViews views(reader, mesh, path, settings, configurations);
+  FlightOptions flight;
+  flight.settings = settings;
   Evaluation evaluation;
-  std::vector<std::vector<uint8_t>> references(frames);
-  {
-    reference::RenderSettings settings = options.settings;
-    settings.threads = options.jobs ? options.jobs : cores;
-    const reference::ResidentTexture everything(reader);
-    for (uint64_t f = 0; f < frames; ++f) {
-      references[f] = referenceImage(everything, mesh, path.at(static_cast<int>(f)), settings);
-      ++done;
-      report();
-    }
+  std::vector<RunState> states(configurations.size());
+  double sharedSeconds = 0.0;
+  for (int f = 0; f < frames; ++f) {
+    views.draw(f);
+    sharedSeconds += views.totalSeconds();
+    if (f == 0)  // the initial cache states need the first view's needbuffer
+      for (size_t r = 0; r < configurations.size(); ++r)
+        states[r].run = std::make_unique<FlightRun>(
+            reader, configurations[r], flight,
+            reducedViewport(settings.viewport, configurations[r].needScaleLog2),
+            initialPages(reader, configurations[r], views.view().need, settings.need8));
+    reference::parallelFor(states.size(), threads, [&](size_t r) {
+      flyFrame(states[r], views, path, f, settings);
+    });
+    report(static_cast<uint64_t>(f + 1) * configurations.size());
   }
-  evaluation.referenceSeconds = secondsSince(start);
-
-  // The runs, `jobs` at a time, each drawing with one thread.
-  evaluation.runs.resize(configurations.size());
-  std::atomic<size_t> next{0};
-  std::mutex errorMutex;
-  std::exception_ptr error;
-  std::atomic<bool> failed{false};
-  const auto work = [&] {
-    for (size_t r = next++; r < configurations.size() && !failed; r = next++) {
-      try {
-        FlightOptions flight;
-        flight.settings = options.settings;
-        flight.settings.threads = 1;
-        flight.reference = [&references](int frame) {
-          return references[static_cast<size_t>(frame)];
-        };
-        flight.observe = [&done](const FlightFrameView&) { ++done; };
-        evaluation.runs[r] = {configurations[r],
-                              fly(reader, mesh, path, configurations[r], flight)};
-      } catch (...) {
-        const std::lock_guard lock(errorMutex);
-        if (!error) error = std::current_exception();
-        failed = true;
-      }
-    }
-  };
-  std::vector<std::thread> workers;
-  for (unsigned j = 0; j < jobs; ++j) workers.emplace_back(work);
-  // The progress is drawn from this thread only.
-  while (done.load() < total && !failed) {
-    report();
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  for (std::thread& worker : workers) worker.join();
-  if (error) std::rethrow_exception(error);
-  report();
+  for (size_t r = 0; r < configurations.size(); ++r)
+    evaluation.runs.push_back({configurations[r], states[r].run->finish()});
+  evaluation.referenceSeconds = sharedSeconds;
   evaluation.wallSeconds = secondsSince(start);
   return evaluation;
 }

@@ -56,6 +56,7 @@ nlohmann::json summaryJson(const EvaluationDescription& description, const Camer
                             {"name", run.configuration.label()},
                             {"configuration", run.configuration.toJson()},
                             {"seconds", run.result.seconds},
+                            {"times", flightTimesJson(run.result.times)},
                             {"motions", perMotion}};
     entry.update(flightTotals(run.result));
     runs.push_back(entry);

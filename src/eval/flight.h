@@ -33,11 +33,24 @@ struct FlightFrame {
   std::optional<FrameQuality> quality;
 };
 
+// Where a flight's time went, in seconds summed over its frames. The flight: drawing the frame
+// (colour and needbuffer, and the LookAhead camera's needbuffer), analysing its needbuffer and
+// choosing pages, streaming and applying them. Measuring its quality: the reference image, RMSE
+// and SSIM/WSSIM, and the rest (captures, observers). In an evaluation the views are drawn once
+// for every configuration (eval/evaluation.h); each run's drawing time counts that shared pass
+// whole, as a flight of its own would pay it, and its reference time is zero (the evaluation
+// reports the shared pass).
+struct FlightTimes {
+  double draw = 0.0, analysis = 0.0, streaming = 0.0;
+  double reference = 0.0, metrics = 0.0, other = 0.0;
+};
+
 struct FlightResult {
   std::vector<FlightFrame> frames;
   FrameStatistics totals;  // hits, misses, streamed and evicted summed over the frames
-  double seconds = 0.0;    // the flight, without measuring quality
-  double qualitySeconds = 0.0;
+  FlightTimes times;
+  double seconds = 0.0;         // the flight: draw + analysis + streaming
+  double qualitySeconds = 0.0;  // reference + metrics + other
 };
 
 // What the flight saw in one frame, for observers (frame images, the inspector). Valid during the

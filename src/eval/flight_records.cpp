@@ -74,4 +74,10 @@ void writeColorImage(const std::filesystem::path& file, Viewport viewport,
               std::as_bytes(std::span(rows)));
 }
 
+nlohmann::json flightTimesJson(const FlightTimes& times) {
+  return {{"draw", times.draw},           {"analysis", times.analysis},
+          {"streaming", times.streaming}, {"reference", times.reference},
+          {"metrics", times.metrics},     {"other", times.other}};
+}
+
 }  // namespace vt

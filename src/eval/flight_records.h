@@ -21,6 +21,10 @@ std::string flightCsvRows(const FlightResult& result, bool quality,
 // hits, misses, streamed, evicted; with quality: mean_rmse, mean_ssim, min_ssim, mean_wssim.
 nlohmann::json flightTotals(const FlightResult& result);
 
+// Where the flight's time went (FlightTimes), in seconds: draw, analysis, streaming, reference,
+// metrics, other.
+nlohmann::json flightTimesJson(const FlightTimes& times);
+
 // folder/frames.csv, through a temporary file renamed at the end.
 void writeFlightRecords(const std::filesystem::path& folder, const FlightResult& result,
                         bool quality);

@@ -28,13 +28,24 @@ struct StreamedPage {
   std::vector<std::byte> texels;
 };
 
-class BudgetStreamer {
+// The streaming box of the frame loop (thesis figure 3.5), either mode: a frame's requests go in,
+// the pages that arrive for the next frame come out.
+class PageStreamer {
+ public:
+  virtual ~PageStreamer() = default;
+  virtual std::vector<StreamedPage> exchange(const std::vector<StreamRequest>& requests) = 0;
+};
+
+class BudgetStreamer final : public PageStreamer {
  public:
   BudgetStreamer(const VirtualTextureReader& reader, uint32_t pagesPerFrame,
                  uint32_t latencyFrames = 0);
 
   // Takes this frame's requests (most important first) and returns the pages that arrive now.
   std::vector<StreamedPage> frame(const std::vector<StreamRequest>& requests);
+  std::vector<StreamedPage> exchange(const std::vector<StreamRequest>& requests) override {
+    return frame(requests);
+  }
 
  private:
   const VirtualTextureReader& reader_;
@@ -50,7 +61,7 @@ struct LinkModel {
   double bytesPerSecond = 0.0;
 };
 
-class ThreadedStreamer {
+class ThreadedStreamer final : public PageStreamer {
  public:
   explicit ThreadedStreamer(const VirtualTextureReader& reader, LinkModel link = {});
   ~ThreadedStreamer();
@@ -61,6 +72,11 @@ class ThreadedStreamer {
   void request(const std::vector<StreamRequest>& requests);
   // The pages that arrived since the last call, in the order they were sent.
   std::vector<StreamedPage> takeStreamed();
+  // This frame's requests replace the pending ones; what arrived since the last frame comes back.
+  std::vector<StreamedPage> exchange(const std::vector<StreamRequest>& requests) override {
+    request(requests);
+    return takeStreamed();
+  }
   // Waits until no request is pending and every page sent has arrived (tests, shutdown).
   void drain();
   // Pages that could not be read (a corrupt page, say); they are dropped, the thread goes on.

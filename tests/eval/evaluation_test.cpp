@@ -127,6 +127,45 @@ TEST(Evaluation, PerFrameResultsAreTheSameForOneJobOrSeveral) {
   EXPECT_EQ(std::count(one.begin(), one.end(), '\n'), 3 * boxRoomPath().frameCount());
 }
 
+// An evaluation draws each view once and shades it again under every configuration's cache state;
+// each run's frames are those of a flight that draws every frame itself, byte for byte: the
+// statistics, RMSE, SSIM and WSSIM, for every kind of needbuffer a configuration reads (depth,
+// a LookAhead camera, a reduced needbuffer, the previous frame's under asynchronous readback).
+TEST(Evaluation, RunsEqualFlightsThatDrawEveryFrameThemselves) {
+  Fixture f;
+  const VirtualTextureReader reader(f.texture);
+  std::vector<FlightConfiguration> configurations(6);
+  configurations[0].heuristic = Heuristic::parse("pixelsum");
+  configurations[0].preloadVisible = true;
+  configurations[0].trilinearParents = true;
+  configurations[1].heuristic = Heuristic::parse("hotspot*noisevalue");
+  configurations[1].lookAhead = LookAhead::kStopFix;
+  configurations[2].heuristic = Heuristic::parse("distance");
+  configurations[2].ancestors = AncestorStrategy::kExtern;
+  configurations[3].heuristic = Heuristic::parse("weightedpixel");
+  configurations[3].asyncReadback = true;
+  configurations[4].heuristic = Heuristic::parse("pixelsum*mipgap");
+  configurations[4].needScaleLog2 = 1;
+  configurations[4].lookAhead = LookAhead::kPlain;
+  configurations[5].heuristic = Heuristic::parse("random");
+  configurations[5].seed = 2;
+  configurations[5].cacheFrames = 5;  // evictions
+  for (FlightConfiguration& c : configurations) c.budget = 2;
+  const EvaluationOptions options = smallScreen(reader, 2);
+  const Evaluation e = evaluate(reader, boxRoom(), boxRoomPath(), configurations, options);
+  const reference::ResidentTexture everything(reader);
+  for (size_t r = 0; r < configurations.size(); ++r) {
+    FlightOptions flight;
+    flight.settings = options.settings;
+    flight.reference = [&](int frame) {
+      return referenceImage(everything, boxRoom(), boxRoomPath().at(frame), options.settings);
+    };
+    const FlightResult alone = fly(reader, boxRoom(), boxRoomPath(), configurations[r], flight);
+    EXPECT_EQ(flightCsvRows(e.runs[r].result, true), flightCsvRows(alone, true)) << "run " << r;
+  }
+  EXPECT_GT(e.runs[5].result.totals.evicted, 0u);
+}
+
 // Random with another seed is another draw: its streamed pages differ; the same seed repeats.
 TEST(Evaluation, RandomRunsWithDifferentSeedsDrawDifferentPages) {
   Fixture f;

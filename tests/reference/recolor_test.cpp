@@ -75,6 +75,28 @@ TEST_F(Recolor, GivesTheBytesOfDrawingUnderTheCacheState) {
   EXPECT_EQ(differing, compared);
 }
 
+// A LookAhead camera's pass reads no texel; its needbuffer, depth and triangles are the full pass's.
+TEST_F(Recolor, ANeedOnlyPassGivesTheNeedbufferAndDepthOfTheFullPass) {
+  const std::vector<CacheState> states = caches();
+  for (const bool need8 : {false, true})
+    for (const int frame : {0, 7}) {
+      RenderSettings settings;
+      settings.viewport = {83, 61};
+      settings.need8 = need8;
+      settings.needScaleLog2 = frame == 7 ? 1 : 0;
+      const ClipSpaceMesh mesh = toClipSpace(boxRoom(), boxRoomPath().at(frame), settings.viewport);
+      const Frame full = renderFrame(mesh, states.back(), settings);
+      RenderSettings needOnly = settings;
+      needOnly.needOnly = true;
+      const Frame only = renderFrame(mesh, states.back(), needOnly);
+      EXPECT_EQ(only.need, full.need);
+      EXPECT_EQ(only.depth, full.depth);
+      EXPECT_EQ(only.triangle, full.triangle);
+      EXPECT_EQ(std::count(only.color.begin(), only.color.end(), 0), std::ssize(only.color));
+      EXPECT_NE(std::count(full.color.begin(), full.color.end(), 0), std::ssize(full.color));
+    }
+}
+
 TEST_F(Recolor, RefusesAFrameWithoutDebugChannels) {
   RenderSettings settings;
   settings.viewport = {16, 16};
