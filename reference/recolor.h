@@ -1,14 +1,22 @@
 #pragma once
-// The colour of a frame already drawn, under another cache state. A frame's geometry (which
+// The colour of a frame already drawn, under other cache states. A frame's geometry (which
 // triangle each pixel shows, its texture coordinates and their quad derivatives) does not depend
 // on what the cache holds, and neither does its needbuffer or depth: only the texel lookups do.
 // So an evaluation draws each camera view once, with every page resident and the debug channels
 // on (that frame is also the reference image), and shades the recorded fragment inputs again
 // under each configuration's cache state. The shader function and its inputs are the ones
-// renderFrame uses, so the colour is byte-identical to renderFrame(mesh, cache, settings).color
+// renderFrame uses, so each colour is byte-identical to renderFrame(mesh, cache, settings).color
 // (tests/reference/recolor_test.cpp), without visibility or plane evaluation.
+//
+// A pixel reads the indirection table at one or two addresses (the pages under it at the levels
+// it samples) and texels of the frames those entries name, within the frame: a bordered page's
+// footprint reaches one texel beyond the page, so borders of at least one texel keep it inside.
+// Two cache states of the same size whose entries at those addresses are equal (the same page in
+// the same frame: say a page every run preloaded) give the pixel the same colour, so recolor()
+// shades it once for all of them.
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "reference/cache_state.h"
@@ -17,9 +25,14 @@
 
 namespace vt::reference {
 
-// `drawn`: a frame rendered at `settings`' viewport with RenderSettings::debugChannels set.
-// Writes RGBA8 rows bottom to top into `color` (resized). Throws std::invalid_argument when
-// `drawn` lacks the debug channels or its viewport is not `settings`'.
+// `drawn`: a frame rendered at `settings`' viewport with RenderSettings::debugChannels set, of
+// the texture every cache state holds pages of. Writes RGBA8 rows bottom to top into colors[k]
+// (resized) for caches[k]. Throws std::invalid_argument when `drawn` lacks the debug channels or
+// its viewport is not `settings`', or the spans differ in length.
+void recolor(const Frame& drawn, std::span<const CacheState* const> caches,
+             const RenderSettings& settings, std::span<std::vector<uint8_t>* const> colors);
+
+// One cache state.
 void recolor(const Frame& drawn, const CacheState& cache, const RenderSettings& settings,
              std::vector<uint8_t>& color);
 

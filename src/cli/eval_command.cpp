@@ -158,7 +158,8 @@ void addEvalCommand(CLI::App& app) {
     writeEvaluation(o->output, description, path, options.settings, evaluation);
     std::cout << "evaluated " << configurations.size() << " configurations over "
               << path.frameCount() << " frames in " << evaluation.wallSeconds
-              << " s (reference images " << evaluation.referenceSeconds << " s); wrote "
+              << " s (views drawn once " << evaluation.viewSeconds << " s, shaded per run "
+              << evaluation.recolorSeconds << " s); wrote "
               << (std::filesystem::path(o->output) / "summary.md").string() << "\n";
     for (const EvaluationRun& run : evaluation.runs) {
       const nlohmann::json totals = flightTotals(run.result);

@@ -1,8 +1,10 @@
 #pragma once
 // An evaluation (thesis 4.1): several configurations flown over the same camera path, each frame
-// measured against one shared set of reference images (every needed page resident, DESIGN
-// section 5). Independent runs go in parallel, one per job, each drawing with one thread: the
-// per-frame results are the same bytes for any number of jobs.
+// measured against its reference image (every needed page resident, DESIGN section 5). The runs
+// fly in lockstep: each view is drawn once for all of them (its reference image, needbuffer and
+// depth; reference/recolor.h shades it under each run's cache state), then every run analyses,
+// streams and measures its frame, in parallel. The per-frame results are the bytes of flights of
+// their own (eval/flight.h), for any number of jobs.
 
 #include <functional>
 #include <vector>
@@ -28,8 +30,9 @@ struct EvaluationOptions {
 
 struct Evaluation {
   std::vector<EvaluationRun> runs;  // in the order of the configurations
-  double referenceSeconds = 0.0;    // drawing the reference images
-  double wallSeconds = 0.0;         // the whole evaluation
+  double viewSeconds = 0.0;     // drawing each view once (the reference images and needbuffers)
+  double recolorSeconds = 0.0;  // shading the views under every run's cache state
+  double wallSeconds = 0.0;     // the whole evaluation
 };
 
 // Throws what a flight throws (the first error of any run).
