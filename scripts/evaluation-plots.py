@@ -36,6 +36,9 @@ def import_plotting():
     try:
         import matplotlib
         matplotlib.use("Agg")
+        # SVG element ids come from a hash salted with this: fixed, so the same data gives the
+        # same file.
+        matplotlib.rcParams["svg.hashsalt"] = "vt-evaluation"
         import matplotlib.pyplot as pyplot
         import numpy
     except ImportError as error:
@@ -71,10 +74,10 @@ class EvaluationFolder:
         return self.summary["runs"][self.names.index(name)]
 
     def seed_group(self, name):
-        """Names of the configurations equal to `name`'s but for "seed" (itself included), in the
-        summary's order."""
+        """Names of the configurations equal to `name`'s but for "seed" and the name (itself
+        included), in the summary's order."""
         def without_seed(run):
-            return {k: v for k, v in run["configuration"].items() if k != "seed"}
+            return {k: v for k, v in run["configuration"].items() if k not in ("seed", "name")}
         own = without_seed(self.run(name))
         return [run["name"] for run in self.summary["runs"] if without_seed(run) == own]
 
@@ -145,9 +148,6 @@ def draw_curves(stem, title, measure, curves, bands, plotting):
                               label=f"{label} (mean of {values.shape[0]} seeds)")
             axes.fill_between(x, values.min(axis=0), values.max(axis=0), alpha=0.25,
                               color=line.get_color(), linewidth=0)
-    if measure in ("ssim", "wssim"):
-        top = max(1.0, max(float(v.max()) for _, v in curves)) if curves else 1.0
-        axes.set_ylim(top=top + 0.002)
     finish(figure, axes)
     save(figure, stem, pyplot)
 
