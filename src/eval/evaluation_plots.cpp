@@ -102,9 +102,10 @@ std::string plotInterpreter() {
   return "python3";
 }
 
-void drawEvaluationPlots(const std::filesystem::path& folder) {
+void drawEvaluationPlots(const std::filesystem::path& folder,
+                         const std::filesystem::path& shownAs) {
   const std::string python = plotInterpreter();
-  const std::string where = "plots of " + folder.string() + ": ";
+  const std::string where = "plots of " + shownAs.string() + ": ";
   Descriptor inRead, inWrite, outRead, outWrite;
   makePipe(inRead, inWrite);
   makePipe(outRead, outWrite);

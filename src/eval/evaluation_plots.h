@@ -13,8 +13,9 @@ namespace vt {
 std::string plotInterpreter();
 
 // Draws the figures summary.json names into `folder` (STEM.svg and STEM.png each). Throws
-// std::runtime_error with one line naming the problem when the interpreter cannot be started,
-// matplotlib is missing or the script fails.
-void drawEvaluationPlots(const std::filesystem::path& folder);
+// std::runtime_error with one line naming the problem, and `shownAs` (the folder the user asked
+// for; `folder` may be its staging copy), when the interpreter cannot be started, matplotlib is
+// missing or the script fails.
+void drawEvaluationPlots(const std::filesystem::path& folder, const std::filesystem::path& shownAs);
 
 }  // namespace vt

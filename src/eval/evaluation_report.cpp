@@ -158,7 +158,7 @@ void writeEvaluation(const std::filesystem::path& destination,
   writeFileAtomically(folder / "summary.md", summaryMarkdown(summary));
   // Last: the plots read the staged frames.csv and summary.json; a failure there leaves no
   // output folder.
-  drawEvaluationPlots(folder);
+  drawEvaluationPlots(folder, destination);
   staging.commit();
 }
 
