@@ -16,7 +16,8 @@
 #   --jobs N        runs at once (default: every core)
 #   --report PATH   where the report goes (default data/reports/chapter4.md); its figures go to
 #                   PATH's folder / chapter4
-#   --results DIR   where the `vt eval` folders go (default $work/results)
+#   --results DIR   where the `vt eval` folders go, emptied first (default $work/results, or
+#                   $work/miniature-results with --miniature)
 #   --vt PATH       use this vt binary: no dependency check, no build
 #   --miniature     the whole pipeline (retexture, build, eval, report, plots) in under a minute,
 #                   for CI: q3dm6ish only, its storyboard cut to the motions that start within the
@@ -77,7 +78,11 @@ else
 fi
 baseoa=${VT_OPENARENA_DIR:-$(bash scripts/fetch-openarena.sh)}
 work=${VT_DATA_CACHE:-${HOME:-/tmp}/.cache/vt}/chapter4
-results=${results:-$work/results}
+if $miniature; then
+  results=${results:-$work/miniature-results}  # never the full run's results
+else
+  results=${results:-$work/results}
+fi
 mkdir -p "$work"
 
 # Retextured and built once; `vt retexture` and `vt build` give the same bytes on every run.
