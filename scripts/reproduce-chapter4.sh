@@ -16,8 +16,8 @@
 #   --jobs N        runs at once (default: every core)
 #   --report PATH   where the report goes (default data/reports/chapter4.md); its figures go to
 #                   PATH's folder / chapter4
-#   --results DIR   where the `vt eval` folders go, emptied first (default $work/results, or
-#                   $work/miniature-results with --miniature)
+#   --results DIR   where the `vt eval` folders go, emptied first (default $work/results; with
+#                   --miniature, next to the report: REPORT without .md, plus .results)
 #   --vt PATH       use this vt binary: no dependency check, no build
 #   --miniature     the whole pipeline (retexture, build, eval, report, plots) in under a minute,
 #                   for CI: q3dm6ish only, its storyboard cut to the motions that start within the
@@ -79,7 +79,7 @@ fi
 baseoa=${VT_OPENARENA_DIR:-$(bash scripts/fetch-openarena.sh)}
 work=${VT_DATA_CACHE:-${HOME:-/tmp}/.cache/vt}/chapter4
 if $miniature; then
-  results=${results:-$work/miniature-results}  # never the full run's results
+  results=${results:-${report%.md}.results}  # never over the full run's results
 else
   results=${results:-$work/results}
 fi
