@@ -16,8 +16,9 @@ packages=(
   libegl-dev libegl1-mesa-dev libgl1-mesa-dri libopengl-dev libgl-dev libepoxy-dev
   # the interactive viewer (GLFW), tested under a virtual X server
   libglfw3-dev xvfb xauth
-  # report scripts, and scikit-image: the independent SSIM the metrics are checked against
-  python3 python3-skimage
+  # report scripts and the plots of `vt eval` (matplotlib, with numpy), and scikit-image: the
+  # independent SSIM the metrics are checked against
+  python3 python3-matplotlib python3-numpy python3-skimage
   # tests, benchmarks, command line, JSON, checksums
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libxxhash-dev
   # the frame-by-frame inspect page is tested in headless Chromium

@@ -5,50 +5,102 @@
 # replaced by a flat image of its mean colour), runs `vt eval` with the configurations in
 # data/chapter4/ over the storyboards in data/paths/, and writes the report with
 # scripts/chapter4-report.py.
-#   --size WxH      screen of every run (default 320x200)
+#
+# The indoor maps are flown on the thesis's own layout (`vt retexture --method baseline`, every
+# face its own area: $work/MAP.baseline.vt) with indoor.json, prepared.json and ancestors.json;
+# our chart layout ($work/MAP.vt) is an extra column, flown with charts.json. The terrain keeps the
+# chart layout: the thesis overlaid its terrains' triangle network with one continuous area of the
+# texture (4.4), which our charts keep and the per-face baseline would cut apart.
+#   --size WxH      screen of every run (default 1024x768, the thesis's)
 #   --maps "A B"    indoor maps (default "q3dm6ish am_thornish")
 #   --jobs N        runs at once (default: every core)
+#   --report PATH   where the report goes (default data/reports/chapter4.md); its figures go to
+#                   PATH's folder / chapter4
+#   --results DIR   where the `vt eval` folders go, emptied first (default $work/results; with
+#                   --miniature, next to the report: REPORT without .md, plus .results)
+#   --vt PATH       use this vt binary: no dependency check, no build
+#   --miniature     the whole pipeline (retexture, build, eval, report, plots) in under a minute,
+#                   for CI: q3dm6ish only, its storyboard cut to the motions that start within the
+#                   first 40 frames, 160x100, PixelSum 5 and 10 (data/chapter4/miniature.json) on
+#                   the thesis's layout; no prepared level, still camera, chart column or terrain.
+#                   Use it with --report.
 # Work files (textures of about 1-3 GB each, eval folders) go to $VT_DATA_CACHE/chapter4
-# (default ~/.cache/vt/chapter4).
+# (default ~/.cache/vt/chapter4); $VT_OPENARENA_DIR names the maps' .pk3 folder instead of
+# fetching them.
 set -euo pipefail
-cd "$(dirname "$0")/.."
 
-size=320x200
+size=1024x768
 maps="q3dm6ish am_thornish"
 jobs=0
+report=data/reports/chapter4.md
+results=
+vt=
+miniature=false
+usage='usage: scripts/reproduce-chapter4.sh [--size WxH] [--maps "A B"] [--jobs N] [--report PATH] [--results DIR] [--vt PATH] [--miniature]'
 while (($#)); do
   case "$1" in
     --size) size=$2; shift 2 ;;
     --maps) maps=$2; shift 2 ;;
     --jobs) jobs=$2; shift 2 ;;
-    *) echo "usage: scripts/reproduce-chapter4.sh [--size WxH] [--maps \"A B\"] [--jobs N]" >&2; exit 2 ;;
+    --report) report=$2; shift 2 ;;
+    --results) results=$2; shift 2 ;;
+    --vt) vt=$(realpath "$2"); shift 2 ;;
+    --miniature) miniature=true; shift ;;
+    *) echo "$usage" >&2; exit 2 ;;
   esac
 done
-
-bash scripts/install-deps.sh
-if [[ ! -x build/src/vt ]]; then
-  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+# Paths given relative to the caller's folder, before the `cd` below.
+report=$(realpath -m "$report")
+[[ -z "$results" ]] || results=$(realpath -m "$results")
+cd "$(dirname "$0")/.."
+if $miniature; then
+  # 160 x 100 keeps the reference images and both flights at a few seconds each.
+  size=160x100
+  maps=q3dm6ish
 fi
-cmake --build build --target vt
-vt=$PWD/build/src/vt
-baseoa=$(bash scripts/fetch-openarena.sh)
+
+if [[ -z "$vt" ]]; then
+  bash scripts/install-deps.sh
+  if [[ ! -x build/src/vt ]]; then
+    cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+  fi
+  cmake --build build --target vt
+  vt=$PWD/build/src/vt
+fi
+# Debian's python3 has python3-matplotlib (scripts/install-deps.sh); $VT_PYTHON overrides it, as
+# for the plots of `vt eval`.
+if [[ -n "${VT_PYTHON:-}" ]]; then
+  python=$VT_PYTHON
+elif [[ -x /usr/bin/python3 ]]; then
+  python=/usr/bin/python3
+else
+  python=python3
+fi
+baseoa=${VT_OPENARENA_DIR:-$(bash scripts/fetch-openarena.sh)}
 work=${VT_DATA_CACHE:-${HOME:-/tmp}/.cache/vt}/chapter4
+if $miniature; then
+  results=${results:-${report%.md}.results}  # never over the full run's results
+else
+  results=${results:-$work/results}
+fi
 mkdir -p "$work"
 
 # Retextured and built once; `vt retexture` and `vt build` give the same bytes on every run.
-prepare_map() {  # map
-  local map=$1
-  if [[ ! -f "$work/$map.vt" ]]; then
-    "$vt" retexture "$map" --packages "$baseoa" -o "$work/$map" --no-coherence
-    "$vt" build "$work/$map/$map.layout.json" -o "$work/$map.vt" -q
+# Our chart layout: $work/MAP/ and $work/MAP.vt; the thesis's: $work/MAP.baseline/ and .vt.
+prepare_map() {  # map [method]
+  local map=$1 method=${2:-charts} name=$1
+  [[ $method == charts ]] || name=$map.$method
+  if [[ ! -f "$work/$name.vt" ]]; then
+    "$vt" retexture "$map" --packages "$baseoa" -o "$work/$name" --no-coherence --method "$method"
+    "$vt" build "$work/$name/$map.layout.json" -o "$work/$name.vt" -q
   fi
 }
 
 # The prepared level (4.2.3.2): the source image covering most texture area, made flat.
-prepare_flat_level() {  # map
-  local map=$1
-  if [[ ! -f "$work/$map.prepared.vt" ]]; then
-    python3 - "$work/$map" "$map" <<'PY'
+prepare_flat_level() {  # map name (the texture's folder and file stem in $work)
+  local map=$1 name=$2
+  if [[ ! -f "$work/$name.prepared.vt" ]]; then
+    "$python" - "$work/$name" "$map" <<'PY'
 import collections, json, os, subprocess, sys
 folder, name = sys.argv[1], sys.argv[2]
 layout = json.load(open(os.path.join(folder, name + ".layout.json")))
@@ -77,17 +129,35 @@ for image in layout["images"]:
 json.dump(layout, open(os.path.join(folder, name + ".prepared.layout.json"), "w"))
 print(f"prepared level of {name}: {file} ({area[file]} texels placed) made flat")
 PY
-    "$vt" build "$work/$map/$map.prepared.layout.json" -o "$work/$map.prepared.vt" -q
+    "$vt" build "$work/$name/$map.prepared.layout.json" -o "$work/$name.prepared.vt" -q
   fi
 }
 
 # A still camera at the storyboard's start (4.1.2: ancestor streaming is studied without motion).
 still_path() {  # map
-  python3 - "data/paths/$1.storyboard.json" "$work/$1.still.json" <<'PY'
+  "$python" - "data/paths/$1.storyboard.json" "$work/$1.still.json" <<'PY'
 import json, sys
 story = json.load(open(sys.argv[1]))
 json.dump({"start": story["start"], "storyboard": [{"kind": "hold", "frames": 240}]},
           open(sys.argv[2], "w"))
+PY
+}
+
+# The miniature's storyboard: the entries that start within the first 40 frames, whole (on
+# q3dm6ish: the hold, the stop, the hold after it and the slow turn back, 51 frames; enough
+# segments for a bootstrap interval).
+short_path() {  # map output
+  "$python" - "data/paths/$1.storyboard.json" "$2" <<'PY'
+import json, sys
+story = json.load(open(sys.argv[1]))
+kept, frames = [], 0
+for entry in story["storyboard"]:
+    if frames >= 40:
+        break
+    kept.append(entry)
+    frames += entry["frames"]
+story["storyboard"] = kept
+json.dump(story, open(sys.argv[2], "w"))
 PY
 }
 
@@ -96,22 +166,34 @@ evaluate() {  # texture mesh path configs title output
     --jobs "$jobs" -o "$6"
 }
 
-results=$work/results
 rm -rf "$results"
+if $miniature; then
+  prepare_map q3dm6ish baseline
+  mkdir -p "$results"
+  short_path q3dm6ish "$results/q3dm6ish.short.json"
+  evaluate "$work/q3dm6ish.baseline.vt" "$work/q3dm6ish.baseline/q3dm6ish.obj" \
+    "$results/q3dm6ish.short.json" data/chapter4/miniature.json "q3dm6ish, miniature" \
+    "$results/q3dm6ish/indoor"
+  "$python" scripts/chapter4-report.py "$results" "$report"
+  exit 0
+fi
 for map in $maps; do
+  prepare_map "$map" baseline
   prepare_map "$map"
-  prepare_flat_level "$map"
+  prepare_flat_level "$map" "$map.baseline"
   still_path "$map"
-  mesh=$work/$map/$map.obj
-  evaluate "$work/$map.vt" "$mesh" "data/paths/$map.storyboard.json" data/chapter4/indoor.json \
-    "$map" "$results/$map/indoor"
-  evaluate "$work/$map.prepared.vt" "$mesh" "data/paths/$map.storyboard.json" \
+  mesh=$work/$map.baseline/$map.obj
+  evaluate "$work/$map.baseline.vt" "$mesh" "data/paths/$map.storyboard.json" \
+    data/chapter4/indoor.json "$map" "$results/$map/indoor"
+  evaluate "$work/$map.baseline.prepared.vt" "$mesh" "data/paths/$map.storyboard.json" \
     data/chapter4/prepared.json "$map, prepared level" "$results/$map/prepared"
-  evaluate "$work/$map.vt" "$mesh" "$work/$map.still.json" data/chapter4/ancestors.json \
+  evaluate "$work/$map.baseline.vt" "$mesh" "$work/$map.still.json" data/chapter4/ancestors.json \
     "$map, still camera" "$results/$map/ancestors"
+  evaluate "$work/$map.vt" "$work/$map/$map.obj" "data/paths/$map.storyboard.json" \
+    data/chapter4/charts.json "$map, chart layout" "$results/$map/charts"
 done
 prepare_map islandctf
 evaluate "$work/islandctf.vt" "$work/islandctf/islandctf.obj" data/paths/islandctf.storyboard.json \
   data/chapter4/terrain.json "islandctf terrain" "$results/islandctf/terrain"
 
-python3 scripts/chapter4-report.py "$results" data/reports/chapter4.md
+"$python" scripts/chapter4-report.py "$results" "$report"

@@ -6,10 +6,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "common/posix_file.h"
+#include "eval/evaluation_plots.h"
 #include "eval/flight_records.h"
-#include "eval/line_plot.h"
 
 namespace vt {
 namespace {
@@ -32,6 +33,32 @@ std::string framesCsv(const Evaluation& evaluation) {
   for (size_t r = 0; r < evaluation.runs.size(); ++r)
     csv += flightCsvRows(evaluation.runs[r].result, true, std::to_string(r) + ",");
   return csv;
+}
+
+// The figures the plotting script draws: SSIM, WSSIM and RMSE of every run, then the
+// description's figures of chosen runs, each by the stem of its file name (basic5.png: basic5.svg
+// and basic5.png).
+nlohmann::json figuresJson(const EvaluationDescription& description, const Evaluation& evaluation) {
+  std::vector<std::string> labels;
+  for (const EvaluationRun& run : evaluation.runs) labels.push_back(run.configuration.label());
+  nlohmann::json figures = nlohmann::json::array();
+  for (const auto& [stem, measure, name] :
+       {std::tuple{"ssim", "ssim", "SSIM"}, {"wssim", "wssim", "WSSIM"}, {"rmse", "rmse", "RMSE"}})
+    figures.push_back({{"stem", stem},
+                       {"title", description.title + ": " + name},
+                       {"measure", measure},
+                       {"runs", labels}});
+  for (const EvaluationFigure& figure : description.figures) {
+    for (const std::string& label : figure.runs)
+      if (std::find(labels.begin(), labels.end(), label) == labels.end())
+        throw std::invalid_argument("figure '" + figure.title + "': no configuration named '" +
+                                    label + "'");
+    figures.push_back({{"stem", std::filesystem::path(figure.file).stem().string()},
+                       {"title", figure.title},
+                       {"measure", figure.measure},
+                       {"runs", figure.runs}});
+  }
+  return figures;
 }
 
 nlohmann::json summaryJson(const EvaluationDescription& description, const CameraPath& path,
@@ -73,7 +100,8 @@ nlohmann::json summaryJson(const EvaluationDescription& description, const Camer
           {"recolor_seconds", evaluation.recolorSeconds},
           {"wall_seconds", evaluation.wallSeconds},
           {"motions", motions},
-          {"runs", runs}};
+          {"runs", runs},
+          {"figures", figuresJson(description, evaluation)}};
 }
 
 std::string summaryMarkdown(const nlohmann::json& summary) {
@@ -88,13 +116,14 @@ std::string summaryMarkdown(const nlohmann::json& summary) {
      << fixed(summary["view_seconds"].get<double>(), 1) << " s, shaded under every run's cache "
      << "state " << fixed(summary["recolor_seconds"].get<double>(), 1) << " s.\n\n"
      << "| Configuration | mean SSIM | min SSIM | mean WSSIM | mean RMSE | pages streamed | "
-        "needed pages missed | run time (s) |\n"
-     << "|---|---:|---:|---:|---:|---:|---:|---:|\n";
+        "pages evicted | needed pages missed | run time (s) |\n"
+     << "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& run : summary["runs"])
     md << "| " << cell(run["name"]) << " | " << fixed(run["mean_ssim"], 4) << " | "
        << fixed(run["min_ssim"], 4) << " | " << fixed(run["mean_wssim"], 4) << " | "
        << fixed(run["mean_rmse"], 3) << " | " << run["streamed"].get<uint64_t>() << " | "
-       << run["misses"].get<uint64_t>() << " | " << fixed(run["seconds"], 2) << " |\n";
+       << run["evicted"].get<uint64_t>() << " | " << run["misses"].get<uint64_t>() << " | "
+       << fixed(run["seconds"], 2) << " |\n";
   if (!summary["motions"].empty()) {
     md << "\nMean SSIM per named motion (frames first to last):\n\n| Motion | frames |";
     for (const auto& run : summary["runs"]) md << ' ' << cell(run["name"]) << " |";
@@ -110,46 +139,11 @@ std::string summaryMarkdown(const nlohmann::json& summary) {
       md << '\n';
     }
   }
+  md << '\n';
+  for (const auto& figure : summary["figures"])
+    md << "![" << figure["title"].get<std::string>() << "](" << figure["stem"].get<std::string>()
+       << ".svg)\n\n";
   return md.str();
-}
-
-LinePlot qualityPlot(const std::string& title, const std::string& measure, const CameraPath& path,
-                     const Evaluation& evaluation, double FrameQuality::*field,
-                     const std::vector<std::string>& chosen = {}) {
-  LinePlot plot;
-  plot.title = title;
-  plot.yLabel = measure;
-  if (measure != "RMSE") plot.yMax = 1.0;
-  std::vector<const EvaluationRun*> runs;
-  for (const EvaluationRun& run : evaluation.runs) runs.push_back(&run);
-  if (!chosen.empty()) {
-    runs.clear();
-    for (const std::string& label : chosen) {
-      const auto found = std::find_if(
-          evaluation.runs.begin(), evaluation.runs.end(),
-          [&](const EvaluationRun& run) { return run.configuration.label() == label; });
-      if (found == evaluation.runs.end())
-        throw std::invalid_argument("figure '" + title + "': no configuration named '" + label +
-                                    "'");
-      runs.push_back(&*found);
-    }
-  }
-  for (const EvaluationRun* chosenRun : runs) {
-    const EvaluationRun& run = *chosenRun;
-    PlotSeries series;
-    series.label = run.configuration.label();
-    for (const FlightFrame& frame : run.result.frames)
-      series.values.push_back(frame.quality ? (*frame.quality).*field : std::nan(""));
-    plot.series.push_back(series);
-  }
-  for (const NamedMotion& m : path.motions()) {
-    if (m.kind == "hold") continue;
-    // A name like "9: fast turn towards the corridor" is labelled by its number.
-    const size_t colon = m.name.find(':');
-    plot.bands.push_back(
-        {m.first, m.last, colon == std::string::npos ? m.name : m.name.substr(0, colon)});
-  }
-  return plot;
 }
 
 }  // namespace
@@ -165,24 +159,9 @@ void writeEvaluation(const std::filesystem::path& destination,
   const nlohmann::json summary = summaryJson(description, path, settings, evaluation);
   writeFileAtomically(folder / "summary.json", summary.dump(2) + "\n");
   writeFileAtomically(folder / "summary.md", summaryMarkdown(summary));
-  writeLinePlot(folder / "ssim.png", qualityPlot(description.title + ": SSIM", "SSIM", path,
-                                                 evaluation, &FrameQuality::ssim));
-  writeLinePlot(folder / "wssim.png", qualityPlot(description.title + ": WSSIM", "WSSIM", path,
-                                                  evaluation, &FrameQuality::wssim));
-  writeLinePlot(folder / "rmse.png", qualityPlot(description.title + ": RMSE", "RMSE", path,
-                                                 evaluation, &FrameQuality::rmse));
-  for (const EvaluationFigure& figure : description.figures) {
-    const bool rmse = figure.measure == "rmse", wssim = figure.measure == "wssim";
-    writeLinePlot(folder / figure.file, qualityPlot(figure.title,
-                                                    rmse    ? "RMSE"
-                                                    : wssim ? "WSSIM"
-                                                            : "SSIM",
-                                                    path, evaluation,
-                                                    rmse    ? &FrameQuality::rmse
-                                                    : wssim ? &FrameQuality::wssim
-                                                            : &FrameQuality::ssim,
-                                                    figure.runs));
-  }
+  // Last: the plots read the staged frames.csv and summary.json; a failure there leaves no
+  // output folder.
+  drawEvaluationPlots(folder, destination);
   staging.commit();
 }
 

@@ -1,13 +1,17 @@
 #pragma once
-// An evaluation's results as files in one folder (DESIGN section 5: CSV, PNG plots and a short
-// table, every error next to its run time):
+// An evaluation's results as files in one folder (DESIGN section 5: CSV, SVG and PNG plots and a
+// short table, every error next to its run time):
 //   frames.csv          per configuration and frame: the runtime's statistics, RMSE, SSIM, WSSIM
 //   summary.md          per configuration: mean and minimum SSIM, mean WSSIM and RMSE, pages
-//                       streamed, misses and run time; then mean SSIM per named motion
-//   summary.json        the same, with each configuration's settings, for scripts
-//   ssim.png, wssim.png, rmse.png   the measure over the frames, one curve per configuration,
+//                       streamed and evicted, misses and run time; then mean SSIM per named
+//                       motion, and the figures
+//   summary.json        the same, with each configuration's settings, and the figures to draw
+//                       ({"stem", "title", "measure", "runs"}), for scripts
+//   ssim, wssim, rmse (.svg and .png)   the measure over the frames, one curve per configuration,
 //                       the path's named motions shaded (the thesis's figures); and the
-//                       description's figures of chosen runs
+//                       description's figures of chosen runs, named by their file's stem
+// The plots are drawn last, by the embedded scripts/evaluation-plots.py (eval/evaluation_plots.h);
+// when they cannot be drawn the evaluation fails and no output folder is left.
 // frames.csv holds the same bytes for any number of jobs; run times live in the summaries only.
 // Every file is written to a temporary name and renamed.
 
@@ -21,7 +25,7 @@ namespace vt {
 
 // A figure of chosen runs (a claim of chapter 4 compares a few configurations, not all of them).
 struct EvaluationFigure {
-  std::string file;  // e.g. "basic5.png", in the output folder
+  std::string file;  // e.g. "basic5.png": its stem names basic5.svg and basic5.png
   std::string title;
   std::string measure = "ssim";   // ssim, wssim or rmse
   std::vector<std::string> runs;  // configuration labels, in the legend's order

@@ -148,8 +148,8 @@ TEST_F(FolderCrashConsistency, KilledEvalLeavesThePreviousResultsOrTheCompleteNe
   target.variableFiles = {"summary.json", "summary.md"};
   // Complete: every file of the results, the summary naming the runs frames.csv holds.
   target.accepts = [](const std::filesystem::path& folder) {
-    for (const char* file :
-         {"frames.csv", "summary.json", "summary.md", "ssim.png", "wssim.png", "rmse.png"})
+    for (const char* file : {"frames.csv", "summary.json", "summary.md", "ssim.png", "wssim.png",
+                             "rmse.png", "ssim.svg", "wssim.svg", "rmse.svg"})
       if (!std::filesystem::exists(folder / file)) return false;
     std::ifstream summaryFile(folder / "summary.json");
     const nlohmann::json summary = nlohmann::json::parse(summaryFile, nullptr, false);

@@ -4,6 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -20,7 +22,8 @@ struct Fixture {
   test::ScratchDirectory dir;
   Fixture() {
     writeSyntheticTexture(
-        dir / "t.vt", {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
+        dir / "t.vt",
+        {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
   }
   test::CommandResult eval(std::vector<std::string> args) {
     args.insert(args.begin(), {"eval", (dir / "t.vt").string(), "--size", "64x40"});
@@ -43,7 +46,8 @@ TEST(EvalCommand, FliesTheProductOfTheListsAndWritesTablesAndPlots) {
   for (const char* label :
        {"| pixelsum 2/frame |", "| pixelsum 4/frame |", "| random 2/frame |", "| random 4/frame |"})
     EXPECT_THAT(text, HasSubstr(label));
-  for (const char* plot : {"ssim.png", "wssim.png", "rmse.png"})
+  for (const char* plot :
+       {"ssim.svg", "ssim.png", "wssim.svg", "wssim.png", "rmse.svg", "rmse.png"})
     EXPECT_TRUE(std::filesystem::is_regular_file(f.dir / "out" / plot)) << plot;
 }
 
@@ -56,10 +60,28 @@ TEST(EvalCommand, DrawsTheFiguresOfAConfigurationsFile) {
   const auto result =
       f.eval({"--configs", (f.dir / "c.json").string(), "-o", (f.dir / "out").string()});
   ASSERT_EQ(result.exitCode, 0) << result.err;
+  // The file name's stem names both drawings.
   EXPECT_TRUE(std::filesystem::is_regular_file(f.dir / "out" / "ab.png"));
-  const nlohmann::json summary = nlohmann::json::parse(std::ifstream(f.dir / "out" / "summary.json"));
+  EXPECT_TRUE(std::filesystem::is_regular_file(f.dir / "out" / "ab.svg"));
+  const nlohmann::json summary =
+      nlohmann::json::parse(std::ifstream(f.dir / "out" / "summary.json"));
   EXPECT_EQ(summary["runs"][1]["configuration"]["lookahead"], "stopfix");
   EXPECT_EQ(summary["runs"][1]["configuration"]["budget"], 2);
+}
+
+// The plots need python3 with matplotlib ($VT_PYTHON names a missing interpreter here): the
+// evaluation then fails with one line naming the problem and the folder asked for, exit 1, and
+// leaves no output folder.
+TEST(EvalCommand, FailsWithOneLineAndNoFolderWhenThePlotsCannotBeDrawn) {
+  Fixture f;
+  ::setenv("VT_PYTHON", (f.dir / "no-python").c_str(), 1);
+  const auto result = f.eval({"--budget", "2", "-o", (f.dir / "out").string()});
+  ::unsetenv("VT_PYTHON");
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.err, HasSubstr("vt: error: plots of " + (f.dir / "out").string() +
+                                    ": cannot run " + (f.dir / "no-python").string()));
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_FALSE(std::filesystem::exists(f.dir / "out"));
 }
 
 TEST(EvalCommand, RefusesBadConfigurationFilesBeforeFlying) {

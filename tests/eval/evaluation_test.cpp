@@ -7,6 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -197,8 +198,9 @@ TEST(Evaluation, WritesTheSummaryTablePerMotionMeansAndPlots) {
   b.budget = 4;
   const EvaluationOptions options = smallScreen(reader, 2);
   const Evaluation evaluation = evaluate(reader, boxRoom(), path, {a, b}, options);
-  writeEvaluation(f.dir / "out", {"box room", "box room", "t.vt", 2, {}}, path, options.settings,
-                  evaluation);
+  const EvaluationFigure turns{"turns.png", "Turns", "wssim", {a.label(), b.label()}};
+  writeEvaluation(f.dir / "out", {"box room", "box room", "t.vt", 2, {turns}}, path,
+                  options.settings, evaluation);
   std::ifstream in(f.dir / "out" / "summary.md");
   const std::string md((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_THAT(md, HasSubstr("| PixelSum / 2 | "));
@@ -210,14 +212,50 @@ TEST(Evaluation, WritesTheSummaryTablePerMotionMeansAndPlots) {
   EXPECT_EQ(summary["runs"][1]["motions"][0]["mean_ssim"].get<double>(), slow.meanSsim);
   EXPECT_EQ(summary["runs"][0]["streamed"].get<uint64_t>(),
             evaluation.runs[0].result.totals.streamed);
-  for (const char* file : {"frames.csv", "ssim.png", "wssim.png", "rmse.png"})
+  for (const char* file : {"frames.csv", "ssim.svg", "ssim.png", "wssim.svg", "wssim.png",
+                           "rmse.svg", "rmse.png", "turns.svg", "turns.png"})
     EXPECT_TRUE(std::filesystem::is_regular_file(f.dir / "out" / file)) << file;
+  ASSERT_EQ(summary["figures"].size(), 4u);
+  EXPECT_EQ(summary["figures"][3]["stem"], "turns");
+  EXPECT_EQ(summary["figures"][3]["measure"], "wssim");
   std::ifstream frames(f.dir / "out" / "frames.csv");
   std::string header;
   std::getline(frames, header);
   EXPECT_EQ(header,
             "configuration,frame,covered_pixels,needed_pages,hits,misses,hit_pixels,requested,"
             "streamed,evicted,resident,rmse,ssim,wssim");
+}
+
+// The plots need python3 with matplotlib: without them the evaluation fails with one line naming
+// the problem and leaves no output folder ($VT_PYTHON stands in for a broken installation).
+TEST(Evaluation, PlotsThatCannotBeDrawnFailTheEvaluationAndLeaveNoFolder) {
+  Fixture f;
+  const VirtualTextureReader reader(f.texture);
+  FlightConfiguration a;
+  a.budget = 2;
+  const EvaluationOptions options = smallScreen(reader, 1);
+  const CameraPath path = boxRoomPath();
+  const Evaluation evaluation = evaluate(reader, boxRoom(), path, {a}, options);
+  const std::filesystem::path fake = f.dir / "python-without-matplotlib";
+  std::ofstream(fake) << "#!/bin/sh\ncat > /dev/null\necho 'traceback line' >&2\n"
+                         "echo 'matplotlib or numpy missing for fake' >&2\nexit 3\n";
+  std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
+  const auto attempt = [&](const std::filesystem::path& python) {
+    ::setenv("VT_PYTHON", python.c_str(), 1);
+    std::string message;
+    try {
+      writeEvaluation(f.dir / "out", {"box room", "box room", "t.vt", 1, {}}, path,
+                      options.settings, evaluation);
+    } catch (const std::runtime_error& e) {
+      message = e.what();
+    }
+    ::unsetenv("VT_PYTHON");
+    EXPECT_FALSE(std::filesystem::exists(f.dir / "out"));
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    return message;
+  };
+  EXPECT_THAT(attempt(fake), HasSubstr("matplotlib or numpy missing for fake"));
+  EXPECT_THAT(attempt(f.dir / "no-such-python"), HasSubstr("cannot run"));
 }
 
 TEST(FlightConfiguration, ReadsTheOptionNamesAndRejectsUnknownKeysAndBadValues) {

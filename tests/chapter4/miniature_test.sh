@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# The chapter-4 pipeline in miniature (scripts/reproduce-chapter4.sh --miniature): retexture and
+# build q3dm6ish in the thesis's layout, `vt eval` two configurations over the storyboard's first
+# motions, the report and the plots. Checks that the report has a verdict table with bootstrap
+# intervals and that the SVG and PNG figures exist.
+#   miniature_test.sh SOURCE_DIR VT SCRATCH
+# Needs OpenArena's maps in $VT_OPENARENA_DIR (scripts/fetch-openarena.sh); without them the test
+# is skipped (exit 77), except in CI (CI=true), where it fails. The built texture is kept in
+# $VT_DATA_CACHE/chapter4 (default ~/.cache/vt/chapter4) like the full reproduction's, so only the
+# first run pays for it.
+set -euo pipefail
+source_dir=$1 vt=$2 scratch=$3
+
+if [[ -z "${VT_OPENARENA_DIR:-}" || ! -d "$VT_OPENARENA_DIR" ]]; then
+  if [[ "${CI:-}" == true ]]; then
+    echo "FAIL: VT_OPENARENA_DIR is not set in CI (scripts/fetch-openarena.sh)" >&2
+    exit 1
+  fi
+  echo "SKIP: VT_OPENARENA_DIR names no folder of OpenArena's .pk3 archives"
+  exit 77
+fi
+
+rm -rf "$scratch"
+mkdir -p "$scratch"
+report=$scratch/report/chapter4.md
+bash "$source_dir/scripts/reproduce-chapter4.sh" --miniature --vt "$vt" --jobs 1 \
+  --report "$report" --results "$scratch/results"
+
+fail() { echo "FAIL: $*" >&2; exit 1; }
+[[ -f "$report" ]] || fail "no report at $report"
+grep -q '^| Claim (thesis) | Comparison: A − B, claimed side |' "$report" ||
+  fail "the report has no verdict table"
+# A row with a mean difference, an interval [low, high] and a computed verdict.
+grep -Eq '\| [+-][0-9.]+e[+-][0-9]+ \| \[[+-][0-9.]+e[+-][0-9]+, [+-][0-9.]+e[+-][0-9]+\] \|.*\*\*(confirmed|contradicted|not resolved at this regime)\*\*' "$report" ||
+  fail "no verdict row with a bootstrap interval"
+grep -q 'Regime check' "$report" || fail "no regime check"
+for figure in results/q3dm6ish/indoor/ssim results/q3dm6ish/indoor/budget \
+              report/chapter4/q3dm6ish/claim01_1; do
+  for extension in svg png; do
+    [[ -s "$scratch/$figure.$extension" ]] || fail "no figure $figure.$extension"
+  done
+done
+echo "miniature report: $report"
