@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "eval/flight_run.h"
+#include "eval/image_metrics.h"
 #include "reference/parallel_for.h"
 #include "reference/recolor.h"
 #include "reference/texture_source.h"
@@ -117,7 +118,8 @@ struct RunState {
 // Frame `f` of one run from the shared views, its colour already shaded under its cache state:
 // the needbuffers its configuration reads, then the run's analysis, quality and streaming. Its
 // drawing time is the shared passes' it reads: what drawing the frame once costs.
-void flyFrame(RunState& state, const SharedViews& views, const CameraPath& path, int f) {
+void flyFrame(RunState& state, const SharedViews& views, const PreparedReference& reference,
+              const CameraPath& path, int f) {
   const FlightConfiguration& c = state.run->configuration();
   double drawSeconds = views.viewSeconds();
   std::span<const glm::uvec4> need = views.view().need;
@@ -146,7 +148,7 @@ void flyFrame(RunState& state, const SharedViews& views, const CameraPath& path,
     depth = currentDepth;
   }
   state.run->frame(f, path.at(std::max(0, f - 1)), path.at(f),
-                   DrawnFrame{state.color, need, depth, lookAheadNeed, views.view().color},
+                   DrawnFrame{state.color, need, depth, lookAheadNeed, views.view().color, &reference},
                    drawSeconds);
 }
 
@@ -192,8 +194,10 @@ Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const 
     }
     reference::recolor(views.view(), caches, settings, colors);
     evaluation.recolorSeconds += secondsSince(recolorStart);
+    const PreparedReference prepared(
+        ImageView{settings.viewport.width, settings.viewport.height, views.view().color});
     reference::parallelFor(states.size(), threads,
-                           [&](size_t r) { flyFrame(states[r], views, path, f); });
+                           [&](size_t r) { flyFrame(states[r], views, prepared, path, f); });
     report(static_cast<uint64_t>(f + 1) * configurations.size());
   }
   for (size_t r = 0; r < configurations.size(); ++r)

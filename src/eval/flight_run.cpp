@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 
-#include "eval/image_metrics.h"
 #include "runtime/needbuffer_scale.h"
 #include "shader/needbuffer.h"
 
@@ -106,7 +105,9 @@ void FlightRun::frame(int frameNumber, const Camera& previous, const Camera& cur
     const Viewport screen = settings.viewport;
     const ImageView got{screen.width, screen.height, drawn.color},
         want{screen.width, screen.height, drawn.reference};
-    const SsimAndWssim structure = ssimAndWssim(got, want);
+    const SsimAndWssim structure = drawn.preparedReference
+                                       ? drawn.preparedReference->compare(got)
+                                       : PreparedReference(want).compare(got);
     frame.quality = FrameQuality{rmse(got, want), structure.ssim, structure.wssim};
     times.metrics += secondsSince(metricsStart);
   }

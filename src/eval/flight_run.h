@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "eval/flight.h"
+#include "eval/image_metrics.h"
 
 namespace vt {
 
@@ -22,6 +23,8 @@ struct DrawnFrame {
   std::span<const float> depth;        // with `need`, when the heuristic reads depth
   std::span<const glm::uvec4> lookAheadNeed;  // the LookAhead camera's, when configured
   std::span<const uint8_t> reference;  // the reference image, when quality is measured
+  // The reference prepared for SSIM once for every run that compares with it; null: prepared here.
+  const PreparedReference* preparedReference = nullptr;
 };
 
 class FlightRun {

@@ -72,15 +72,90 @@ struct WindowMoments {
   explicit WindowMoments(size_t n) : x(n), y(n), xx(n), yy(n), xy(n) {}
 };
 
-// SSIM and WSSIM in one pass over the windows.
-SsimAndWssim meanSsims(const ImageView& a, const ImageView& b, const SsimOptions& options) {
-  requireSameSize(a, b);
-  constexpr double kC1 = (0.01 * 255) * (0.01 * 255), kC2 = (0.03 * 255) * (0.03 * 255);
-  const Window w = window(options);
-  const int taps = static_cast<int>(w.taps.size()), W = a.width, H = a.height;
+}  // namespace
+
+// The reference's share of the work, in the order meanSsims did it in one pass: its luminance,
+// its windows' means and mean squares (a row pass, then a column pass), and WSSIM's weights.
+struct PreparedReference::Prepared {
+  SsimOptions options;
+  Window w;
+  int width = 0, height = 0;
+  size_t columns = 0, rows = 0;      // window positions across and down
+  std::vector<double> y;             // luminance
+  std::vector<double> my, yy;        // per window: weighted mean of y and of y^2
+  std::vector<double> weight;        // per window: WSSIM's weight
+  double weights = 0.0;              // their sum, in window order
+};
+
+PreparedReference::PreparedReference(const ImageView& reference, const SsimOptions& options) {
+  const auto prepared = std::make_shared<Prepared>();
+  prepared_ = prepared;
+  Prepared& p = *prepared;
+  p.options = options;
+  p.w = window(options);
+  const int taps = static_cast<int>(p.w.taps.size()), W = reference.width, H = reference.height;
+  if (reference.rgba.size() != static_cast<size_t>(W) * static_cast<size_t>(H) * 4)
+    throw std::invalid_argument("images differ in size");
   if (W < taps || H < taps) throw std::invalid_argument("images smaller than the SSIM window");
-  const std::vector<double> x = luminance(a), y = luminance(b);
-  const auto columns = static_cast<size_t>(W - taps + 1);  // window positions across
+  p.width = W;
+  p.height = H;
+  p.columns = static_cast<size_t>(W - taps + 1);
+  p.rows = static_cast<size_t>(H - taps + 1);
+  p.y = luminance(reference);
+  // Row sums of y and y^2, every image row.
+  std::vector<double> acrossY(p.columns * static_cast<size_t>(H)),
+      acrossYY(p.columns * static_cast<size_t>(H));
+  for (int row = 0; row < H; ++row) {
+    const size_t first = static_cast<size_t>(row) * static_cast<size_t>(W);
+    for (size_t c = 0; c < p.columns; ++c) {
+      double sy = 0, syy = 0;
+      for (int i = 0; i < taps; ++i) {
+        const double k = p.w.taps[static_cast<size_t>(i)];
+        const double py = p.y[first + c + static_cast<size_t>(i)];
+        sy += k * py;
+        syy += k * py * py;
+      }
+      acrossY[static_cast<size_t>(row) * p.columns + c] = sy;
+      acrossYY[static_cast<size_t>(row) * p.columns + c] = syy;
+    }
+  }
+  // WSSIM's weight (thesis 4.2.3.1): pixel centres at +0.5, as the WeightedPixel heuristic.
+  const double centreX = 0.5 * W, centreY = 0.5 * H, radius = std::hypot(centreX, centreY);
+  p.my.resize(p.columns * p.rows);
+  p.yy.resize(p.columns * p.rows);
+  p.weight.resize(p.columns * p.rows);
+  for (size_t top = 0; top < p.rows; ++top) {
+    const int cy = static_cast<int>(top) - p.w.first;
+    for (size_t c = 0; c < p.columns; ++c) {
+      double my = 0, yy = 0;
+      for (int j = 0; j < taps; ++j) {
+        const double k = p.w.taps[static_cast<size_t>(j)];
+        const size_t at = (top + static_cast<size_t>(j)) * p.columns + c;
+        my += k * acrossY[at];
+        yy += k * acrossYY[at];
+      }
+      const size_t index = top * p.columns + c;
+      p.my[index] = my;
+      p.yy[index] = yy;
+      const int cx = static_cast<int>(c) - p.w.first;
+      const double r = std::hypot(cx + 0.5 - centreX, cy + 0.5 - centreY);
+      p.weight[index] = std::max(0.0, 1.0 - r / radius);
+      p.weights += p.weight[index];
+    }
+  }
+}
+
+SsimAndWssim PreparedReference::compare(const ImageView& image) const {
+  const Prepared& p = *prepared_;
+  if (image.width != p.width || image.height != p.height ||
+      image.rgba.size() != static_cast<size_t>(p.width) * static_cast<size_t>(p.height) * 4)
+    throw std::invalid_argument("images differ in size");
+  constexpr double kC1 = (0.01 * 255) * (0.01 * 255), kC2 = (0.03 * 255) * (0.03 * 255);
+  const Window& w = p.w;
+  const int taps = static_cast<int>(w.taps.size()), W = p.width;
+  const std::vector<double> x = luminance(image);
+  const std::vector<double>& y = p.y;
+  const size_t columns = p.columns;
 
   // Horizontal sums of the last `taps` image rows, in a ring: row r in slot r mod taps.
   std::vector<WindowMoments> across(static_cast<size_t>(taps), WindowMoments(columns));
@@ -88,58 +163,53 @@ SsimAndWssim meanSsims(const ImageView& a, const ImageView& b, const SsimOptions
     WindowMoments& m = across[static_cast<size_t>(row % taps)];
     const size_t first = static_cast<size_t>(row) * static_cast<size_t>(W);
     for (size_t c = 0; c < columns; ++c) {
-      double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+      double sx = 0, sxx = 0, sxy = 0;
       for (int i = 0; i < taps; ++i) {
         const double k = w.taps[static_cast<size_t>(i)];
         const double px = x[first + c + static_cast<size_t>(i)];
         const double py = y[first + c + static_cast<size_t>(i)];
         sx += k * px;
-        sy += k * py;
         sxx += k * px * px;
-        syy += k * py * py;
         sxy += k * px * py;
       }
       m.x[c] = sx;
-      m.y[c] = sy;
       m.xx[c] = sxx;
-      m.yy[c] = syy;
       m.xy[c] = sxy;
     }
   };
 
-  // WSSIM's weight (thesis 4.2.3.1): pixel centres at +0.5, as the WeightedPixel heuristic.
-  const double centreX = 0.5 * W, centreY = 0.5 * H, radius = std::hypot(centreX, centreY);
-  double sum = 0.0, weightedSum = 0.0, weights = 0.0;
-  size_t windows = 0;
+  double sum = 0.0, weightedSum = 0.0;
   for (int row = 0; row < taps - 1; ++row) sumAcross(row);
-  for (int top = 0; top + taps <= H; ++top) {
-    sumAcross(top + taps - 1);
-    const int cy = top - w.first;
+  for (size_t top = 0; top < p.rows; ++top) {
+    sumAcross(static_cast<int>(top) + taps - 1);
     for (size_t c = 0; c < columns; ++c) {
-      double mx = 0, my = 0, xx = 0, yy = 0, xy = 0;
+      double mx = 0, xx = 0, xy = 0;
       for (int j = 0; j < taps; ++j) {
         const double k = w.taps[static_cast<size_t>(j)];
-        const WindowMoments& m = across[static_cast<size_t>((top + j) % taps)];
+        const WindowMoments& m = across[(top + static_cast<size_t>(j)) % static_cast<size_t>(taps)];
         mx += k * m.x[c];
-        my += k * m.y[c];
         xx += k * m.xx[c];
-        yy += k * m.yy[c];
         xy += k * m.xy[c];
       }
+      const size_t index = top * columns + c;
+      const double my = p.my[index], yy = p.yy[index];
       const double vx = xx - mx * mx, vy = yy - my * my, cxy = xy - mx * my;
       const double q =
           ((2 * mx * my + kC1) * (2 * cxy + kC2)) / ((mx * mx + my * my + kC1) * (vx + vy + kC2));
-      const int cx = static_cast<int>(c) - w.first;
-      const double r = std::hypot(cx + 0.5 - centreX, cy + 0.5 - centreY);
-      const double weight = std::max(0.0, 1.0 - r / radius);
       sum += q;
-      weightedSum += weight * q;
-      weights += weight;
-      ++windows;
+      weightedSum += p.weight[index] * q;
     }
   }
+  const size_t windows = columns * p.rows;
   return {windows > 0 ? sum / static_cast<double>(windows) : 1.0,
-          weights > 0.0 ? weightedSum / weights : 1.0};
+          p.weights > 0.0 ? weightedSum / p.weights : 1.0};
+}
+
+namespace {
+
+SsimAndWssim meanSsims(const ImageView& a, const ImageView& b, const SsimOptions& options) {
+  requireSameSize(a, b);
+  return PreparedReference(b, options).compare(a);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 //   weight of runtime/needbuffer_analysis.h); the weighted mean sum(w Q) / sum(w).
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -46,5 +47,18 @@ struct SsimAndWssim {
   double ssim = 1.0, wssim = 1.0;
 };
 SsimAndWssim ssimAndWssim(const ImageView& a, const ImageView& b, const SsimOptions& options = {});
+
+// A reference image `b` prepared once for comparing many images `a` with it (an evaluation
+// compares every run's frame with the frame's one reference): its luminance, its windows' means
+// and mean squares and WSSIM's weights. compare(a) equals ssimAndWssim(a, b) bit for bit.
+class PreparedReference {
+ public:
+  explicit PreparedReference(const ImageView& b, const SsimOptions& options = {});
+  SsimAndWssim compare(const ImageView& a) const;  // thread-safe
+
+ private:
+  struct Prepared;
+  std::shared_ptr<const Prepared> prepared_;
+};
 
 }  // namespace vt

@@ -104,6 +104,28 @@ TEST(ImageMetrics, SeparableWindowsAgreeWithTheDefinition) {
   }
 }
 
+// One reference prepared once serves several images (the runs of an evaluation): each comparison
+// gives the bits of comparing afresh, SSIM and WSSIM.
+TEST(ImageMetrics, APreparedReferenceComparesLikeAFreshOne) {
+  const int width = 45, height = 29;
+  std::vector<uint8_t> reference(static_cast<size_t>(width) * height * 4);
+  for (size_t i = 0; i < reference.size(); ++i)
+    reference[i] = static_cast<uint8_t>((i * 53 / 3) % 256);
+  const ImageView want{width, height, reference};
+  const PreparedReference prepared(want);
+  for (const int shift : {1, 17, 90}) {
+    std::vector<uint8_t> image = reference;
+    for (size_t i = 0; i < image.size(); i += 3) image[i] = static_cast<uint8_t>(image[i] + shift);
+    const ImageView got{width, height, image};
+    const SsimAndWssim fresh = ssimAndWssim(got, want), reused = prepared.compare(got);
+    EXPECT_LT(fresh.ssim, 1.0);
+    EXPECT_EQ(reused.ssim, fresh.ssim);
+    EXPECT_EQ(reused.wssim, fresh.wssim);
+  }
+  const std::vector<uint8_t> small(16 * 16 * 4, 0);
+  EXPECT_THROW(prepared.compare(ImageView{16, 16, small}), std::invalid_argument);
+}
+
 TEST(ImageMetrics, RejectsMismatchedSizes) {
   const auto a = constant(20, 20, 1), b = constant(20, 21, 1);
   EXPECT_THROW(rmse({20, 20, a}, {20, 21, b}), std::invalid_argument);
