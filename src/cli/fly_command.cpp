@@ -189,7 +189,8 @@ void addFlyCommand(CLI::App& app) {
     writeFileAtomically(folder / "timing.json",
                         nlohmann::json{{"seconds", result.seconds},
                                        {"frames", path.frameCount()},
-                                       {"quality_seconds", result.qualitySeconds}}
+                                       {"quality_seconds", result.qualitySeconds},
+                                       {"times", flightTimesJson(result.times)}}
                                 .dump(2) +
                             "\n");
     if (captureStaging) captureStaging->commit();

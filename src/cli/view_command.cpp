@@ -20,6 +20,7 @@
 #include "common/error.h"
 #include "common/image_file.h"
 #include "common/output_path.h"
+#include "eval/flight_run.h"
 #include "gl/gl_frame_renderer.h"
 #include "gl/hud_overlay.h"
 #include "gl/window_context.h"
@@ -109,23 +110,23 @@ void addViewCommand(CLI::App& app) {
                     : o->camera.empty() ? boxRoomCamera()
                                         : parseCamera(o->camera);
 
-    RuntimeOptions options;
-    options.framesX = options.framesY = o->frames;
-    options.priority.heuristic = Heuristic::parse(o->heuristic);
-    options.priority.ancestors = parseAncestorStrategy(o->ancestors);
-    VirtualTextureRuntime runtime(reader, options);
-    std::vector<uint64_t> initial;  // levels 0..2 (thesis 4.2.1)
-    for (uint64_t p = 0; p < pageCount(std::min(2u, reader.description().finestLevel())); ++p)
-      initial.push_back(p);
-    runtime.preload(initial);
-    ThreadedStreamer streamer(reader, {o->linkLatency, o->linkMegabytes * 1e6});
-
+    // The thesis's interactive setup (4.2.1): levels 0..2 first, a streaming thread over the link.
+    FlightConfiguration configuration;
+    configuration.cacheFrames = o->frames;
+    configuration.heuristic = Heuristic::parse(o->heuristic);
+    configuration.ancestors = parseAncestorStrategy(o->ancestors);
+    configuration.initialLevels = 3;
+    FlightOptions flight;
+    flight.settings.need8 = need8Encodes(reader.description().finestLevel());
+    flight.threadedStreaming = true;
+    flight.link = {o->linkLatency, o->linkMegabytes * 1e6};
     const Viewport size = parseSize(o->size);
+    FlightRun run(reader, configuration, flight, size,
+                  initialPages(reader, configuration, {}, flight.settings.need8));
     WindowContext window(size.width, size.height, "vt view: " + o->texture);
-    GlFrameRenderer gl(runtime.cacheState());
+    GlFrameRenderer gl(run.runtime().cacheState());
     HudOverlay hud;
-    reference::RenderSettings settings;
-    settings.need8 = need8Encodes(reader.description().finestLevel());
+    reference::RenderSettings settings = flight.settings;
     std::vector<Keyframe> recorded;
     bool recording = o->recordFromStart;
     glm::dvec2 cursor = window.cursor();
@@ -160,16 +161,15 @@ void addViewCommand(CLI::App& app) {
       const glm::ivec2 windowSize = window.framebufferSize();
       settings.viewport = {std::max(1, windowSize.x), std::max(1, windowSize.y)};
       gl.uploadCache();
-      const GlFrame drawn =
-          gl.render(toClipSpace(mesh, camera, settings.viewport), settings, runtime.needsDepth());
-      FrameStatistics statistics;
-      VirtualTextureRuntime::Prediction prediction;
-      prediction.hotSpot = hotSpot(previous, camera, settings.viewport, HotSpotMode::kShifted);
-      streamer.request(runtime.analyze(drawn.need, drawn.depth, settings.viewport.width,
-                                       settings.viewport.height, settings.need8,
-                                       static_cast<uint64_t>(frame), statistics, prediction));
-      const auto [applied, evicted] = runtime.apply(streamer.takeStreamed());
-      streamedTotal += applied;
+      const auto drawStart = Clock::now();
+      const GlFrame drawn = gl.render(toClipSpace(mesh, camera, settings.viewport), settings,
+                                      run.runtime().needsDepth());
+      run.frame(frame, previous, camera,
+                DrawnFrame{.need = drawn.need, .depth = drawn.depth,
+                           .needViewport = settings.viewport},
+                std::chrono::duration<double>(Clock::now() - drawStart).count());
+      const FrameStatistics& statistics = run.frames().back().statistics;
+      streamedTotal += statistics.streamed;
 
       gl.present(windowSize);
       char lines[4][96];
@@ -180,7 +180,7 @@ void addViewCommand(CLI::App& app) {
                     static_cast<unsigned long long>(statistics.misses));
       std::snprintf(lines[2], sizeof lines[2], "REQUESTED %llu  STREAMED %llu (%llu)",
                     static_cast<unsigned long long>(statistics.requested),
-                    static_cast<unsigned long long>(applied),
+                    static_cast<unsigned long long>(statistics.streamed),
                     static_cast<unsigned long long>(streamedTotal));
       std::snprintf(lines[3], sizeof lines[3], "RESIDENT %llu / %u  %.0f%%",
                     static_cast<unsigned long long>(statistics.resident), o->frames * o->frames,

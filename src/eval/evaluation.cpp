@@ -148,7 +148,12 @@ void flyFrame(RunState& state, const SharedViews& views, const PreparedReference
     depth = currentDepth;
   }
   state.run->frame(f, path.at(std::max(0, f - 1)), path.at(f),
-                   DrawnFrame{state.color, need, depth, lookAheadNeed, views.view().color, &reference},
+                   DrawnFrame{.color = state.color,
+                              .need = need,
+                              .depth = depth,
+                              .lookAheadNeed = lookAheadNeed,
+                              .reference = views.view().color,
+                              .preparedReference = &reference},
                    drawSeconds);
 }
 

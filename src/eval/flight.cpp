@@ -161,7 +161,12 @@ FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const Cam
       run.times().reference += secondsSince(referenceStart);
     }
     run.frame(frameNumber, previous, current,
-              DrawnFrame{color, need, depth, lookAheadNeed, expected}, drawSeconds);
+              DrawnFrame{.color = color,
+                         .need = need,
+                         .depth = depth,
+                         .lookAheadNeed = lookAheadNeed,
+                         .reference = expected},
+              drawSeconds);
   }
   return run.finish();
 }

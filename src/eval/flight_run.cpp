@@ -86,8 +86,9 @@ void FlightRun::frame(int frameNumber, const Camera& previous, const Camera& cur
 
   // Analysis: the needbuffer, with the configuration's prediction of the next views.
   const auto analysisStart = Clock::now();
+  const Viewport needViewport = drawn.needViewport.width > 0 ? drawn.needViewport : needViewport_;
   VirtualTextureRuntime::Prediction prediction;
-  prediction.hotSpot = hotSpot(previous, current, needViewport_, configuration_.hotSpot);
+  prediction.hotSpot = hotSpot(previous, current, needViewport, configuration_.hotSpot);
   if (configuration_.lookAhead != LookAhead::kNone) prediction.lookAheadNeed = drawn.lookAheadNeed;
   FlightFrame frame;
   frame.statistics.streamed = streamedBefore_;
@@ -96,7 +97,7 @@ void FlightRun::frame(int frameNumber, const Camera& previous, const Camera& cur
   const std::vector<StreamRequest> requests =
       drawn.need.empty()
           ? std::vector<StreamRequest>{}
-          : runtime_->analyze(drawn.need, drawn.depth, needViewport_.width, needViewport_.height,
+          : runtime_->analyze(drawn.need, drawn.depth, needViewport.width, needViewport.height,
                               settings.need8, frameIndex, frame.statistics, prediction);
   times.analysis += secondsSince(analysisStart);
 
@@ -120,7 +121,7 @@ void FlightRun::frame(int frameNumber, const Camera& previous, const Camera& cur
     const auto observeStart = Clock::now();
     std::vector<uint64_t> streamed;
     for (const StreamedPage& page : arrived) streamed.push_back(page.page);
-    options_.observe(FlightFrameView{frameNumber, drawn.color, drawn.need, needViewport_,
+    options_.observe(FlightFrameView{frameNumber, drawn.color, drawn.need, needViewport,
                                      drawn.reference, requests, streamed, *runtime_, frame});
     times.other += secondsSince(observeStart);
   }

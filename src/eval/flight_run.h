@@ -4,7 +4,8 @@
 // hot spot, LookAhead camera), its quality against the reference image when one is given, the
 // streaming for the next frame and the management step that applies it. Whoever draws the frames
 // drives it: a flight drawing each frame itself (eval/flight.h: vt fly, vt golden, vt inspect),
-// or an evaluation drawing each view once for every configuration (eval/evaluation.h).
+// an evaluation drawing each view once for every configuration (eval/evaluation.h), or the
+// interactive viewer drawing into a window (vt view).
 
 #include <functional>
 #include <memory>
@@ -18,13 +19,16 @@ namespace vt {
 
 // What the drawing step produced for one frame of one configuration.
 struct DrawnFrame {
-  std::span<const uint8_t> color;      // RGBA8 at the screen's size; empty when not drawn
-  std::span<const glm::uvec4> need;    // empty: no needbuffer yet (asynchronous readback)
-  std::span<const float> depth;        // with `need`, when the heuristic reads depth
-  std::span<const glm::uvec4> lookAheadNeed;  // the LookAhead camera's, when configured
-  std::span<const uint8_t> reference;  // the reference image, when quality is measured
+  std::span<const uint8_t> color{};      // RGBA8 at the screen's size; empty when not drawn
+  std::span<const glm::uvec4> need{};    // empty: no needbuffer yet (asynchronous readback)
+  std::span<const float> depth{};        // with `need`, when the heuristic reads depth
+  std::span<const glm::uvec4> lookAheadNeed{};  // the LookAhead camera's, when configured
+  std::span<const uint8_t> reference{};  // the reference image, when quality is measured
   // The reference prepared for SSIM once for every run that compares with it; null: prepared here.
   const PreparedReference* preparedReference = nullptr;
+  // The needbuffer's size when it is not the run's (an interactive window was resized); 0 x 0: the
+  // run's.
+  Viewport needViewport{};
 };
 
 class FlightRun {
@@ -36,6 +40,8 @@ class FlightRun {
   ~FlightRun();
 
   const VirtualTextureRuntime& runtime() const { return *runtime_; }
+  // The frames so far (vt view shows the last one's statistics).
+  const std::vector<FlightFrame>& frames() const { return result_.frames; }
   const FlightConfiguration& configuration() const { return configuration_; }
 
   // Analysis, quality, streaming and management of frame `frameNumber`, drawn from the current

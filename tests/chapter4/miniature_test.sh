@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The chapter-4 pipeline in miniature (scripts/reproduce-chapter4.sh --miniature): retexture and
-# build q3dm6ish in the thesis's layout, `vt eval` two configurations over the storyboard's first
+# build q3dm6ish in our chart layout, `vt eval` two configurations over the storyboard's first
 # motions, the report and the plots. Checks that the report has a verdict table with bootstrap
 # intervals and that the SVG and PNG figures exist.
 #   miniature_test.sh SOURCE_DIR VT SCRATCH
