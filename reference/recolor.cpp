@@ -1,5 +1,8 @@
 #include "reference/recolor.h"
 
+#include <array>
+#include <bit>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -16,6 +19,7 @@ using Shader = shader::ShaderLogic<CacheBackend>;
 // same at the finest level), else the page at the needed level.
 struct Lookups {
   PageId first, second;
+  shader::vec2 uv;  // clamped to [0, 1], as the shader clamps it
 };
 
 Lookups lookupsOf(Shader& shader, glm::vec2 uvIn, glm::vec4 d,
@@ -32,14 +36,67 @@ Lookups lookupsOf(Shader& shader, glm::vec2 uvIn, glm::vec4 d,
     return PageId{static_cast<uint32_t>(at.x), static_cast<uint32_t>(at.y),
                   static_cast<uint32_t>(level)};
   };
-  return {page(first), page(second)};
+  return {page(first), page(second), uv};
 }
 
-// What decides a pixel's colour under one cache state, besides the pixel's own inputs.
+// What decides a pixel's colour under one cache state, besides the pixel's own inputs (its
+// texture coordinates and LOD, hence the blend weight): the two indirection entries (the same
+// pages in the same frames), or under float filtering (exactFilter), per lookup, the page read
+// (its level; the address is the pixel's) and the filter's inputs in vtBilinearExact: the
+// footprint's first texel relative to the frame's origin and the fractions, bit for bit. Frames
+// at different places in the cache give the same inputs wherever their origins round the texel
+// position alike, which most do. The entries are compared first: they cost two reads.
 struct ColourKey {
+  std::array<uint32_t, 10> words{};
+  uint32_t width = 0, height = 0;
+  bool operator==(const ColourKey&) const = default;
+};
+
+// The filter inputs of one lookup into `key` from word `at` on: the resident level, the footprint
+// relative to the frame, the fractions. The arithmetic is vtCacheTexel's (through the shader) and
+// vtBilinearExact's first three lines (src/shader/virtual_texture.glsl).
+void addFilterInputs(ColourKey& key, size_t at, Shader& shader, shader::vec2 uv, PageId page,
+                     glm::u16vec4 entry, const shader::VtParameters& p) {
+  const shader::uvec4 e(entry.x, entry.y, entry.z, entry.w);
+  const shader::ivec2 address(static_cast<int>(page.x), static_cast<int>(page.y));
+  const shader::vec2 texel =
+      shader.vtCacheTexel(uv, address, static_cast<int>(page.level), e, p);
+  const shader::vec2 t = texel - shader::vec2(0.5f, 0.5f);
+  const shader::vec2 base = glm::floor(t);
+  const shader::vec2 f = t - base;
+  const int stored = p.pageSize + 2 * p.border;
+  const shader::ivec2 origin(static_cast<int>(entry.x) * stored,
+                             static_cast<int>(entry.y) * stored);
+  const shader::ivec2 relative = shader::ivec2(base) - origin;
+  key.words[at] = entry.z;
+  key.words[at + 1] = static_cast<uint32_t>(relative.x);
+  key.words[at + 2] = static_cast<uint32_t>(relative.y);
+  key.words[at + 3] = std::bit_cast<uint32_t>(f.x);
+  key.words[at + 4] = std::bit_cast<uint32_t>(f.y);
+}
+
+ColourKey colourKey(Shader& shader, const CacheState& cache, shader::vec2 uv,
+                    const Lookups& lookups, const shader::VtParameters& p) {
+  ColourKey key;
+  key.width = cache.widthTexels;
+  key.height = cache.heightTexels;
+  addFilterInputs(key, 0, shader, uv, lookups.first, cache.entry(lookups.first), p);
+  addFilterInputs(key, 5, shader, uv, lookups.second, cache.entry(lookups.second), p);
+  return key;
+}
+
+// The indirection entries a pixel reads, and the cache's size.
+struct EntryPair {
   glm::u16vec4 first, second;
   uint32_t width, height;
-  bool operator==(const ColourKey&) const = default;
+  bool operator==(const EntryPair&) const = default;
+};
+
+// A state that shaded the pixel itself: what it read, and the filter inputs when computed.
+struct Shaded {
+  EntryPair entries;
+  std::optional<ColourKey> key;
+  size_t state;
 };
 
 }  // namespace
@@ -65,7 +122,8 @@ void recolor(const Frame& drawn, std::span<const CacheState* const> caches,
                                           settings));
   }
   // Without a border the footprint of a page's edge texels reaches the neighbouring frame,
-  // which differs between cache states: then every state shades every pixel.
+  // which differs between cache states: then every state shades every pixel. The key's
+  // footprint is the page's own only within its frame: borders of one texel or more.
   const bool share = caches.size() > 1 && caches.front()->description.border >= 1;
 
   constexpr int kRows = 16;  // rows per task: enough work to outweigh the scheduling
@@ -75,7 +133,7 @@ void recolor(const Frame& drawn, std::span<const CacheState* const> caches,
     std::vector<Shader> shaders;
     shaders.reserve(caches.size());
     for (const CacheState* cache : caches) shaders.emplace_back(cache, settings.profile);
-    std::vector<std::pair<ColourKey, size_t>> shaded;  // this pixel's keys and who shaded them
+    std::vector<Shaded> shaded;  // the states that shaded this pixel themselves
     const int first = static_cast<int>(task) * kRows, last = std::min(v.height, first + kRows);
     for (size_t i = static_cast<size_t>(first) * static_cast<size_t>(v.width),
                 end = static_cast<size_t>(last) * static_cast<size_t>(v.width);
@@ -91,16 +149,25 @@ void recolor(const Frame& drawn, std::span<const CacheState* const> caches,
       for (size_t k = 0; k < caches.size(); ++k) {
         uint8_t* out = colors[k]->data() + i * 4;
         if (share) {
+          // The same entries as a state already shaded: the same frames, the same colour. Else
+          // the same filter inputs, from frames elsewhere in the cache.
           const CacheState& cache = *caches[k];
-          const ColourKey key{cache.entry(lookups.first), cache.entry(lookups.second),
-                              cache.widthTexels, cache.heightTexels};
-          const auto same = std::find_if(shaded.begin(), shaded.end(),
-                                         [&](const auto& entry) { return entry.first == key; });
+          const EntryPair entries{cache.entry(lookups.first), cache.entry(lookups.second),
+                                  cache.widthTexels, cache.heightTexels};
+          auto same = std::find_if(shaded.begin(), shaded.end(),
+                                   [&](const Shaded& s) { return s.entries == entries; });
+          std::optional<ColourKey> key;
+          if (same == shaded.end() && parameters[k].exactFilter != 0) {
+            key = colourKey(shaders[k], cache, lookups.uv, lookups, parameters[k]);
+            same = std::find_if(shaded.begin(), shaded.end(), [&](const Shaded& s) {
+              return s.key && *s.key == *key;
+            });
+          }
           if (same != shaded.end()) {
-            std::copy_n(colors[same->second]->data() + i * 4, 4, out);
+            std::copy_n(colors[same->state]->data() + i * 4, 4, out);
             continue;
           }
-          shaded.emplace_back(key, k);
+          shaded.push_back({entries, key, k});
         }
         const shader::VtFragment f = shaders[k].vtShadeFragment(
             drawn.uv[i], shader::vec2(d.x, d.y), shader::vec2(d.z, d.w), parameters[k]);

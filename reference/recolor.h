@@ -11,8 +11,9 @@
 // A pixel reads the indirection table at one or two addresses (the pages under it at the levels
 // it samples) and texels of the frames those entries name, within the frame: a bordered page's
 // footprint reaches one texel beyond the page, so borders of at least one texel keep it inside.
-// Two cache states of the same size whose entries at those addresses are equal (the same page in
-// the same frame: say a page every run preloaded) give the pixel the same colour, so recolor()
+// Two cache states of the same size that read the same pages there with the same filter inputs
+// (the footprint relative to the frame and the fractions, which depend on where the frame lies
+// only through the rounding of its texel position) give the pixel the same colour, so recolor()
 // shades it once for all of them.
 
 #include <cstdint>

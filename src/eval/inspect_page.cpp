@@ -10,286 +10,18 @@
 
 #include "common/error.h"
 #include "common/posix_file.h"
+#include "eval/inspect_page_html.h"
+#include "eval/inspect_page_js.h"
 
 namespace vt {
 namespace {
 
-// The page around the data. Everything is drawn by the script from the JSON, with textContent, so
-// no string of the run is ever parsed as HTML. kDataMarker is replaced by the run's JSON.
+// The page around the data (src/eval/inspect_page.html and .js, embedded at build time). Everything
+// is drawn by the script from the JSON, with textContent, so no string of the run is ever parsed
+// as HTML. kScriptMarker is replaced by the script, kDataMarker by the run's JSON.
 constexpr std::string_view kDataMarker = "@INSPECT_DATA@";
-constexpr std::string_view kPageTemplate = R"html(<!DOCTYPE html>
-<html lang="en">
-<head>
-<meta charset="utf-8">
-<meta name="viewport" content="width=device-width, initial-scale=1">
-<title>vt inspect</title>
-<style>
-  :root { color-scheme: light dark; font: 14px system-ui, sans-serif; }
-  body { margin: 0 16px 24px; }
-  h1 { font-size: 1.3em; margin: 12px 0 4px; overflow-wrap: anywhere; }
-  h2 { font-size: 1.05em; margin: 16px 0 6px; }
-  #settings { display: flex; flex-wrap: wrap; gap: 2px 18px; margin: 0 0 6px; opacity: 0.75; }
-  #settings b { font-weight: 600; }
-  #controls { position: sticky; top: 0; z-index: 2; display: flex; gap: 8px; align-items: center;
-              padding: 8px 0; background: Canvas; border-bottom: 1px solid #8885; }
-  #slider { flex: 1; }
-  #counter { min-width: 17em; font-variant-numeric: tabular-nums; }
-  #keys { opacity: 0.6; font-size: 0.9em; }
-  #images { display: grid; grid-template-columns: repeat(auto-fill, minmax(320px, 1fr));
-            gap: 12px; margin: 12px 0; }
-  figure { margin: 0; }
-  figure.wide { grid-column: 1 / -1; }
-  figure img { display: block; width: 100%; height: auto; image-rendering: pixelated;
-               cursor: zoom-in; border: 1px solid #8885;
-               background: repeating-conic-gradient(#8884 0 25%, transparent 0 50%) 0 0 / 16px 16px; }
-  figure.wide img { cursor: zoom-out; }
-  figcaption { padding: 2px 0; }
-  figcaption span { opacity: 0.6; }
-  #panels { display: flex; flex-wrap: wrap; gap: 8px 32px; align-items: flex-start; }
-  table { border-collapse: collapse; font-variant-numeric: tabular-nums; }
-  th, td { padding: 2px 8px; text-align: right; border-bottom: 1px solid #8883; white-space: nowrap; }
-  th { background: Canvas; position: sticky; top: 0; }
-  .left { text-align: left; }
-  #queue-box { max-height: 75vh; overflow: auto; }
-  #queue tr.streamed td { background: #2a85; }
-  #streamed { max-width: 40em; line-height: 1.7; }
-  #streamed span { display: inline-block; padding: 0 5px; margin: 0 3px 0 0; border-radius: 3px;
-                   background: #2a85; font-variant-numeric: tabular-nums; }
-  #selftest { display: block; margin-top: 16px; opacity: 0.6; }
-</style>
-</head>
-<body>
-<header>
-  <h1 id="title"></h1>
-  <div id="settings"></div>
-</header>
-<div id="controls">
-  <button id="previous" title="previous frame (Left, p)">&#9664;</button>
-  <button id="next" title="next frame (Right, n)">&#9654;</button>
-  <input id="slider" type="range" min="0" value="0" step="1" aria-label="frame">
-  <span id="counter"></span>
-  <span id="keys">&larr; &rarr; n p: 1 &middot; PgUp PgDn: 10 &middot; Home End</span>
-</div>
-<div id="images"></div>
-<div id="panels">
-  <section>
-    <h2>Statistics</h2>
-    <table id="statistics"><tbody></tbody></table>
-    <h2 id="streamed-heading">Streamed</h2>
-    <div id="streamed"></div>
-  </section>
-  <section>
-    <h2 id="queue-heading">Priority queue</h2>
-    <div id="queue-box"><table id="queue"><thead></thead><tbody></tbody></table></div>
-  </section>
-</div>
-<output id="selftest"></output>
-<script type="application/json" id="inspect-data">@INSPECT_DATA@</script>
-<script>
-'use strict';
-// run: {title, settings: [[name, value]], frames: [{frame, statistics: [[name, value]],
-//   images: [{name, width, height, src}], terms: [name], queue: [[page, level, x, y, priority,
-//   streamed, ...term values]], streamed: [page]}]}
-const run = JSON.parse(document.getElementById('inspect-data').textContent);
-const frames = run.frames;
-const byId = (id) => document.getElementById(id);
-const slider = byId('slider');
-let current = -1;
+constexpr std::string_view kScriptMarker = "@INSPECT_SCRIPT@";
 
-function element(tag, text, className) {
-  const e = document.createElement(tag);
-  if (text !== undefined) e.textContent = text;
-  if (className) e.className = className;
-  return e;
-}
-
-function formatNumber(v) {
-  if (typeof v !== 'number') return v === null || v === undefined ? '\u2013' : String(v);
-  if (Number.isInteger(v)) return String(v);
-  const a = Math.abs(v);
-  if (a >= 1e6 || a < 1e-3) return v.toExponential(3);
-  return String(parseFloat(v.toFixed(a >= 100 ? 2 : 4)));
-}
-
-function numberCell(v) {
-  const td = element('td', formatNumber(v));
-  if (typeof v === 'number' && !Number.isInteger(v)) td.title = String(v);
-  return td;
-}
-
-function showHeader() {
-  document.title = run.title || 'vt inspect';
-  byId('title').textContent = run.title;
-  const settings = byId('settings');
-  for (const [name, value] of run.settings) {
-    const item = element('span');
-    item.append(element('b', name + ' '), value);
-    settings.append(item);
-  }
-  slider.max = String(frames.length - 1);
-  document.body.dataset.frames = String(frames.length);
-}
-
-// The figures are kept from frame to frame and only their sources change, so the grid does not
-// jump while the new images decode.
-function showImages(frame) {
-  const grid = byId('images');
-  while (grid.children.length > frame.images.length) grid.lastChild.remove();
-  while (grid.children.length < frame.images.length) {
-    const figure = element('figure');
-    const img = element('img');
-    img.addEventListener('click', () => figure.classList.toggle('wide'));
-    figure.append(img, element('figcaption'));
-    grid.append(figure);
-  }
-  frame.images.forEach((image, i) => {
-    const figure = grid.children[i];
-    const img = figure.querySelector('img');
-    img.width = image.width;
-    img.height = image.height;
-    img.alt = image.name;
-    if (img.getAttribute('src') !== image.src) img.src = image.src;
-    const caption = figure.querySelector('figcaption');
-    caption.replaceChildren(image.name + ' ', element('span', `${image.width}\u00d7${image.height}`));
-  });
-}
-
-function showStatistics(frame) {
-  const body = byId('statistics').tBodies[0];
-  body.replaceChildren(...frame.statistics.map(([name, value]) => {
-    const tr = element('tr');
-    tr.append(element('td', name, 'left'), element('td', value));
-    return tr;
-  }));
-}
-
-function showQueue(frame) {
-  const table = byId('queue');
-  const head = element('tr');
-  for (const name of ['#', 'page', 'level', 'x', 'y', 'priority', ...frame.terms, 'streamed'])
-    head.append(element('th', name));
-  table.tHead.replaceChildren(head);
-  const rows = frame.queue.map(([page, level, x, y, priority, streamed, ...terms], rank) => {
-    const tr = element('tr', undefined, streamed ? 'streamed' : '');
-    tr.append(numberCell(rank + 1), numberCell(page), numberCell(level), numberCell(x),
-              numberCell(y), numberCell(priority), ...terms.map(numberCell),
-              element('td', streamed ? '\u2713' : ''));
-    return tr;
-  });
-  table.tBodies[0].replaceChildren(...rows);
-  byId('queue-heading').textContent = `Priority queue (${frame.queue.length})`;
-}
-
-function showStreamed(frame) {
-  byId('streamed-heading').textContent = `Streamed for the next frame (${frame.streamed.length})`;
-  byId('streamed').replaceChildren(...frame.streamed.map((page) => element('span', String(page))));
-}
-
-function showFrame(index) {
-  index = Math.max(0, Math.min(frames.length - 1, index));
-  if (index === current) return;
-  current = index;
-  const frame = frames[index];
-  document.body.dataset.frame = String(index);
-  slider.value = String(index);
-  byId('counter').textContent = `${index + 1} / ${frames.length} \u00b7 frame ${frame.frame}`;
-  showImages(frame);
-  showStatistics(frame);
-  showQueue(frame);
-  showStreamed(frame);
-}
-
-const steps = new Map([['ArrowRight', 1], ['n', 1], ['ArrowLeft', -1], ['p', -1],
-                       ['PageDown', 10], ['PageUp', -10]]);
-document.addEventListener('keydown', (event) => {
-  if (event.altKey || event.ctrlKey || event.metaKey) return;
-  let target;
-  if (steps.has(event.key)) target = current + steps.get(event.key);
-  else if (event.key === 'Home') target = 0;
-  else if (event.key === 'End') target = frames.length - 1;
-  else return;
-  event.preventDefault();  // also keeps a focused slider from stepping a second time
-  showFrame(target);
-});
-slider.addEventListener('input', () => showFrame(Number(slider.value)));
-byId('previous').addEventListener('click', () => showFrame(current - 1));
-byId('next').addEventListener('click', () => showFrame(current + 1));
-
-// The self test drives the page as a user would, through keydown events, and checks what shows.
-function press(key) {
-  document.body.dispatchEvent(new KeyboardEvent('keydown', {key, bubbles: true, cancelable: true}));
-}
-
-function expectFrame(index, after) {
-  const shown = document.body.dataset.frame;
-  if (shown !== String(index)) throw new Error(`after ${after}: data-frame=${shown}, expected ${index}`);
-}
-
-// Waits for the image's load event rather than img.decode(): headless Chromium's virtual time
-// waits for loads, not for off-thread decodes, and would end the run before they finish.
-function loaded(img) {
-  if (img.complete) return Promise.resolve();
-  return new Promise((resolve, reject) => {
-    img.addEventListener('load', resolve, {once: true});
-    img.addEventListener('error', () => reject(new Error(`image ${img.alt} does not load`)), {once: true});
-  });
-}
-
-async function checkFrame(index) {
-  const frame = frames[index];
-  const images = Array.from(document.querySelectorAll('#images img'));
-  if (images.length !== frame.images.length)
-    throw new Error(`frame ${index}: ${images.length} images shown, expected ${frame.images.length}`);
-  for (const [i, img] of images.entries()) {
-    const image = frame.images[i];
-    if (img.src !== image.src) throw new Error(`frame ${index}: image ${image.name} has another source`);
-    await loaded(img);
-    if (!img.complete || img.naturalWidth !== image.width || img.naturalHeight !== image.height)
-      throw new Error(`frame ${index}: image ${image.name} is ${img.naturalWidth}x${img.naturalHeight}`);
-  }
-  const rows = document.querySelectorAll('#queue tbody tr').length;
-  if (rows !== frame.queue.length)
-    throw new Error(`frame ${index}: ${rows} queue rows, expected ${frame.queue.length}`);
-  const streamed = document.querySelectorAll('#streamed span').length;
-  if (streamed !== frame.streamed.length)
-    throw new Error(`frame ${index}: ${streamed} streamed pages, expected ${frame.streamed.length}`);
-}
-
-window.vtSelfTest = async function () {
-  const out = byId('selftest');
-  out.textContent = 'selftest running';
-  const last = frames.length - 1;
-  try {
-    press('Home');
-    expectFrame(0, 'Home');
-    await checkFrame(0);
-    for (let i = 1; i <= last; ++i) {
-      press('ArrowRight');
-      expectFrame(i, 'ArrowRight');
-      await checkFrame(i);
-    }
-    const keys = [['ArrowRight', last], ['Home', 0], ['PageDown', Math.min(10, last)],
-                  ['End', last], ['p', Math.max(0, last - 1)], ['n', last],
-                  ['PageUp', Math.max(0, last - 10)], ['ArrowLeft', Math.max(0, last - 11)]];
-    for (const [key, index] of keys) {
-      press(key);
-      expectFrame(index, key);
-    }
-    out.textContent = `selftest ok frames=${frames.length}`;
-  } catch (error) {
-    out.textContent = `selftest failed: ${error.message}`;
-  }
-  return out.textContent;
-};
-
-showHeader();
-const start = /^#frame=(\d+)$/.exec(location.hash);
-showFrame(start ? Number(start[1]) : 0);
-if (location.hash === '#selftest') window.vtSelfTest();
-</script>
-</body>
-</html>
-)html";
 
 using nlohmann::json;
 
@@ -408,12 +140,16 @@ void writeInspectPage(const std::filesystem::path& file, const InspectRun& run) 
   // Invalid UTF-8 in a name becomes U+FFFD rather than failing the whole page.
   const std::string text = data.dump(-1, ' ', false, json::error_handler_t::replace);
 
-  const size_t marker = kPageTemplate.find(kDataMarker);
+  const std::string_view html = kInspectPageHtml, script = kInspectPageScript;
+  const size_t dataMarker = html.find(kDataMarker), scriptMarker = html.find(kScriptMarker);
   std::string page;
-  page.reserve(kPageTemplate.size() + text.size() + text.size() / 16);
-  page += kPageTemplate.substr(0, marker);
+  page.reserve(html.size() + script.size() + text.size() + text.size() / 16);
+  page += html.substr(0, dataMarker);
   appendScriptSafe(page, text);
-  page += kPageTemplate.substr(marker + kDataMarker.size());
+  page += html.substr(dataMarker + kDataMarker.size(),
+                      scriptMarker - dataMarker - kDataMarker.size());
+  page += script;
+  page += html.substr(scriptMarker + kScriptMarker.size());
   writeFileAtomically(file, page);
 }
 

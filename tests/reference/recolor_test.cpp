@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "build/synthetic_texture.h"
@@ -26,7 +27,8 @@ class Recolor : public ::testing::Test {
     reader_ = std::make_unique<VirtualTextureReader>(dir_ / "t.vt");
   }
 
-  // Levels 0-2, and a random third of the finer stored pages (the root is added when missing).
+  // Levels 0-2; a random third of the finer stored pages (the root is added when missing); the
+  // same third in another order, so in other frames; and levels 0-2 again, reversed.
   std::vector<CacheState> caches() const {
     std::vector<CacheState> states{cacheOfLevels(*reader_, 2, 4096)};
     std::mt19937 random(7);
@@ -34,6 +36,11 @@ class Recolor : public ::testing::Test {
     for (uint64_t p = 0; p < pageCount(reader_->description().finestLevel()); ++p)
       if (reader_->contains(fromAbsoluteIndex(p)) && random() % 3 == 0) pages.push_back(p);
     states.push_back(makeCacheState(*reader_, pages, 24, 24));
+    std::shuffle(pages.begin(), pages.end(), random);
+    states.push_back(makeCacheState(*reader_, pages, 24, 24));
+    std::vector<uint64_t> coarse(pageCount(2));
+    for (uint64_t p = 0; p < coarse.size(); ++p) coarse[p] = coarse.size() - 1 - p;
+    states.push_back(makeCacheState(*reader_, coarse, 24, 24));
     return states;
   }
 
@@ -60,13 +67,24 @@ TEST_F(Recolor, GivesTheBytesOfDrawingUnderTheCacheState) {
           RenderSettings debug = settings;
           debug.debugChannels = true;
           const Frame drawn = renderFrame(mesh, everything, debug);
-          for (const CacheState& cache : states) {
+          // All states at once, where pixels that read alike are shaded once for several.
+          std::vector<const CacheState*> all;
+          std::vector<std::vector<uint8_t>> together(states.size());
+          std::vector<std::vector<uint8_t>*> outputs;
+          for (size_t k = 0; k < states.size(); ++k) {
+            all.push_back(&states[k]);
+            outputs.push_back(&together[k]);
+          }
+          recolor(drawn, all, settings, outputs);
+          for (size_t k = 0; k < states.size(); ++k) {
+            const CacheState& cache = states[k];
             const Frame direct = renderFrame(mesh, cache, settings);
             std::vector<uint8_t> color;
             recolor(drawn, cache, settings, color);
             ASSERT_EQ(color.size(), direct.color.size());
             EXPECT_EQ(color, direct.color) << "profile " << toString(profile) << " trilinear "
                                            << trilinear << " exact filter " << exactFilter;
+            EXPECT_EQ(together[k], direct.color) << "together, state " << k;
             // The caches differ from every page resident: the test compares colours that move.
             differing += drawn.color != direct.color;
             ++compared;
