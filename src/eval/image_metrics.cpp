@@ -157,47 +157,59 @@ SsimAndWssim PreparedReference::compare(const ImageView& image) const {
   const std::vector<double>& y = p.y;
   const size_t columns = p.columns;
 
-  // Horizontal sums of the last `taps` image rows, in a ring: row r in slot r mod taps.
+  // Horizontal sums of the last `taps` image rows, in a ring: row r in slot r mod taps. Each
+  // window's sums add their taps in the same order as a loop per window would (first tap first),
+  // but the loops run across the windows innermost, where they vectorise.
   std::vector<WindowMoments> across(static_cast<size_t>(taps), WindowMoments(columns));
   const auto sumAcross = [&](int row) {
     WindowMoments& m = across[static_cast<size_t>(row % taps)];
     const size_t first = static_cast<size_t>(row) * static_cast<size_t>(W);
-    for (size_t c = 0; c < columns; ++c) {
-      double sx = 0, sxx = 0, sxy = 0;
-      for (int i = 0; i < taps; ++i) {
-        const double k = w.taps[static_cast<size_t>(i)];
-        const double px = x[first + c + static_cast<size_t>(i)];
-        const double py = y[first + c + static_cast<size_t>(i)];
-        sx += k * px;
-        sxx += k * px * px;
-        sxy += k * px * py;
+    std::fill(m.x.begin(), m.x.end(), 0.0);
+    std::fill(m.xx.begin(), m.xx.end(), 0.0);
+    std::fill(m.xy.begin(), m.xy.end(), 0.0);
+    for (int i = 0; i < taps; ++i) {
+      const double k = w.taps[static_cast<size_t>(i)];
+      const double* px = x.data() + first + static_cast<size_t>(i);
+      const double* py = y.data() + first + static_cast<size_t>(i);
+      for (size_t c = 0; c < columns; ++c) {
+        m.x[c] += k * px[c];
+        m.xx[c] += k * px[c] * px[c];
+        m.xy[c] += k * px[c] * py[c];
       }
-      m.x[c] = sx;
-      m.xx[c] = sxx;
-      m.xy[c] = sxy;
     }
   };
 
+  // Per row of windows: the column sums (same order: first tap first), then each window's Q,
+  // then the means, summed in window order.
+  std::vector<double> mx(columns), xx(columns), xy(columns), q(columns);
   double sum = 0.0, weightedSum = 0.0;
   for (int row = 0; row < taps - 1; ++row) sumAcross(row);
   for (size_t top = 0; top < p.rows; ++top) {
     sumAcross(static_cast<int>(top) + taps - 1);
-    for (size_t c = 0; c < columns; ++c) {
-      double mx = 0, xx = 0, xy = 0;
-      for (int j = 0; j < taps; ++j) {
-        const double k = w.taps[static_cast<size_t>(j)];
-        const WindowMoments& m = across[(top + static_cast<size_t>(j)) % static_cast<size_t>(taps)];
-        mx += k * m.x[c];
-        xx += k * m.xx[c];
-        xy += k * m.xy[c];
+    std::fill(mx.begin(), mx.end(), 0.0);
+    std::fill(xx.begin(), xx.end(), 0.0);
+    std::fill(xy.begin(), xy.end(), 0.0);
+    for (int j = 0; j < taps; ++j) {
+      const double k = w.taps[static_cast<size_t>(j)];
+      const WindowMoments& m = across[(top + static_cast<size_t>(j)) % static_cast<size_t>(taps)];
+      for (size_t c = 0; c < columns; ++c) {
+        mx[c] += k * m.x[c];
+        xx[c] += k * m.xx[c];
+        xy[c] += k * m.xy[c];
       }
-      const size_t index = top * columns + c;
-      const double my = p.my[index], yy = p.yy[index];
-      const double vx = xx - mx * mx, vy = yy - my * my, cxy = xy - mx * my;
-      const double q =
-          ((2 * mx * my + kC1) * (2 * cxy + kC2)) / ((mx * mx + my * my + kC1) * (vx + vy + kC2));
-      sum += q;
-      weightedSum += p.weight[index] * q;
+    }
+    const double* my = p.my.data() + top * columns;
+    const double* yy = p.yy.data() + top * columns;
+    for (size_t c = 0; c < columns; ++c) {
+      const double vx = xx[c] - mx[c] * mx[c], vy = yy[c] - my[c] * my[c],
+                   cxy = xy[c] - mx[c] * my[c];
+      q[c] = ((2 * mx[c] * my[c] + kC1) * (2 * cxy + kC2)) /
+             ((mx[c] * mx[c] + my[c] * my[c] + kC1) * (vx + vy + kC2));
+    }
+    const double* weight = p.weight.data() + top * columns;
+    for (size_t c = 0; c < columns; ++c) {
+      sum += q[c];
+      weightedSum += weight[c] * q[c];
     }
   }
   const size_t windows = columns * p.rows;
