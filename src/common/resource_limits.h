@@ -66,10 +66,12 @@ inline constexpr uint64_t kMaxShaderScriptBytes = uint64_t{4} << 20;
 // rendered, so a path of 2^31 frames would run for years.
 inline constexpr int64_t kMaxCameraPathFrames = 1'000'000;
 
-// Bytes of the reference images `vt eval` keeps, one RGBA8 image per frame of the path, which
-// every run is compared with: 8 GiB. (The q3dm6ish tour, 1,500 frames of 320 x 200, keeps 384 MB;
-// a path of 10^6 frames at that size would keep 256 GB.)
-inline constexpr uint64_t kMaxReferenceImageBytes = uint64_t{8} << 30;
+// Bytes `vt eval` holds for its runs at once: they fly in lockstep, each with its page cache
+// (cache_frames^2 frames of (P + 2B)^2 RGBA8 texels) and a colour buffer of the screen: 8 GiB, the
+// reproduction's memory target. (Chapter 4's 31 indoor configurations at 1024 x 768 with caches of
+// 32 x 32 frames of 136^2 texels hold 2.4 GB; a configurations file of 1,000 caches of 256 x 256
+// frames would ask for 4.8 TB.)
+inline constexpr uint64_t kMaxEvaluationStateBytes = uint64_t{8} << 30;
 
 // Pixels a command may draw along a camera path: its frames x the viewport's pixels x the passes
 // over the path (a flight with --quality also draws each frame's reference image; `vt eval` draws

@@ -275,17 +275,22 @@ TEST_F(HostileInput, PageTablesForEveryPageOfEveryLevelAreRefusedUpFront) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "f"));
 }
 
-// Class 3: `vt eval` keeps a reference image per frame; a path of a million frames (a 100-byte
-// file) is refused before the first is drawn, with the bytes it would keep.
-TEST_F(HostileInput, AnEvaluationKeepingTooManyReferenceImagesIsRefusedUpFront) {
-  std::ofstream(path("long.json")) << R"({"keyframes": [
-    {"frame": 0, "position": [6, 1.6, 4.5], "yaw": 0, "pitch": 0},
-    {"frame": 999999, "position": [6, 1.6, 4.5], "yaw": 90, "pitch": 0}]})";
-  const auto result = vt(
-      {"eval", path("t.vt"), "--path", path("long.json"), "--size", "320x200", "-o", path("out")});
-  expectOneLine(result, path("long.json"),
-                "keeping a 320 x 200 reference image for each of its 1000000 frames asks for "
-                "256000000000 bytes, the limit is 8589934592 bytes");
+// Class 3: `vt eval` flies its configurations in lockstep, each cache held at once; a file of 100
+// configurations with the largest cache (a 4 kB file) is refused before the first frame, with the
+// bytes they would hold: 100 x (256^2 frames of 20^2 RGBA8 texels + a 320 x 200 colour buffer).
+TEST_F(HostileInput, AnEvaluationHoldingTooManyCachesIsRefusedUpFront) {
+  {
+    std::ofstream configs(path("many.json"));
+    configs << R"({"configurations": [)";
+    for (int c = 0; c < 100; ++c)
+      configs << (c ? "," : "") << R"({"name": "c)" << c << R"(", "cache_frames": 256})";
+    configs << "]}";
+  }
+  const auto result = vt({"eval", path("t.vt"), "--configs", path("many.json"), "--size",
+                          "320x200", "-o", path("out")});
+  expectOneLine(result, path("many.json"),
+                "flying 100 configurations in lockstep (each cache and frame held at once) asks "
+                "for 10511360000 bytes, the limit is 8589934592 bytes");
   EXPECT_FALSE(std::filesystem::exists(dir_ / "out"));
   // A camera path missing a field names it without nlohmann's "[json.exception...]".
   std::ofstream(path("nopitch.json")) << R"({"keyframes": [{"frame": 0, "position": [0, 0, 0],
