@@ -3,7 +3,7 @@
 #include <fcntl.h>
 #include <pthread.h>
 #include <signal.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -94,6 +94,24 @@ std::string lastLine(const std::string& text) {
   return text.substr(begin, end + 1 - begin);
 }
 
+// The file `name` runs: itself when it holds a '/', else the first executable of that name on
+// $PATH; empty when there is none. Resolved before fork, so that the child only calls execv.
+std::string executablePath(const std::string& name) {
+  if (name.find('/') != std::string::npos) return ::access(name.c_str(), X_OK) == 0 ? name : "";
+  const char* path = std::getenv("PATH");
+  std::string_view folders = path ? path : "/usr/bin:/bin";
+  while (!folders.empty()) {
+    const size_t colon = folders.find(':');
+    const std::string_view folder = folders.substr(0, colon);
+    const std::string candidate = (folder.empty() ? std::string(".") : std::string(folder)) + "/" +
+                                  name;
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
+    if (colon == std::string_view::npos) break;
+    folders.remove_prefix(colon + 1);
+  }
+  return "";
+}
+
 }  // namespace
 
 std::string plotInterpreter() {
@@ -109,24 +127,29 @@ void drawEvaluationPlots(const std::filesystem::path& folder,
   Descriptor inRead, inWrite, outRead, outWrite;
   makePipe(inRead, inWrite);
   makePipe(outRead, outWrite);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, inRead.fd, 0);
-  posix_spawn_file_actions_adddup2(&actions, outWrite.fd, 1);
-  posix_spawn_file_actions_adddup2(&actions, outWrite.fd, 2);
   std::vector<std::string> argv = {python, "-", folder.string()};
   std::vector<char*> pointers;
   for (std::string& arg : argv) pointers.push_back(arg.data());
   pointers.push_back(nullptr);
-  pid_t pid = 0;
-  const int spawned =
-      python.find('/') == std::string::npos
-          ? ::posix_spawnp(&pid, python.c_str(), &actions, nullptr, pointers.data(), environ)
-          : ::posix_spawn(&pid, python.c_str(), &actions, nullptr, pointers.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0)
-    throw std::runtime_error(where + "cannot run " + python + " (" + std::strerror(spawned) +
-                             "); the plots need python3 with matplotlib (python3-matplotlib)");
+  const std::string program = executablePath(python);
+  if (program.empty())
+    throw std::runtime_error(where + "cannot run " + python +
+                             " (not found); the plots need python3 with matplotlib "
+                             "(python3-matplotlib)");
+  // fork and exec rather than posix_spawn: the child asks to be killed when vt dies, so an
+  // interrupted evaluation leaves no interpreter writing into its staging folder. Between fork and
+  // exec only system calls run.
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0)
+    throw std::runtime_error(where + "cannot start " + python + ": " + std::strerror(errno));
+  if (pid == 0) {
+    if (::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || ::getppid() != parent) ::_exit(126);
+    if (::dup2(inRead.fd, 0) < 0 || ::dup2(outWrite.fd, 1) < 0 || ::dup2(outWrite.fd, 2) < 0)
+      ::_exit(126);
+    ::execv(program.c_str(), pointers.data());
+    ::_exit(127);
+  }
   inRead.reset();
   outWrite.reset();
   writeAll(inWrite.fd, kEvaluationPlotsSource);
