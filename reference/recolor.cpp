@@ -92,11 +92,51 @@ struct EntryPair {
   bool operator==(const EntryPair&) const = default;
 };
 
-// A state that shaded the pixel itself: what it read, and the filter inputs when computed.
+// A state that shaded the pixel itself and the filter inputs it read (when computed).
 struct Shaded {
-  EntryPair entries;
   std::optional<ColourKey> key;
   size_t state;
+};
+
+bool operator==(const Lookups& a, const Lookups& b) {
+  return a.first == b.first && a.second == b.second;
+}
+
+// The indirection entries each state reads for the pixel's lookups, and for each state the first
+// state that reads the same ones (itself when none before it does): neighbouring pixels mostly
+// look up the same pages, so the entries are read, and the states grouped, once per run of such
+// pixels rather than once per pixel (the tables are large and their reads miss the caches).
+class EntryGroups {
+ public:
+  explicit EntryGroups(std::span<const CacheState* const> caches)
+      : caches_(caches), entries_(caches.size()), first_(caches.size()) {}
+
+  void lookUp(const Lookups& lookups) {
+    if (valid_ && lookups == lookups_) return;
+    lookups_ = lookups;
+    valid_ = true;
+    for (size_t k = 0; k < caches_.size(); ++k) {
+      const CacheState& cache = *caches_[k];
+      entries_[k] = {cache.entry(lookups.first), cache.entry(lookups.second), cache.widthTexels,
+                     cache.heightTexels};
+      first_[k] = k;
+      for (size_t j = 0; j < k; ++j)
+        if (first_[j] == j && entries_[j] == entries_[k]) {
+          first_[k] = j;
+          break;
+        }
+    }
+  }
+
+  // The first state that reads what state k reads.
+  size_t firstOf(size_t k) const { return first_[k]; }
+
+ private:
+  std::span<const CacheState* const> caches_;
+  std::vector<EntryPair> entries_;
+  std::vector<size_t> first_;
+  Lookups lookups_{};
+  bool valid_ = false;
 };
 
 }  // namespace
@@ -133,6 +173,7 @@ void recolor(const Frame& drawn, std::span<const CacheState* const> caches,
     std::vector<Shader> shaders;
     shaders.reserve(caches.size());
     for (const CacheState* cache : caches) shaders.emplace_back(cache, settings.profile);
+    EntryGroups groups(caches);
     std::vector<Shaded> shaded;  // the states that shaded this pixel themselves
     const int first = static_cast<int>(task) * kRows, last = std::min(v.height, first + kRows);
     for (size_t i = static_cast<size_t>(first) * static_cast<size_t>(v.width),
@@ -144,30 +185,34 @@ void recolor(const Frame& drawn, std::span<const CacheState* const> caches,
       }
       const glm::vec4 d = drawn.derivatives[i];
       Lookups lookups{};
-      if (share) lookups = lookupsOf(shaders.front(), drawn.uv[i], d, parameters.front());
+      if (share) {
+        lookups = lookupsOf(shaders.front(), drawn.uv[i], d, parameters.front());
+        groups.lookUp(lookups);
+      }
       shaded.clear();
       for (size_t k = 0; k < caches.size(); ++k) {
         uint8_t* out = colors[k]->data() + i * 4;
         if (share) {
-          // The same entries as a state already shaded: the same frames, the same colour. Else
-          // the same filter inputs, from frames elsewhere in the cache.
-          const CacheState& cache = *caches[k];
-          const EntryPair entries{cache.entry(lookups.first), cache.entry(lookups.second),
-                                  cache.widthTexels, cache.heightTexels};
-          auto same = std::find_if(shaded.begin(), shaded.end(),
-                                   [&](const Shaded& s) { return s.entries == entries; });
-          std::optional<ColourKey> key;
-          if (same == shaded.end() && parameters[k].exactFilter != 0) {
-            key = colourKey(shaders[k], cache, lookups.uv, lookups, parameters[k]);
-            same = std::find_if(shaded.begin(), shaded.end(), [&](const Shaded& s) {
-              return s.key && *s.key == *key;
-            });
-          }
-          if (same != shaded.end()) {
-            std::copy_n(colors[same->state]->data() + i * 4, 4, out);
+          // The same entries as an earlier state: the same frames, the same colour (that state's
+          // colour is written: it comes first). Else the same filter inputs as a state that
+          // shaded the pixel, from frames elsewhere in the cache.
+          const size_t same = groups.firstOf(k);
+          if (same != k) {
+            std::copy_n(colors[same]->data() + i * 4, 4, out);
             continue;
           }
-          shaded.push_back({entries, key, k});
+          std::optional<ColourKey> key;
+          if (parameters[k].exactFilter != 0) {
+            key = colourKey(shaders[k], *caches[k], lookups.uv, lookups, parameters[k]);
+            const auto match = std::find_if(shaded.begin(), shaded.end(), [&](const Shaded& s) {
+              return s.key && *s.key == *key;
+            });
+            if (match != shaded.end()) {
+              std::copy_n(colors[match->state]->data() + i * 4, 4, out);
+              continue;
+            }
+          }
+          shaded.push_back({key, k});
         }
         const shader::VtFragment f = shaders[k].vtShadeFragment(
             drawn.uv[i], shader::vec2(d.x, d.y), shader::vec2(d.z, d.w), parameters[k]);

@@ -27,11 +27,16 @@ class ResidentBackend {
 
   float log2(float x) { return profileLog2(profile_, x); }
 
+  // Neighbouring fragments mostly look up the page the last lookup named: then neither the
+  // ancestor search nor the shared page table (a lock) is needed again.
   shader::uvec4 vtFetchIndirection(shader::ivec2 page, int level) {
-    current_ =
-        texture_->residentPage(PageId{static_cast<uint32_t>(page.x), static_cast<uint32_t>(page.y),
-                                      static_cast<uint32_t>(level)});
-    texels_ = &texture_->texels(current_);
+    const PageId wanted{static_cast<uint32_t>(page.x), static_cast<uint32_t>(page.y),
+                        static_cast<uint32_t>(level)};
+    if (texels_ == nullptr || wanted != wanted_) {
+      wanted_ = wanted;
+      current_ = texture_->residentPage(wanted);
+      texels_ = &texture_->texels(current_);
+    }
     return shader::uvec4(0u, 0u, current_.level, 0u);
   }
 
@@ -53,7 +58,7 @@ class ResidentBackend {
  private:
   const ResidentTexture* texture_;
   PrecisionProfile profile_;
-  PageId current_{};
+  PageId wanted_{}, current_{};
   const std::vector<std::byte>* texels_ = nullptr;
 };
 

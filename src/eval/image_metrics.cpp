@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <vector>
 
@@ -27,14 +28,16 @@ std::vector<double> luminance(const ImageView& image) {
 
 double rmse(const ImageView& a, const ImageView& b) {
   requireSameSize(a, b);
-  double sum = 0.0;
-  for (size_t i = 0; i < a.rgba.size(); ++i) {
-    if (i % 4 == 3) continue;
-    const double d = static_cast<double>(a.rgba[i]) - b.rgba[i];
-    sum += d * d;
-  }
+  // Squared differences of 8-bit values are integers: summed exactly in 64 bits (2^64 / 255^2 is
+  // far beyond any image), in any order, hence fast and the same as a sum in doubles.
+  uint64_t sum = 0;
+  for (size_t i = 0; i < a.rgba.size(); i += 4)
+    for (size_t c = 0; c < 3; ++c) {
+      const int d = static_cast<int>(a.rgba[i + c]) - static_cast<int>(b.rgba[i + c]);
+      sum += static_cast<uint64_t>(d * d);
+    }
   const double count = static_cast<double>(a.width) * a.height * 3;
-  return count > 0 ? std::sqrt(sum / count) : 0.0;
+  return count > 0 ? std::sqrt(static_cast<double>(sum) / count) : 0.0;
 }
 
 namespace {
@@ -71,6 +74,55 @@ struct WindowMoments {
   std::vector<double> x, y, xx, yy, xy;
   explicit WindowMoments(size_t n) : x(n), y(n), xx(n), yy(n), xy(n) {}
 };
+
+// A run of columns [first, last); empty when first >= last.
+struct Span {
+  size_t first = SIZE_MAX, last = 0;
+  bool empty() const { return first >= last; }
+  void add(Span other) {
+    first = std::min(first, other.first);
+    last = std::max(last, other.last);
+  }
+};
+
+// The windows of each row of windows whose support holds a pixel where the luminances differ,
+// as one span of window columns per row (it may include windows without one), and the columns
+// of each image row's sums across that those windows read. A window whose support has equal
+// luminances in both images has SSIM 1 exactly: its two means, two variances and covariance
+// are computed by the same operations in the same order from the same values, so each factor of
+// Q's numerator equals its factor in the denominator bit for bit ((2 mx) my = mx mx + my my,
+// 2 cxy = vx + vy), and neither is zero (C1, C2 > 0).
+struct DifferingWindows {
+  std::vector<Span> windows;  // per row of windows
+  std::vector<Span> across;   // per image row
+};
+
+DifferingWindows differingWindows(const std::vector<double>& x, const std::vector<double>& y,
+                                  int width, int height, int taps) {
+  const size_t columns = static_cast<size_t>(width - taps + 1),
+               rows = static_cast<size_t>(height - taps + 1), t = static_cast<size_t>(taps);
+  std::vector<Span> differ(static_cast<size_t>(height));  // per image row: differing pixels
+  for (size_t row = 0; row < differ.size(); ++row) {
+    const double* a = x.data() + row * static_cast<size_t>(width);
+    const double* b = y.data() + row * static_cast<size_t>(width);
+    size_t first = 0, last = static_cast<size_t>(width);
+    while (first < last && a[first] == b[first]) ++first;
+    while (last > first && a[last - 1] == b[last - 1]) --last;
+    if (first < last) differ[row] = {first, last};
+  }
+  DifferingWindows d{std::vector<Span>(rows), std::vector<Span>(static_cast<size_t>(height))};
+  for (size_t top = 0; top < rows; ++top) {
+    Span pixels;
+    for (size_t j = 0; j < t; ++j) pixels.add(differ[top + j]);
+    if (pixels.empty()) continue;
+    // Windows c .. c + taps - 1 that reach a differing column.
+    const Span windows{pixels.first >= t - 1 ? pixels.first - (t - 1) : 0,
+                       std::min(columns, pixels.last)};
+    d.windows[top] = windows;
+    for (size_t j = 0; j < t; ++j) d.across[top + j].add(windows);
+  }
+  return d;
+}
 
 }  // namespace
 
@@ -161,17 +213,21 @@ SsimAndWssim PreparedReference::compare(const ImageView& image) const {
   // window's sums add their taps in the same order as a loop per window would (first tap first),
   // but the loops run across the windows innermost, where they vectorise.
   std::vector<WindowMoments> across(static_cast<size_t>(taps), WindowMoments(columns));
+  // Only the windows that see a difference are computed (differingWindows: the others are 1).
+  const DifferingWindows differing = differingWindows(x, y, W, p.height, taps);
   const auto sumAcross = [&](int row) {
+    const Span span = differing.across[static_cast<size_t>(row)];
+    if (span.empty()) return;
     WindowMoments& m = across[static_cast<size_t>(row % taps)];
     const size_t first = static_cast<size_t>(row) * static_cast<size_t>(W);
-    std::fill(m.x.begin(), m.x.end(), 0.0);
-    std::fill(m.xx.begin(), m.xx.end(), 0.0);
-    std::fill(m.xy.begin(), m.xy.end(), 0.0);
+    std::fill(m.x.begin() + span.first, m.x.begin() + span.last, 0.0);
+    std::fill(m.xx.begin() + span.first, m.xx.begin() + span.last, 0.0);
+    std::fill(m.xy.begin() + span.first, m.xy.begin() + span.last, 0.0);
     for (int i = 0; i < taps; ++i) {
       const double k = w.taps[static_cast<size_t>(i)];
       const double* px = x.data() + first + static_cast<size_t>(i);
       const double* py = y.data() + first + static_cast<size_t>(i);
-      for (size_t c = 0; c < columns; ++c) {
+      for (size_t c = span.first; c < span.last; ++c) {
         m.x[c] += k * px[c];
         m.xx[c] += k * px[c] * px[c];
         m.xy[c] += k * px[c] * py[c];
@@ -186,13 +242,15 @@ SsimAndWssim PreparedReference::compare(const ImageView& image) const {
   for (int row = 0; row < taps - 1; ++row) sumAcross(row);
   for (size_t top = 0; top < p.rows; ++top) {
     sumAcross(static_cast<int>(top) + taps - 1);
+    const Span span = differing.windows[top];
+    std::fill(q.begin(), q.end(), 1.0);
     std::fill(mx.begin(), mx.end(), 0.0);
     std::fill(xx.begin(), xx.end(), 0.0);
     std::fill(xy.begin(), xy.end(), 0.0);
-    for (int j = 0; j < taps; ++j) {
+    for (int j = 0; j < taps && !span.empty(); ++j) {
       const double k = w.taps[static_cast<size_t>(j)];
       const WindowMoments& m = across[(top + static_cast<size_t>(j)) % static_cast<size_t>(taps)];
-      for (size_t c = 0; c < columns; ++c) {
+      for (size_t c = span.first; c < span.last; ++c) {
         mx[c] += k * m.x[c];
         xx[c] += k * m.xx[c];
         xy[c] += k * m.xy[c];
@@ -200,7 +258,7 @@ SsimAndWssim PreparedReference::compare(const ImageView& image) const {
     }
     const double* my = p.my.data() + top * columns;
     const double* yy = p.yy.data() + top * columns;
-    for (size_t c = 0; c < columns; ++c) {
+    for (size_t c = span.first; c < span.last; ++c) {
       const double vx = xx[c] - mx[c] * mx[c], vy = yy[c] - my[c] * my[c],
                    cxy = xy[c] - mx[c] * my[c];
       q[c] = ((2 * mx[c] * my[c] + kC1) * (2 * cxy + kC2)) /

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -124,6 +125,95 @@ TEST(ImageMetrics, APreparedReferenceComparesLikeAFreshOne) {
   }
   const std::vector<uint8_t> small(16 * 16 * 4, 0);
   EXPECT_THROW(prepared.compare(ImageView{16, 16, small}), std::invalid_argument);
+}
+
+// SSIM and WSSIM with each window's sums in the separable order (across each row of the window,
+// tap by tap, then down those sums), every window computed: what compare() must give bit for bit
+// although it computes only the windows that see a difference.
+Definition inSeparableOrder(const ImageView& a, const ImageView& b,
+                            const std::vector<double>& taps) {
+  const std::vector<double> x = luminance(a), y = luminance(b);
+  const int n = static_cast<int>(taps.size()), first = -(n / 2);
+  const double c1 = (0.01 * 255) * (0.01 * 255), c2 = (0.03 * 255) * (0.03 * 255);
+  const double centreX = 0.5 * a.width, centreY = 0.5 * a.height;
+  const double radius = std::hypot(centreX, centreY);
+  double sum = 0, count = 0, weighted = 0, weights = 0;
+  for (int top = 0; top + n <= a.height; ++top)
+    for (int left = 0; left + n <= a.width; ++left) {
+      double mx = 0, my = 0, xx = 0, yy = 0, xy = 0;
+      for (int j = 0; j < n; ++j) {
+        double rx = 0, ry = 0, rxx = 0, ryy = 0, rxy = 0;
+        for (int i = 0; i < n; ++i) {
+          const double k = taps[static_cast<size_t>(i)];
+          const size_t p = static_cast<size_t>(top + j) * static_cast<size_t>(a.width) +
+                           static_cast<size_t>(left + i);
+          rx += k * x[p];
+          ry += k * y[p];
+          rxx += k * x[p] * x[p];
+          ryy += k * y[p] * y[p];
+          rxy += k * x[p] * y[p];
+        }
+        const double k = taps[static_cast<size_t>(j)];
+        mx += k * rx;
+        my += k * ry;
+        xx += k * rxx;
+        yy += k * ryy;
+        xy += k * rxy;
+      }
+      const double vx = xx - mx * mx, vy = yy - my * my, cxy = xy - mx * my;
+      const double q = ((2 * mx * my + c1) * (2 * cxy + c2)) / ((mx * mx + my * my + c1) * (vx + vy + c2));
+      const double r = std::hypot(left - first + 0.5 - centreX, top - first + 0.5 - centreY);
+      const double w = std::max(0.0, 1.0 - r / radius);
+      sum += q;
+      count += 1;
+      weighted += w * q;
+      weights += w;
+    }
+  return {sum / count, weighted / weights};
+}
+
+// Frames of an evaluation mostly equal their reference but in patches: compare() skips the
+// windows without a difference (their SSIM is 1 exactly) and must still give every bit of the
+// full computation, whether the patches sit in the middle, at the edges or are single pixels.
+TEST(ImageMetrics, WindowsWithoutADifferenceChangeNoBit) {
+  const int width = 53, height = 41;
+  std::vector<uint8_t> reference(static_cast<size_t>(width) * height * 4);
+  for (size_t i = 0; i < reference.size(); ++i)
+    reference[i] = static_cast<uint8_t>((i * 53 / 3 + i * i % 7) % 256);
+  const ImageView want{width, height, reference};
+  struct Patch {
+    int x, y, w, h;
+  };
+  const std::vector<std::vector<Patch>> layouts = {
+      {{20, 15, 6, 4}},
+      {{0, 0, 3, 2}, {width - 2, height - 1, 2, 1}},
+      {{30, 0, 1, 1}, {0, 30, 1, 1}, {12, 20, 1, 1}},
+      {{0, 10, width, 1}},
+      {{7, 0, 2, height}}};
+  std::vector<double> gaussian;
+  double total = 0;
+  for (int k = -5; k <= 5; ++k) total += gaussian.emplace_back(std::exp(-k * k / (2 * 1.5 * 1.5)));
+  for (double& t : gaussian) t /= total;
+  for (const auto& [options, taps] :
+       {std::pair{SsimOptions{}, std::vector<double>(8, 1.0 / 8)},
+        std::pair{SsimOptions{.window = SsimWindow::kGaussian}, gaussian}}) {
+    const PreparedReference prepared(want, options);
+    for (const std::vector<Patch>& patches : layouts) {
+      std::vector<uint8_t> image = reference;
+      for (const Patch& patch : patches)
+        for (int y = patch.y; y < patch.y + patch.h; ++y)
+          for (int x = patch.x; x < patch.x + patch.w; ++x)
+            image[(static_cast<size_t>(y) * width + static_cast<size_t>(x)) * 4 + 1] ^= 0x5a;
+      const ImageView got{width, height, image};
+      const Definition expected = inSeparableOrder(got, want, taps);
+      const SsimAndWssim measured = prepared.compare(got);
+      EXPECT_LT(measured.ssim, 1.0);
+      EXPECT_EQ(measured.ssim, expected.ssim);
+      EXPECT_EQ(measured.wssim, expected.wssim);
+    }
+    EXPECT_EQ(prepared.compare(want).ssim, 1.0);
+    EXPECT_EQ(prepared.compare(want).wssim, 1.0);
+  }
 }
 
 TEST(ImageMetrics, RejectsMismatchedSizes) {
