@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "format/page_address.h"
-#include "reference/frame.h"
+#include "render/frame.h"
 #include "shader/needbuffer.h"
 
 namespace vt::reference {

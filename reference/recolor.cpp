@@ -7,6 +7,7 @@
 #include <string>
 
 #include "reference/parallel_for.h"
+#include "reference/profile_arithmetic.h"
 #include "reference/shader_backends.h"
 
 namespace vt::reference {
@@ -80,8 +81,8 @@ ColourKey colourKey(Shader& shader, const CacheState& cache, shader::vec2 uv,
   ColourKey key;
   key.width = cache.widthTexels;
   key.height = cache.heightTexels;
-  addFilterInputs(key, 0, shader, uv, lookups.first, cache.entry(lookups.first), p);
-  addFilterInputs(key, 5, shader, uv, lookups.second, cache.entry(lookups.second), p);
+  addFilterInputs(key, 0, shader, uv, lookups.first, cache.indirection.entry(lookups.first), p);
+  addFilterInputs(key, 5, shader, uv, lookups.second, cache.indirection.entry(lookups.second), p);
   return key;
 }
 
@@ -152,8 +153,9 @@ void recolor(const Frame& drawn, std::span<const CacheState* const> caches,
           // The same entries as a state already shaded: the same frames, the same colour. Else
           // the same filter inputs, from frames elsewhere in the cache.
           const CacheState& cache = *caches[k];
-          const EntryPair entries{cache.entry(lookups.first), cache.entry(lookups.second),
-                                  cache.widthTexels, cache.heightTexels};
+          const EntryPair entries{cache.indirection.entry(lookups.first),
+                                  cache.indirection.entry(lookups.second), cache.widthTexels,
+                                  cache.heightTexels};
           auto same = std::find_if(shaded.begin(), shaded.end(),
                                    [&](const Shaded& s) { return s.entries == entries; });
           std::optional<ColourKey> key;

@@ -126,7 +126,7 @@ void addViewCommand(CLI::App& app) {
     WindowContext window(size.width, size.height, "vt view: " + o->texture);
     GlFrameRenderer gl(run.runtime().cacheState());
     HudOverlay hud;
-    reference::RenderSettings settings = flight.settings;
+    RenderSettings settings = flight.settings;
     std::vector<Keyframe> recorded;
     bool recording = o->recordFromStart;
     glm::dvec2 cursor = window.cursor();
@@ -160,10 +160,10 @@ void addViewCommand(CLI::App& app) {
       // Draw from the cache as it is, analyse, ask the thread, apply what arrived.
       const glm::ivec2 windowSize = window.framebufferSize();
       settings.viewport = {std::max(1, windowSize.x), std::max(1, windowSize.y)};
-      gl.uploadCache();
+      gl.cacheChanged();
       const auto drawStart = Clock::now();
-      const GlFrame drawn = gl.render(toClipSpace(mesh, camera, settings.viewport), settings,
-                                      run.runtime().needsDepth());
+      const Frame drawn = gl.render(toClipSpace(mesh, camera, settings.viewport), settings,
+                                    run.runtime().needsDepth());
       run.frame(frame, previous, camera,
                 DrawnFrame{.need = drawn.need, .depth = drawn.depth,
                            .needViewport = settings.viewport},
@@ -189,7 +189,7 @@ void addViewCommand(CLI::App& app) {
 
       const bool lastFrame = o->maxFrames > 0 && frame + 1 >= o->maxFrames;
       if (lastFrame && !o->screenshot.empty()) {
-        reference::Frame shot;  // rows bottom to top, as GL reads them
+        Frame shot;  // rows bottom to top, as GL reads them
         shot.viewport = {windowSize.x, windowSize.y};
         shot.color.resize(size_t(windowSize.x) * size_t(windowSize.y) * 4);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);  // the window's, not the renderer's target

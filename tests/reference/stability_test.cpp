@@ -12,6 +12,7 @@
 #include "build/synthetic_texture.h"
 #include "reference/frame_images.h"
 #include "reference/renderer.h"
+#include "reference/triangle_setup.h"
 #include "scene/camera.h"
 #include "test_support.h"
 

@@ -1,8 +1,8 @@
-#include "reference/precision_model.h"
+#include "render/precision_model.h"
 
 #include <stdexcept>
 
-namespace vt::reference {
+namespace vt {
 
 bool PrecisionModel::pinned() const {
   return coveragePinned() && depthUlps == 0 && depthRoundsToNearest && attributeUlps == 0 &&
@@ -111,4 +111,4 @@ PrecisionModel modelForRenderer(const std::string& glRenderer) {
   return gl45Model();
 }
 
-}  // namespace vt::reference
+}  // namespace vt
