@@ -22,8 +22,8 @@
 #include "common/output_path.h"
 #include "common/posix_file.h"
 #include "common/resource_limits.h"
-#include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
+#include "render/backend.h"
 #include "render/precision_model_file.h"
 #include "scene/camera_path.h"
 #include "scene/obj_mesh.h"
@@ -158,7 +158,7 @@ void addCrosscheckCommand(CLI::App& app) {
     // Every stored page, or the coarsest levels that fit into an 8192^2 cache texture: uploaded
     // for GL, and the same pages in the same frames prepared for the oracle's API.
     const CacheState cache = cacheOfLevels(reader, -1, 8192);
-    GlFrameRenderer gl(cache);
+    const std::unique_ptr<FrameRenderer> gl = makeFrameRenderer(Backend::kGl, cache);
     const oracle::Texture texture = oracle::Texture::open(o->texture);
     const oracle::PreparedCache prepared(texture, publicCacheState(cache));
     const std::filesystem::path folder = staging.path();
@@ -192,7 +192,7 @@ void addCrosscheckCommand(CLI::App& app) {
         settings.need8 = mode.need8;
         const oracle::RenderOptions options = publicRenderOptions(settings, modelFile);
         const oracle::Frame expected = oracle::render(texture, publicMesh, prepared, options);
-        const Frame frame = gl.render(mesh, settings);
+        const Frame frame = gl->render(mesh, settings);
         const oracle::Comparison c =
             oracle::compare(expected, frame.color, oracle::flatNeed(frame.need));
         writeComparisonImages(folder, name + "-" + mode.name, publicMesh.viewport, c);

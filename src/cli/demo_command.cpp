@@ -20,8 +20,8 @@
 #include "common/posix_file.h"
 #include "format/level_image.h"
 #include "gl/headless_context.h"
-#include "reference/frame_images.h"
 #include "render/backend.h"
+#include "render/frame_images.h"
 #include "scene/box_room.h"
 
 namespace vt {
@@ -59,8 +59,7 @@ void renderAndCrossCheck(const VirtualTextureReader& reader, const std::filesyst
   const double oracleSeconds = secondsSince(start);
   const auto width = static_cast<uint32_t>(settings.viewport.width),
              height = static_cast<uint32_t>(settings.viewport.height);
-  const std::vector<uint8_t> color = reference::colorImage(oracle),
-                             need = reference::needImage(oracle, false);
+  const std::vector<uint8_t> color = colorImage(oracle), need = needImage(oracle, false);
   writeImage8(folder / "frame.png", width, height, 4, std::as_bytes(std::span(color)));
   writeImage8(folder / "needbuffer.png", width, height, 4, std::as_bytes(std::span(need)));
   std::cout << "oracle (profile " << toString(settings.profile) << "): " << width << " x " << height

@@ -15,8 +15,8 @@
 #include "common/input_file.h"
 #include "common/output_path.h"
 #include "eval/image_metrics.h"
-#include "reference/frame_images.h"
 #include "render/backend.h"
+#include "render/frame_images.h"
 #include "scene/box_room.h"
 #include "scene/obj_mesh.h"
 #include "shader/needbuffer.h"
@@ -134,12 +134,12 @@ void addRenderCommand(CLI::App& app) {
                 << reader.storedPageCount() << " pages resident\n";
 
     const NeededPages needed = neededPages(frame.need, settings.need8);
-    const std::vector<uint8_t> color = reference::colorImage(frame);
+    const std::vector<uint8_t> color = colorImage(frame);
     const auto width = static_cast<uint32_t>(settings.viewport.width),
                height = static_cast<uint32_t>(settings.viewport.height);
     writeImage8(o->output, width, height, 4, std::as_bytes(std::span(color)));
     if (!o->needbuffer.empty()) {
-      const std::vector<uint8_t> need = reference::needImage(frame, settings.need8);
+      const std::vector<uint8_t> need = needImage(frame, settings.need8);
       writeImage8(o->needbuffer, width, height, 4, std::as_bytes(std::span(need)));
     }
     std::cout << "rendered " << o->output << ": " << width << " x " << height << " in "

@@ -24,7 +24,7 @@
 #include "gl/gl_frame_renderer.h"
 #include "gl/hud_overlay.h"
 #include "gl/window_context.h"
-#include "reference/frame_images.h"
+#include "render/frame_images.h"
 #include "runtime/page_streamer.h"
 #include "runtime/virtual_texture_runtime.h"
 #include "scene/box_room.h"
@@ -196,7 +196,7 @@ void addViewCommand(CLI::App& app) {
         glReadBuffer(GL_BACK);
         glReadPixels(0, 0, windowSize.x, windowSize.y, GL_RGBA, GL_UNSIGNED_BYTE,
                      shot.color.data());
-        const std::vector<uint8_t> rows = reference::colorImage(shot);
+        const std::vector<uint8_t> rows = colorImage(shot);
         writeImage8(o->screenshot, static_cast<uint32_t>(windowSize.x),
                     static_cast<uint32_t>(windowSize.y), 4, std::as_bytes(std::span(rows)));
       }

@@ -4,7 +4,7 @@
 
 #include "common/level_hues.h"
 #include "format/page_address.h"
-#include "reference/frame_images.h"
+#include "render/frame_images.h"
 
 namespace vt {
 namespace {
@@ -50,8 +50,7 @@ InspectImage needbufferImage(Viewport viewport, std::span<const glm::uvec4> need
   Frame frame;
   frame.viewport = viewport;
   frame.need.assign(need.begin(), need.end());
-  return {"needbuffer (level)", viewport.width, viewport.height,
-          reference::needImage(frame, need8)};
+  return {"needbuffer (level)", viewport.width, viewport.height, needImage(frame, need8)};
 }
 
 InspectImage residentLevelImage(Viewport viewport, std::span<const glm::uvec4> need, bool need8,

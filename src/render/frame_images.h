@@ -11,11 +11,9 @@
 #include "render/frame.h"
 #include "shader/needbuffer.h"
 
-namespace vt::reference {
-
-using vt::decodeNeed;
+namespace vt {
 
 std::vector<uint8_t> colorImage(const Frame& frame);
 std::vector<uint8_t> needImage(const Frame& frame, bool need8);
 
-}  // namespace vt::reference
+}  // namespace vt
