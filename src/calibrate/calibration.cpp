@@ -325,10 +325,10 @@ RasterFits measureRasterization(bool flushesDenormals) {
       {{.pageSize = 16, .border = 2, .levelCount = 4, .channels = 4}, std::nullopt});
   const VirtualTextureReader reader(folder.path() / "t.vt");
   const reference::ResidentTexture texture(reader);
-  const reference::Viewport viewport{160, 120};
+  const Viewport viewport{160, 120};
   RasterCounts counts[2];  // [0] llvmpipe's arithmetic, [1] IEEE
   for (const unsigned seed : {1u, 2u, 3u}) {
-    const reference::ClipSpaceMesh mesh = randomTriangles(seed, 120);
+    const ClipSpaceMesh mesh = randomTriangles(seed, 120);
     const RasterReadback gl = drawTriangles(mesh, viewport);
     for (int a = 0; a < 2; ++a) {
       RenderSettings settings;

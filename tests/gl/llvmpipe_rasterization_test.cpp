@@ -46,7 +46,7 @@ TEST_F(LlvmpipeRasterization, OracleMatchesEveryPixelBitForBit) {
       __builtin_cpu_supports("fma") ? PrecisionProfile::kLlvmpipe : PrecisionProfile::kExact;
   settings.viewport = {160, 120};
   for (const unsigned seed : {1u, 2u, 3u}) {
-    const reference::ClipSpaceMesh mesh = calibrate::randomTriangles(seed, 120);
+    const ClipSpaceMesh mesh = calibrate::randomTriangles(seed, 120);
     const calibrate::RasterReadback gl = calibrate::drawTriangles(mesh, settings.viewport);
     const Frame oracle = reference::renderFrame(mesh, texture, settings);
     size_t coverage = 0, uv = 0, derivatives = 0, depth = 0, covered = 0;

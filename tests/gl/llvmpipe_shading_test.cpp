@@ -23,9 +23,9 @@ namespace vt {
 namespace {
 
 // Textured triangles at many scales and angles: magnified, minified, grazing, some clipped.
-reference::ClipSpaceMesh texturedScene(unsigned seed) {
+ClipSpaceMesh texturedScene(unsigned seed) {
   std::mt19937 random(seed);
-  reference::ClipSpaceMesh mesh;
+  ClipSpaceMesh mesh;
   test::appendRandomTriangles(mesh, random, 80);
   // s and t exactly 0 and 1 at the corners of a screen-filling background quad drawn last.
   const uint32_t base = static_cast<uint32_t>(mesh.vertices.size());
@@ -69,7 +69,7 @@ TEST_P(LlvmpipeShading, OracleMatchesColourAndNeedbufferBitForBit) {
   settings.needScaleLog2 = GetParam().needScaleLog2;
   GlFrameRenderer renderer(cache);
   for (const unsigned seed : {11u, 12u}) {
-    const reference::ClipSpaceMesh mesh = texturedScene(seed);
+    const ClipSpaceMesh mesh = texturedScene(seed);
     const Frame gl = renderer.render(mesh, settings, /*readDepth=*/true);
     const Frame oracle = reference::renderFrame(mesh, cache, settings);
     size_t colour = 0, need = 0, maxDifference = 0, covered = 0, depth = 0;

@@ -71,9 +71,9 @@ std::string plant(const PlantedBug& bug) {
 
 // Magnified, minified and grazing triangles, a background quad with s and t exactly 0 and 1 at
 // its corners, and a quad whose coordinates run past 1 (the shader clamps them to exactly 1.0).
-reference::ClipSpaceMesh scene() {
+ClipSpaceMesh scene() {
   std::mt19937 random(11);
-  reference::ClipSpaceMesh mesh;
+  ClipSpaceMesh mesh;
   const auto quad = [&](std::array<glm::vec4, 4> p, std::array<glm::vec2, 4> uv) {
     const auto base = static_cast<uint32_t>(mesh.vertices.size());
     for (int k = 0; k < 4; ++k) mesh.vertices.push_back({p[k], uv[k]});
@@ -112,7 +112,7 @@ class PlantedBugs : public ::testing::Test {
       settings.trilinear = texelFetch;
       settings.need8 = !texelFetch;
       GlFrameRenderer renderer(*cache_, bug ? plant(*bug) : virtualTextureFragmentSource());
-      const reference::ClipSpaceMesh mesh = scene();
+      const ClipSpaceMesh mesh = scene();
       const Frame gl = renderer.render(mesh, settings);
       const Frame oracle = reference::renderFrame(mesh, *cache_, settings);
       const reference::FrameComparison c =
