@@ -12,8 +12,8 @@
 #include <deque>
 #include <set>
 
-#include "reference/cache_state.h"
 #include "reference/renderer.h"
+#include "render/cache_state.h"
 #include "runtime/needbuffer_analysis.h"
 #include "runtime/needbuffer_scale.h"
 #include "scene/box_room.h"
@@ -36,7 +36,7 @@ int main() {
   description.border = 4;
   description.channels = 4;
   description.levelCount = 8;  // 16384^2 texels
-  const vt::reference::CacheState cache = vt::reference::rootOnlyCache(description);
+  const vt::CacheState cache = vt::rootOnlyCache(description);
   const vt::Mesh mesh = vt::boxRoom();
   const vt::CameraPath path = vt::boxRoomPath();
   const vt::Viewport screen{1280, 720};
@@ -49,14 +49,14 @@ int main() {
   std::vector<std::vector<glm::uvec4>> full;  // the full-resolution needbuffers, frame by frame
   for (int k = 0; k <= 3; ++k) {
     std::deque<std::vector<uint64_t>> recent;
-    vt::reference::RenderSettings settings;
+    vt::RenderSettings settings;
     settings.viewport = vt::reducedViewport(screen, k);
     settings.needScaleLog2 = k;
     for (int frame = 0; frame < path.frameCount(); ++frame) {
       const auto start = Clock::now();
       const vt::ClipSpaceMesh clip =
           vt::toClipSpace(mesh, path.at(frame), settings.viewport, vt::needJitter(frame, k));
-      const vt::reference::Frame drawn = vt::reference::renderFrame(clip, cache, settings);
+      const vt::Frame drawn = vt::reference::renderFrame(clip, cache, settings);
       const vt::NeedBufferAnalysis analysis = vt::analyzeNeedBuffer(
           drawn.need, {}, settings.viewport.width, settings.viewport.height, {});
       results[k].seconds += std::chrono::duration<double>(Clock::now() - start).count();

@@ -67,14 +67,14 @@ int main(int argc, char** argv) {
   const vt::VirtualTextureReader reader(file);
   std::vector<uint64_t> pages(reader.storedPageCount());
   for (uint64_t p = 0; p < pages.size(); ++p) pages[p] = p;
-  const vt::reference::CacheState cache = vt::reference::makeCacheState(reader, pages, 19, 19);
+  const vt::CacheState cache = vt::makeCacheState(reader, pages, 19, 19);
 
   vt::Camera camera;
   camera.position = {0, 18, 45};
   camera.target = {0, 0, 0};
-  vt::reference::RenderSettings settings;
+  vt::RenderSettings settings;
   settings.viewport = {1280, 720};
-  settings.profile = vt::reference::PrecisionProfile::kLlvmpipe;
+  settings.profile = vt::PrecisionProfile::kLlvmpipe;
   const vt::ClipSpaceMesh mesh = vt::toClipSpace(terrain(), camera, settings.viewport);
 
   const vt::HeadlessContext context;
@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
   gl.draw(mesh, settings);  // compile and warm up
   const double llvmpipe = medianMilliseconds(frames, [&] { gl.draw(mesh, settings); });
   // Like the GL renderer's targets, the oracle's frame is reused from frame to frame.
-  vt::reference::Frame frame;
+  vt::Frame frame;
   settings.threads = 2;
   vt::reference::renderFrame(mesh, cache, settings, frame);
   const double oracle2 =

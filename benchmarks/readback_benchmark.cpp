@@ -1,5 +1,5 @@
 // The GL path's needbuffer readback, synchronous against asynchronous (pixel-buffer objects and a
-// fence, GlFrameRenderer::renderAsync), in one process: the heightmap terrain (scene/terrain.h)
+// fence, GlFrameRenderer::renderDelayed), in one process: the heightmap terrain (scene/terrain.h)
 // at 1920 x 1080 with every stored level up to an 8192^2 cache, each frame drawn and its 32-bit
 // needbuffer brought to the CPU, the camera moving. Prints the time per frame of each and the
 // ratio async / sync. The price of asynchronous readback, the needbuffer one frame late, is
@@ -30,11 +30,11 @@ int main(int argc, char** argv) {
   {
     const vt::VirtualTextureReader reader(file);
     const vt::HeadlessContext context;
-    const vt::reference::CacheState cache = vt::reference::cacheOfLevels(reader, -1, 8192);
+    const vt::CacheState cache = vt::cacheOfLevels(reader, -1, 8192);
     vt::GlFrameRenderer renderer(cache);
     const vt::TerrainShape shape;
     const vt::Mesh mesh = vt::heightmapTerrain(shape);
-    vt::reference::RenderSettings settings;
+    vt::RenderSettings settings;
     settings.viewport = {1920, 1080};
     const auto clipAt = [&](int frame) {
       vt::Camera camera = vt::terrainCamera(shape);
@@ -58,9 +58,11 @@ int main(int argc, char** argv) {
     renderer.render(clipAt(0), settings);  // warm up: shader compilation, allocations
     const auto [syncMs, syncCovered] =
         time([&](int f) { return countCovered(renderer.render(clipAt(f), settings).need); });
+    // The delayed readback brings the needbuffer only; the colour stays in the target.
+    vt::RenderSettings delayedSettings = settings;
+    delayedSettings.needOnly = true;
     const auto [asyncMs, asyncCovered] = time([&](int f) {
-      const std::optional<vt::GlFrame> previous = renderer.renderAsync(clipAt(f), settings);
-      return previous ? countCovered(previous->need) : size_t{0};
+      return countCovered(renderer.renderDelayed(clipAt(f), delayedSettings).need);
     });
     std::printf("%s, 1920 x 1080, %d frames, LP_NUM_THREADS=%s\n", context.renderer().c_str(),
                 frames, std::getenv("LP_NUM_THREADS"));

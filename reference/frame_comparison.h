@@ -18,8 +18,8 @@
 #include <span>
 #include <vector>
 
-#include "reference/frame.h"
-#include "reference/result_set.h"
+#include "render/frame.h"
+#include "render/result_set.h"
 
 namespace vt::reference {
 

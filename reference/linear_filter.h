@@ -11,7 +11,7 @@
 #include <smmintrin.h>
 #endif
 
-#include "reference/precision_profile.h"
+#include "render/precision_profile.h"
 #include "shader/shader_cpp.h"
 
 namespace vt::reference {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "reference/parallel_for.h"
+#include "reference/profile_arithmetic.h"
 #include "reference/shader_backends.h"
 
 namespace vt::reference {
@@ -80,8 +81,8 @@ ColourKey colourKey(Shader& shader, const CacheState& cache, shader::vec2 uv,
   ColourKey key;
   key.width = cache.widthTexels;
   key.height = cache.heightTexels;
-  addFilterInputs(key, 0, shader, uv, lookups.first, cache.entry(lookups.first), p);
-  addFilterInputs(key, 5, shader, uv, lookups.second, cache.entry(lookups.second), p);
+  addFilterInputs(key, 0, shader, uv, lookups.first, cache.indirection.entry(lookups.first), p);
+  addFilterInputs(key, 5, shader, uv, lookups.second, cache.indirection.entry(lookups.second), p);
   return key;
 }
 
@@ -117,7 +118,8 @@ class EntryGroups {
     valid_ = true;
     for (size_t k = 0; k < caches_.size(); ++k) {
       const CacheState& cache = *caches_[k];
-      entries_[k] = {cache.entry(lookups.first), cache.entry(lookups.second), cache.widthTexels,
+      entries_[k] = {cache.indirection.entry(lookups.first),
+                     cache.indirection.entry(lookups.second), cache.widthTexels,
                      cache.heightTexels};
       first_[k] = k;
       for (size_t j = 0; j < k; ++j)

@@ -20,9 +20,9 @@
 #include <span>
 #include <vector>
 
-#include "reference/cache_state.h"
-#include "reference/frame.h"
 #include "reference/renderer.h"
+#include "render/cache_state.h"
+#include "render/frame.h"
 
 namespace vt::reference {
 

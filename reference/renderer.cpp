@@ -6,11 +6,14 @@
 #include <cstring>
 #include <thread>
 
-#include "reference/cache_state.h"
 #include "reference/linear_filter.h"
 #include "reference/parallel_for.h"
+#include "reference/profile_arithmetic.h"
 #include "reference/result_set_builder.h"
 #include "reference/shader_backends.h"
+#include "reference/visibility.h"
+#include "render/cache_state.h"
+#include "shader/needbuffer.h"
 #include "shader/shader_cpp.h"
 
 namespace vt::reference {
@@ -323,11 +326,6 @@ void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescr
 }
 
 }  // namespace
-
-void applyModel(RenderSettings& settings, const PrecisionModel& model) {
-  settings.profile = model.arithmetic;
-  settings.model = std::make_shared<const PrecisionModel>(model);
-}
 
 void renderFrame(const ClipSpaceMesh& mesh, const ResidentTexture& texture,
                  const RenderSettings& settings, Frame& frame) {

@@ -10,43 +10,12 @@
 // row, dFdyFine the upper minus the lower in its quad column (window y up). The shared shader
 // logic (src/shader/virtual_texture.glsl) then computes the LOD, the needbuffer and the colour.
 
-#include <glm/glm.hpp>
-#include <memory>
-
-#include "reference/cache_state.h"
-#include "reference/frame.h"
-#include "reference/precision_model.h"
-#include "reference/precision_profile.h"
 #include "reference/texture_source.h"
-#include "reference/visibility.h"
-#include "shader/needbuffer.h"
+#include "render/cache_state.h"
+#include "render/frame.h"
+#include "render/render_settings.h"
 
 namespace vt::reference {
-
-struct RenderSettings {
-  Viewport viewport{640, 360};
-  PrecisionProfile profile = PrecisionProfile::kExact;  // the oracle's arithmetic
-  // The model the frame will be judged under (precision_model.h); its arithmetic must be
-  // `profile`. When it leaves any parameter free the frame carries every pixel's result set.
-  std::shared_ptr<const PrecisionModel> model = nullptr;
-  DepthFormat depthFormat = DepthFormat::kDepth32F;
-  bool trilinear = true;
-  bool exactFilter = true;  // texel fetches and float filtering; false: the sampler's GL_LINEAR
-  bool need8 = false;       // 8-bit needbuffer (textures up to 4096 pages per side)
-  // A reduced needbuffer: the viewport is 1/2^k of the screen per axis, and the LOD compensates
-  // (virtual_texture_types.glsl). 0: full resolution.
-  int needScaleLog2 = 0;
-  bool debugChannels = false;  // also fill Frame's uv, derivatives, lod and residentLevel
-  // The needbuffer and depth only (a LookAhead camera's pass): no texel is read, the colour is
-  // left (0, 0, 0, 0). The needbuffer is the same as with colour: it does not depend on texels.
-  bool needOnly = false;
-  unsigned threads = 0;        // 0: every core
-};
-
-using vt::needClearValue;
-
-// Settings for rendering under `model`: its arithmetic and the model itself.
-void applyModel(RenderSettings& settings, const PrecisionModel& model);
 
 // Every page resident (golden images): each lookup finds the page itself or, on a sparse
 // texture, its nearest stored ancestor.

@@ -1,15 +1,29 @@
 #pragma once
-// Builds the result set of one pixel (result_set.h) under a precision model: the alternatives of
-// every candidate triangle, each bounded by interval arithmetic over the model's parameters.
+// Builds the result set of one pixel (render/result_set.h) under a precision model: the
+// alternatives of every candidate triangle. For each the oracle bounds, with interval arithmetic
+// over the model's parameters (interval.h):
+//   - the vertices: each within 2^-subpixelBits pixel of its float window position (snapping to
+//     the model's sub-pixel grid), hence the barycentric coordinates at the pixel centre, the
+//     coverage (sure, possible, impossible) and the window depth;
+//   - (s, t) at the pixel and at the other three pixels of its 2x2 quad (helpers included), as
+//     the perspective-correct ratio of two interpolated planes; fine derivatives from the same
+//     interpolated planes (so their errors stay correlated, as on the hardware);
+//   - the LOD through sqrt and log2 with the model's errors, hence the needed levels;
+//   - per channel the colour: the bilinear filter over every texel position (s, t) can reach on
+//     every level the LOD can blend, each page looked up in the indirection table, widened by the
+//     sub-texel and weight precision, blended over the reachable weights, and converted to 8 bits
+//     as the model allows.
+// Which triangle may own a pixel follows the GL rules on the candidates Embree gathers: it must
+// possibly cover the centre and possibly pass GL_LESS against every candidate that surely covers.
 
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>
 
-#include "reference/precision_model.h"
-#include "reference/result_set.h"
 #include "reference/triangle_setup.h"
 #include "reference/visibility.h"
+#include "render/precision_model.h"
+#include "render/result_set.h"
 
 namespace vt::reference {
 

@@ -9,10 +9,11 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 
-#include "reference/cache_state.h"
 #include "reference/linear_filter.h"
+#include "reference/profile_arithmetic.h"
 #include "reference/renderer.h"
 #include "reference/texture_source.h"
+#include "render/cache_state.h"
 #include "shader/shader_cpp.h"
 
 namespace vt::reference {
@@ -71,9 +72,9 @@ class CacheBackend {
   float log2(float x) { return profileLog2(profile_, x); }
 
   shader::uvec4 vtFetchIndirection(shader::ivec2 page, int level) {
-    const glm::u16vec4 e =
-        state_->entry(PageId{static_cast<uint32_t>(page.x), static_cast<uint32_t>(page.y),
-                             static_cast<uint32_t>(level)});
+    const glm::u16vec4 e = state_->indirection.entry(PageId{static_cast<uint32_t>(page.x),
+                                                            static_cast<uint32_t>(page.y),
+                                                            static_cast<uint32_t>(level)});
     return shader::uvec4(e.x, e.y, e.z, e.w);
   }
 

@@ -18,10 +18,9 @@
 #include <vector>
 
 #include "reference/triangle_setup.h"
+#include "render/render_settings.h"
 
 namespace vt::reference {
-
-enum class DepthFormat { kDepth24, kDepth32F };
 
 // The winner at one pixel.
 struct PixelHit {

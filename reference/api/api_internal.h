@@ -9,10 +9,10 @@
 #include <utility>
 
 #include "format/virtual_texture_reader.h"
-#include "reference/cache_state.h"
-#include "reference/frame.h"
 #include "reference/renderer.h"
 #include "reference/texture_source.h"
+#include "render/cache_state.h"
+#include "render/frame.h"
 #include "vt/oracle/error.h"
 #include "vt/oracle/render.h"
 #include "vt/oracle/texture.h"
@@ -27,7 +27,7 @@ struct Texture::Impl {
 
 struct PreparedCache::Impl {
   const Texture::Impl& texture;
-  std::optional<reference::CacheState> state;  // none: every page resident
+  std::optional<vt::CacheState> state;  // none: every page resident
 };
 
 // Runs `work`, turning every exception but Error into Error with the same message.
@@ -44,15 +44,15 @@ auto translatingErrors(Work&& work) -> decltype(work()) {
 
 // The result sets behind the public handle.
 struct ResultSets {
-  reference::ResultSets sets;
+  vt::ResultSets sets;
 };
 
-reference::PrecisionModel internalModel(Profile profile);
-Profile publicProfile(const reference::PrecisionModel& model);
-reference::RenderSettings internalSettings(Viewport viewport, const RenderOptions& options);
+vt::PrecisionModel internalModel(Profile profile);
+Profile publicProfile(const vt::PrecisionModel& model);
+vt::RenderSettings internalSettings(Viewport viewport, const RenderOptions& options);
 ClipSpaceMesh internalMesh(const Scene& scene);
-reference::CacheState internalCache(const VirtualTextureReader& reader, const CacheState& cache);
-Frame publicFrame(reference::Frame&& frame, const reference::RenderSettings& settings);
+vt::CacheState internalCache(const VirtualTextureReader& reader, const CacheState& cache);
+Frame publicFrame(vt::Frame&& frame, const vt::RenderSettings& settings);
 // A clip-space mesh as the API's scene, and a needbuffer as four values per pixel: the
 // conversions the implementation and the command line share.
 Scene publicScene(const ClipSpaceMesh& mesh, vt::Viewport viewport);

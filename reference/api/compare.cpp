@@ -7,7 +7,7 @@
 
 namespace vt::oracle {
 
-std::string reasonName(int reason) { return reference::reasonName(reason); }
+std::string reasonName(int reason) { return vt::reasonName(reason); }
 std::string widthUnit(int reason) { return reference::widthUnit(reason); }
 
 Comparison compare(const Frame& oracle, std::span<const uint8_t> color,
@@ -22,7 +22,7 @@ Comparison compare(const Frame& oracle, std::span<const uint8_t> color,
       throw Error("compare: the frame has " + std::to_string(color.size() / 4) + " colour and " +
                   std::to_string(need.size() / 4) + " needbuffer pixels, the oracle's " +
                   std::to_string(pixels));
-    reference::Frame expected;
+    vt::Frame expected;
     expected.viewport = {oracle.viewport.width, oracle.viewport.height};
     expected.color = oracle.color;
     if (oracle.sets) {

@@ -2,20 +2,20 @@
 
 #include "common/resource_limits.h"
 #include "reference/api/api_internal.h"
-#include "reference/precision_model.h"
-#include "reference/precision_model_file.h"
+#include "render/precision_model.h"
+#include "render/precision_model_file.h"
 #include "shader/needbuffer.h"
 
 namespace vt::oracle {
 
-reference::PrecisionModel internalModel(Profile profile) {
+vt::PrecisionModel internalModel(Profile profile) {
   switch (profile) {
     case Profile::kLlvmpipe:
-      return reference::llvmpipeModel();
+      return vt::llvmpipeModel();
     case Profile::kGl45:
-      return reference::gl45Model();
+      return vt::gl45Model();
     default:
-      return reference::exactModel();
+      return vt::exactModel();
   }
 }
 
@@ -28,10 +28,10 @@ Profile parseProfile(const std::string& name) {
 
 std::string toString(Profile profile) { return internalModel(profile).name; }
 
-Profile publicProfile(const reference::PrecisionModel& model) { return parseProfile(model.name); }
+Profile publicProfile(const vt::PrecisionModel& model) { return parseProfile(model.name); }
 
 Profile profileForRenderer(const std::string& glRenderer) {
-  return publicProfile(reference::modelForRenderer(glRenderer));
+  return publicProfile(vt::modelForRenderer(glRenderer));
 }
 
 std::string toString(NeedEncoding encoding) {
@@ -44,12 +44,11 @@ std::string toString(Sampling sampling) {
   return sampling == Sampling::kHardwareLinear ? "hardware_linear" : "texel_fetch";
 }
 
-reference::RenderSettings internalSettings(Viewport viewport, const RenderOptions& options) {
-  reference::RenderSettings settings;
+vt::RenderSettings internalSettings(Viewport viewport, const RenderOptions& options) {
+  vt::RenderSettings settings;
   settings.viewport = {viewport.width, viewport.height};
-  reference::applyModel(settings, options.modelFile.empty()
-                                      ? internalModel(options.profile)
-                                      : reference::readModelFile(options.modelFile));
+  vt::applyModel(settings, options.modelFile.empty() ? internalModel(options.profile)
+                                                     : vt::readModelFile(options.modelFile));
   settings.trilinear = options.filtering == Filtering::kTrilinear;
   settings.exactFilter = options.sampling == Sampling::kTexelFetch;
   settings.need8 = options.needEncoding == NeedEncoding::k8Bit;
@@ -80,8 +79,8 @@ ClipSpaceMesh internalMesh(const Scene& scene) {
   return mesh;
 }
 
-reference::CacheState internalCache(const VirtualTextureReader& reader, const CacheState& cache) {
-  std::vector<reference::PlacedPage> placed;
+vt::CacheState internalCache(const VirtualTextureReader& reader, const CacheState& cache) {
+  std::vector<vt::PlacedPage> placed;
   placed.reserve(cache.pages.size());
   for (const ResidentPage& p : cache.pages) {
     const PageId page{p.x, p.y, p.level};
@@ -90,7 +89,7 @@ reference::CacheState internalCache(const VirtualTextureReader& reader, const Ca
                   ") of level " + std::to_string(p.level) + " does not exist");
     placed.push_back({absoluteIndex(page), p.frameX, p.frameY});
   }
-  return reference::placePages(reader, placed, cache.framesX, cache.framesY);
+  return vt::placePages(reader, placed, cache.framesX, cache.framesY);
 }
 
 std::vector<uint32_t> flatNeed(std::span<const glm::uvec4> need) {
@@ -100,14 +99,13 @@ std::vector<uint32_t> flatNeed(std::span<const glm::uvec4> need) {
   return flat;
 }
 
-Frame publicFrame(reference::Frame&& frame, const reference::RenderSettings& settings) {
+Frame publicFrame(vt::Frame&& frame, const vt::RenderSettings& settings) {
   Frame result;
   result.needEncoding = settings.need8 ? NeedEncoding::k8Bit : NeedEncoding::k32Bit;
-  result.model = settings.model ? settings.model->name : reference::toString(settings.profile);
+  result.model = settings.model ? settings.model->name : vt::toString(settings.profile);
   const size_t pixels = frame.need.size();
   result.ambiguous.resize(pixels);
-  for (size_t i = 0; i < pixels; ++i)
-    result.ambiguous[i] = reference::ambiguous(frame.sets, i) ? 1 : 0;
+  for (size_t i = 0; i < pixels; ++i) result.ambiguous[i] = vt::ambiguous(frame.sets, i) ? 1 : 0;
   if (!frame.sets.empty())
     result.sets = std::make_shared<const ResultSets>(ResultSets{std::move(frame.sets)});
   result.viewport = {frame.viewport.width, frame.viewport.height};
@@ -144,7 +142,7 @@ Frame render(const Texture& texture, const Scene& scene, const PreparedCache& ca
                   "levels below the root; the texture has " +
                   std::to_string(reader.description().finestLevel()));
     const ClipSpaceMesh mesh = internalMesh(scene);
-    const reference::RenderSettings settings = internalSettings(v, options);
+    const vt::RenderSettings settings = internalSettings(v, options);
     if (!cache.impl().state)
       return publicFrame(reference::renderFrame(mesh, texture.impl().everything, settings),
                          settings);

@@ -15,13 +15,12 @@
 #include "calibrate/probe_draws.h"
 #include "format/virtual_texture_reader.h"
 #include "reference/linear_filter.h"
-#include "reference/precision_model_file.h"
+#include "reference/profile_arithmetic.h"
 #include "reference/renderer.h"
+#include "render/precision_model_file.h"
 
 namespace vt::calibrate {
 namespace {
-
-using reference::PrecisionProfile;
 
 constexpr double kFloatUlp = 0x1p-23;
 
@@ -53,7 +52,7 @@ std::string describe(uint64_t mismatches, uint64_t probes) {
 
 struct ShaderMath {
   ParameterFit log2, sqrt, denormals, conversion;
-  reference::Log2Arithmetic log2Arithmetic = reference::Log2Arithmetic::kBounded;
+  Log2Arithmetic log2Arithmetic = Log2Arithmetic::kBounded;
   double log2Absolute = 0, log2Ulps = 0, sqrtUlps = 0, conversionUlps = 0;
   bool flushesDenormals = false;
 };
@@ -95,11 +94,11 @@ ShaderMath measureShaderMath() {
   const uint64_t n = out.size();
   m.log2 = {"log2", "", n, 0, 0, false, false};
   if (notLlvmpipe == 0) {
-    m.log2Arithmetic = reference::Log2Arithmetic::kLlvmpipe;
+    m.log2Arithmetic = Log2Arithmetic::kLlvmpipe;
     m.log2.finding = "llvmpipe's polynomial (DESIGN section 7, rule 8), bit for bit";
     m.log2.pinned = true;
   } else if (notIeee == 0) {
-    m.log2Arithmetic = reference::Log2Arithmetic::kIeee;
+    m.log2Arithmetic = Log2Arithmetic::kIeee;
     m.log2.finding = "the C library's log2f, bit for bit";
     m.log2.pinned = true;
   } else {
@@ -154,7 +153,7 @@ ShaderMath measureShaderMath() {
 
 struct FilterFit {
   ParameterFit fit;
-  reference::FilterArithmetic arithmetic = reference::FilterArithmetic::kBounded;
+  FilterArithmetic arithmetic = FilterArithmetic::kBounded;
   int subTexelBits = 0;
   double errorUnits = 0;
 };
@@ -226,13 +225,13 @@ FilterFit measureFilter() {
   FilterFit result;
   result.fit = {"filter", "", n, 0, 0, true, false};
   if (notLlvmpipe == 0) {
-    result.arithmetic = reference::FilterArithmetic::kLlvmpipe8Bit;
+    result.arithmetic = FilterArithmetic::kLlvmpipe8Bit;
     result.fit.finding =
         "8-bit weights and fixed-point lerps (DESIGN section 7, rule 9): every sample the same 8-bit value";
     return result;
   }
   if (notFloat == 0) {
-    result.arithmetic = reference::FilterArithmetic::kFloat;
+    result.arithmetic = FilterArithmetic::kFloat;
     result.fit.finding = "float positions, weights and lerps, bit for bit";
     return result;
   }
@@ -326,18 +325,18 @@ RasterFits measureRasterization(bool flushesDenormals) {
       {{.pageSize = 16, .border = 2, .levelCount = 4, .channels = 4}, std::nullopt});
   const VirtualTextureReader reader(folder.path() / "t.vt");
   const reference::ResidentTexture texture(reader);
-  const reference::Viewport viewport{160, 120};
+  const Viewport viewport{160, 120};
   RasterCounts counts[2];  // [0] llvmpipe's arithmetic, [1] IEEE
   for (const unsigned seed : {1u, 2u, 3u}) {
-    const reference::ClipSpaceMesh mesh = randomTriangles(seed, 120);
+    const ClipSpaceMesh mesh = randomTriangles(seed, 120);
     const RasterReadback gl = drawTriangles(mesh, viewport);
     for (int a = 0; a < 2; ++a) {
-      reference::RenderSettings settings;
+      RenderSettings settings;
       settings.debugChannels = true;
       settings.viewport = viewport;
       settings.threads = 1;
       settings.profile = a == 0 ? PrecisionProfile::kLlvmpipe : PrecisionProfile::kExact;
-      const reference::Frame oracle = reference::renderFrame(mesh, texture, settings);
+      const Frame oracle = reference::renderFrame(mesh, texture, settings);
       RasterCounts& c = counts[a];
       for (size_t i = 0; i < oracle.triangle.size(); ++i) {
         ++c.pixels;
@@ -421,8 +420,8 @@ Calibration calibrate() {
   const RasterFits raster = measureRasterization(math.flushesDenormals);
 
   // Start from gl45: what no probe pins keeps the specification's slack.
-  reference::PrecisionModel& m = c.model;
-  m = reference::gl45Model();
+  PrecisionModel& m = c.model;
+  m = gl45Model();
   m.name = "calibrated";
   m.renderer = c.renderer;
   m.glVersion = c.version;
@@ -437,9 +436,9 @@ Calibration calibrate() {
   m.log2 = math.log2Arithmetic;
   m.log2AbsoluteError = 0;
   m.log2Ulps = 0;
-  if (m.log2 == reference::Log2Arithmetic::kIeee && m.arithmetic == PrecisionProfile::kLlvmpipe)
-    m.log2 = reference::Log2Arithmetic::kBounded;  // the oracle computes llvmpipe's log2 there
-  if (m.log2 == reference::Log2Arithmetic::kBounded) {
+  if (m.log2 == Log2Arithmetic::kIeee && m.arithmetic == PrecisionProfile::kLlvmpipe)
+    m.log2 = Log2Arithmetic::kBounded;  // the oracle computes llvmpipe's log2 there
+  if (m.log2 == Log2Arithmetic::kBounded) {
     m.log2AbsoluteError = widened(math.log2Absolute, 0x1p-23);
     m.log2Ulps = widened(math.log2Ulps, 1.0);
   }
@@ -449,7 +448,7 @@ Calibration calibrate() {
   m.subTexelBits = filter.subTexelBits;
   m.filterErrorUnits = filter.errorUnits;
   m.colorRoundsToNearest = colour.pinned;
-  m.denormalsPinned = math.flushesDenormals == reference::flushesDenormals(m.arithmetic);
+  m.denormalsPinned = math.flushesDenormals == flushesDenormals(m.arithmetic);
 
   c.fits = {raster.coverage, raster.attributes, raster.depth, math.log2,   math.sqrt,
             math.conversion, filter.fit,        colour,       math.denormals};
@@ -477,7 +476,7 @@ Calibration calibrate() {
 }
 
 std::string calibrationJson(const Calibration& c) {
-  nlohmann::ordered_json json = nlohmann::ordered_json::parse(reference::modelJson(c.model));
+  nlohmann::ordered_json json = nlohmann::ordered_json::parse(modelJson(c.model));
   nlohmann::ordered_json evidence = nlohmann::ordered_json::array();
   for (const ParameterFit& fit : c.fits)
     evidence.push_back({{"parameter", fit.parameter},

@@ -1,5 +1,5 @@
 #pragma once
-// `vt calibrate`: measures the precision model (reference/precision_model.h) of the OpenGL
+// `vt calibrate`: measures the precision model (render/precision_model.h) of the OpenGL
 // implementation behind the current context by probe draws (probe_draws.h), the method DESIGN
 // section 7 records for llvmpipe, turned into a tool. Each parameter is fitted from its own
 // probes, by the narrowest hypothesis every probe agrees with:
@@ -34,7 +34,7 @@
 #include <string>
 #include <vector>
 
-#include "reference/precision_model.h"
+#include "render/precision_model.h"
 
 namespace vt::calibrate {
 
@@ -50,7 +50,7 @@ struct ParameterFit {
 };
 
 struct Calibration {
-  reference::PrecisionModel model;
+  PrecisionModel model;
   std::vector<ParameterFit> fits;
   std::string renderer, version, vendor;  // GL_RENDERER, GL_VERSION, GL_VENDOR
 };

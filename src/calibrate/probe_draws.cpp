@@ -117,10 +117,10 @@ std::vector<glm::u8vec4> runColourProbe(const ShaderProbe& probe) {
 
 // Random triangles of all sizes, perspective, overlapping, some crossing the near plane and the
 // frustum's sides, some slivers and a coplanar duplicate of the first.
-reference::ClipSpaceMesh randomTriangles(unsigned seed, int triangles) {
+ClipSpaceMesh randomTriangles(unsigned seed, int triangles) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f), wRange(0.3f, 3.0f);
-  reference::ClipSpaceMesh mesh;
+  ClipSpaceMesh mesh;
   const auto add = [&](glm::vec4 p, glm::vec2 uv) {
     mesh.vertices.push_back({p, uv});
     mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
@@ -141,7 +141,7 @@ reference::ClipSpaceMesh randomTriangles(unsigned seed, int triangles) {
   return mesh;
 }
 
-RasterReadback drawTriangles(const reference::ClipSpaceMesh& mesh, reference::Viewport viewport) {
+RasterReadback drawTriangles(const ClipSpaceMesh& mesh, Viewport viewport) {
   static const char* kVertex = R"(#version 450 core
 layout(location = 0) in vec4 aClipPosition;
 layout(location = 1) in vec2 aUV;
@@ -193,18 +193,16 @@ void main() {
   names.arrays.push_back(array);
   glCreateBuffers(2, buffer);
   names.buffers.assign(buffer, buffer + 2);
-  glNamedBufferData(buffer[0],
-                    static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(reference::ClipVertex)),
+  glNamedBufferData(buffer[0], static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(ClipVertex)),
                     mesh.vertices.data(), GL_STATIC_DRAW);
   glNamedBufferData(buffer[1], static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(uint32_t)),
                     mesh.indices.data(), GL_STATIC_DRAW);
-  glVertexArrayVertexBuffer(array, 0, buffer[0], 0, sizeof(reference::ClipVertex));
+  glVertexArrayVertexBuffer(array, 0, buffer[0], 0, sizeof(ClipVertex));
   glVertexArrayElementBuffer(array, buffer[1]);
   glEnableVertexArrayAttrib(array, 0);
   glEnableVertexArrayAttrib(array, 1);
-  glVertexArrayAttribFormat(array, 0, 4, GL_FLOAT, GL_FALSE,
-                            offsetof(reference::ClipVertex, position));
-  glVertexArrayAttribFormat(array, 1, 2, GL_FLOAT, GL_FALSE, offsetof(reference::ClipVertex, uv));
+  glVertexArrayAttribFormat(array, 0, 4, GL_FLOAT, GL_FALSE, offsetof(ClipVertex, position));
+  glVertexArrayAttribFormat(array, 1, 2, GL_FLOAT, GL_FALSE, offsetof(ClipVertex, uv));
   glVertexArrayAttribBinding(array, 0, 0);
   glVertexArrayAttribBinding(array, 1, 0);
 

@@ -42,8 +42,8 @@ struct RasterReadback {
 // `triangles` random triangles (a fixed `seed`) of all sizes, perspective, overlapping, some
 // crossing the near plane and the frustum's sides, some slivers, and last a coplanar duplicate of
 // the first: each with its own three vertices.
-reference::ClipSpaceMesh randomTriangles(unsigned seed, int triangles);
+ClipSpaceMesh randomTriangles(unsigned seed, int triangles);
 
-RasterReadback drawTriangles(const reference::ClipSpaceMesh& mesh, reference::Viewport viewport);
+RasterReadback drawTriangles(const ClipSpaceMesh& mesh, Viewport viewport);
 
 }  // namespace vt::calibrate

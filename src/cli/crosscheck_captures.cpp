@@ -10,7 +10,7 @@
 #include "cli/comparison_report.h"
 #include "cli/junit_report.h"
 #include "common/posix_file.h"
-#include "reference/precision_model_file.h"
+#include "render/precision_model_file.h"
 #include "vt/oracle.h"
 
 namespace vt {
@@ -75,8 +75,7 @@ bool crosscheckCaptures(const CapturesCheckOptions& options) {
       // A shipped model by name, auto (from the capture's renderer), or a model file.
       // auto prefers a measured model of the capture's renderer ($VT_PRECISION_MODELS).
       const std::optional<std::filesystem::path> measured =
-          options.profile == "auto" ? reference::measuredModelFile(capture.renderer)
-                                    : std::nullopt;
+          options.profile == "auto" ? measuredModelFile(capture.renderer) : std::nullopt;
       const bool named = !measured && (options.profile == "auto" || options.profile == "exact" ||
                                        options.profile == "llvmpipe" || options.profile == "gl45");
       const oracle::CaptureCheck check =

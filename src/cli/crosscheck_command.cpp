@@ -22,9 +22,9 @@
 #include "common/output_path.h"
 #include "common/posix_file.h"
 #include "common/resource_limits.h"
-#include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
-#include "reference/precision_model_file.h"
+#include "render/backend.h"
+#include "render/precision_model_file.h"
 #include "scene/camera_path.h"
 #include "scene/obj_mesh.h"
 #include "scene/test_scenes.h"
@@ -107,7 +107,7 @@ void addCrosscheckCommand(CLI::App& app) {
       return;
     }
     if (o->texture.empty()) throw CLI::ValidationError("TEXTURE", "needed without --captures");
-    reference::RenderSettings settings;
+    RenderSettings settings;
     settings.viewport = parseSize(o->size);
     // The views: frames of a path through a mesh, or the named scenes. Bad input fails here,
     // before any work.
@@ -140,16 +140,15 @@ void addCrosscheckCommand(CLI::App& app) {
              1);
     const HeadlessContext context;
     const std::string renderer = context.renderer();
-    const reference::PrecisionModel model = reference::resolveModel(o->profile, renderer);
-    if (const std::string warning =
-            reference::calibrationMismatch(model, renderer, context.version());
+    const PrecisionModel model = resolveModel(o->profile, renderer);
+    if (const std::string warning = calibrationMismatch(model, renderer, context.version());
         !warning.empty())
       std::cerr << "vt crosscheck: " << warning << "\n";
-    reference::applyModel(settings, model);
+    applyModel(settings, model);
 
     // A model file travels to the oracle's API by its name.
     const std::optional<std::filesystem::path> measured =
-        o->profile == "auto" ? reference::measuredModelFile(renderer) : std::nullopt;
+        o->profile == "auto" ? measuredModelFile(renderer) : std::nullopt;
     const std::string modelFile = measured ? measured->string()
                                   : o->profile == "auto" || o->profile == "exact" ||
                                           o->profile == "llvmpipe" || o->profile == "gl45"
@@ -158,8 +157,8 @@ void addCrosscheckCommand(CLI::App& app) {
     const VirtualTextureReader reader(o->texture);
     // Every stored page, or the coarsest levels that fit into an 8192^2 cache texture: uploaded
     // for GL, and the same pages in the same frames prepared for the oracle's API.
-    const reference::CacheState cache = reference::cacheOfLevels(reader, -1, 8192);
-    GlFrameRenderer gl(cache);
+    const CacheState cache = cacheOfLevels(reader, -1, 8192);
+    const std::unique_ptr<FrameRenderer> gl = makeFrameRenderer(Backend::kGl, cache);
     const oracle::Texture texture = oracle::Texture::open(o->texture);
     const oracle::PreparedCache prepared(texture, publicCacheState(cache));
     const std::filesystem::path folder = staging.path();
@@ -193,7 +192,7 @@ void addCrosscheckCommand(CLI::App& app) {
         settings.need8 = mode.need8;
         const oracle::RenderOptions options = publicRenderOptions(settings, modelFile);
         const oracle::Frame expected = oracle::render(texture, publicMesh, prepared, options);
-        const GlFrame frame = gl.render(mesh, settings);
+        const Frame frame = gl->render(mesh, settings);
         const oracle::Comparison c =
             oracle::compare(expected, frame.color, oracle::flatNeed(frame.need));
         writeComparisonImages(folder, name + "-" + mode.name, publicMesh.viewport, c);

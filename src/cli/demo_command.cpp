@@ -19,10 +19,9 @@
 #include "common/output_path.h"
 #include "common/posix_file.h"
 #include "format/level_image.h"
-#include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
-#include "reference/frame_images.h"
-#include "reference/renderer.h"
+#include "render/backend.h"
+#include "render/frame_images.h"
 #include "scene/box_room.h"
 
 namespace vt {
@@ -42,8 +41,8 @@ void renderAndCrossCheck(const VirtualTextureReader& reader, const std::filesyst
   for (uint64_t slot = 0; slot < pages.size(); ++slot) pages[slot] = reader.storedPage(slot);
   const auto frames =
       static_cast<uint32_t>(std::ceil(std::sqrt(static_cast<double>(pages.size()))));
-  const reference::CacheState cache = reference::makeCacheState(reader, pages, frames, frames);
-  reference::RenderSettings settings;
+  const CacheState cache = makeCacheState(reader, pages, frames, frames);
+  RenderSettings settings;
   settings.viewport = {640, 360};
   const ClipSpaceMesh mesh = toClipSpace(boxRoom(), boxRoomCamera(), settings.viewport);
 
@@ -54,25 +53,23 @@ void renderAndCrossCheck(const VirtualTextureReader& reader, const std::filesyst
     std::cout << "no OpenGL (" << e.what() << "): the oracle renders alone\n";
   }
   // The oracle follows the GL implementation at hand: llvmpipe's arithmetic on llvmpipe.
-  if (context) settings.profile = reference::modelForRenderer(context->renderer()).arithmetic;
+  if (context) settings.profile = modelForRenderer(context->renderer()).arithmetic;
   auto start = std::chrono::steady_clock::now();
-  const reference::Frame oracle = reference::renderFrame(mesh, cache, settings);
+  const Frame oracle = makeFrameRenderer(Backend::kOracle, cache)->render(mesh, settings);
   const double oracleSeconds = secondsSince(start);
   const auto width = static_cast<uint32_t>(settings.viewport.width),
              height = static_cast<uint32_t>(settings.viewport.height);
-  const std::vector<uint8_t> color = reference::colorImage(oracle),
-                             need = reference::needImage(oracle, false);
+  const std::vector<uint8_t> color = colorImage(oracle), need = needImage(oracle, false);
   writeImage8(folder / "frame.png", width, height, 4, std::as_bytes(std::span(color)));
   writeImage8(folder / "needbuffer.png", width, height, 4, std::as_bytes(std::span(need)));
-  std::cout << "oracle (profile " << reference::toString(settings.profile) << "): " << width
-            << " x " << height << " in " << oracleSeconds * 1000.0 << " ms, wrote "
-            << (shown / "frame.png").string() << " and " << (shown / "needbuffer.png").string()
-            << "\n";
+  std::cout << "oracle (profile " << toString(settings.profile) << "): " << width << " x " << height
+            << " in " << oracleSeconds * 1000.0 << " ms, wrote " << (shown / "frame.png").string()
+            << " and " << (shown / "needbuffer.png").string() << "\n";
   if (!context) return;
 
-  GlFrameRenderer gl(cache);
+  const std::unique_ptr<FrameRenderer> gl = makeFrameRenderer(Backend::kGl, cache);
   start = std::chrono::steady_clock::now();
-  const GlFrame frame = gl.render(mesh, settings);
+  const Frame frame = gl->render(mesh, settings);
   const double glSeconds = secondsSince(start);
   size_t colorSame = 0, needSame = 0;
   for (size_t i = 0; i < oracle.need.size(); ++i) {

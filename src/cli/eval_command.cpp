@@ -146,7 +146,7 @@ void addEvalCommand(CLI::App& app) {
                          static_cast<uint64_t>(path.frameCount()), static_cast<uint64_t>(v.width),
                          static_cast<uint64_t>(v.height), 1 + configurations.size());
     options.settings.need8 = need8Encodes(reader.description().finestLevel());
-    options.settings.profile = reference::parsePrecisionProfile(o->profile);
+    options.settings.profile = parsePrecisionProfile(o->profile);
     options.jobs = o->jobs;
     const uint64_t total = static_cast<uint64_t>(path.frameCount()) * (1 + configurations.size());
     ProgressBar bar("eval", total);

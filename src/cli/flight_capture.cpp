@@ -8,8 +8,8 @@
 namespace vt {
 
 void writeFlightCapture(const std::filesystem::path& folder, const FlightCaptureView& view,
-                        const VirtualTextureReader& reader,
-                        const reference::RenderSettings& settings, const std::string& renderer) {
+                        const VirtualTextureReader& reader, const RenderSettings& settings,
+                        const std::string& renderer) {
   oracle::Capture capture;
   capture.renderer = renderer;
   capture.texture = reader.path();

@@ -13,7 +13,7 @@ namespace vt {
 
 // Writes `view` as DIR/frameNNNN.json and its data files.
 void writeFlightCapture(const std::filesystem::path& folder, const FlightCaptureView& view,
-                        const VirtualTextureReader& reader,
-                        const reference::RenderSettings& settings, const std::string& renderer);
+                        const VirtualTextureReader& reader, const RenderSettings& settings,
+                        const std::string& renderer);
 
 }  // namespace vt

@@ -132,11 +132,11 @@ void addFlyCommand(CLI::App& app) {
     options.link = LinkModel{o->linkLatency, o->linkMegabytes * 1e6};
     std::unique_ptr<HeadlessContext> context;
     if (o->backend == "gl") context = std::make_unique<HeadlessContext>();
-    options.gl = context != nullptr;
+    options.backend = parseBackend(o->backend);
     if (o->profile != "auto")
-      options.settings.profile = reference::parsePrecisionProfile(o->profile);
+      options.settings.profile = parsePrecisionProfile(o->profile);
     else if (context)
-      options.settings.profile = reference::modelForRenderer(context->renderer()).arithmetic;
+      options.settings.profile = modelForRenderer(context->renderer()).arithmetic;
     // Reference images: every page resident, drawn by the oracle at the screen's resolution
     // (DESIGN section 5).
     std::unique_ptr<reference::ResidentTexture> everything;
@@ -165,8 +165,7 @@ void addFlyCommand(CLI::App& app) {
 
     if (!o->capture.empty()) {
       const std::string renderer =
-          context ? context->renderer()
-                  : "vt oracle (" + reference::toString(options.settings.profile) + ")";
+          context ? context->renderer() : "vt oracle (" + toString(options.settings.profile) + ")";
       options.wantsCapture = [&](int frame) { return frame % o->captureEvery == 0; };
       options.capture = [&, renderer](const FlightCaptureView& view) {
         writeFlightCapture(captureStaging->path(), view, reader, options.settings, renderer);
@@ -183,7 +182,7 @@ void addFlyCommand(CLI::App& app) {
                     {"link_latency_seconds", o->linkLatency},
                     {"link_megabytes_per_second", o->linkMegabytes},
                     {"backend", o->backend},
-                    {"profile", reference::toString(options.settings.profile)}});
+                    {"profile", toString(options.settings.profile)}});
     summary.update(flightTotals(result));
     writeFileAtomically(folder / "summary.json", summary.dump(2) + "\n");
     writeFileAtomically(folder / "timing.json",

@@ -14,7 +14,7 @@
 #include "common/output_path.h"
 #include "eval/golden.h"
 #include "gl/headless_context.h"
-#include "reference/precision_model_file.h"
+#include "render/precision_model_file.h"
 
 namespace vt {
 void addGoldenCommand(CLI::App& app) {
@@ -48,7 +48,7 @@ void addGoldenCommand(CLI::App& app) {
     request.mesh = g->mesh;
     request.path = g->path;
     request.viewport = parseSize(g->size);
-    request.profile = reference::parsePrecisionProfile(g->profile);
+    request.profile = parsePrecisionProfile(g->profile);
     request.configuration = configuration->configuration();
     generateGolden(request, g->output);
     std::cout << "wrote golden images of every " << request.every << "th frame to "
@@ -79,17 +79,17 @@ void addGoldenCommand(CLI::App& app) {
   check->callback([c] {
     requireOutputFolder(c->output, {c->golden, c->texture, c->mesh, c->path});
     std::unique_ptr<HeadlessContext> context;
-    reference::PrecisionModel glModel = reference::exactModel();
+    PrecisionModel glModel = exactModel();
     if (c->backend == "gl") {
       context = std::make_unique<HeadlessContext>();
-      glModel = reference::resolveModel(c->model, context->renderer());
-      if (const std::string warning = reference::calibrationMismatch(
-              glModel, context->renderer(), context->version());
+      glModel = resolveModel(c->model, context->renderer());
+      if (const std::string warning =
+              calibrationMismatch(glModel, context->renderer(), context->version());
           !warning.empty())
         std::cerr << "vt golden check: " << warning << "\n";
     }
     const GoldenCheck result = checkGolden(c->golden, c->texture, c->mesh, c->path,
-                                           context != nullptr, glModel, c->output);
+                                           parseBackend(c->backend), glModel, c->output);
     size_t passed = 0;
     for (const GoldenFrameCheck& frame : result.frames) {
       passed += frame.passed;

@@ -124,7 +124,7 @@ void addInspectCommand(CLI::App& app) {
         frame.statistics.push_back({"SSIM", number(view.result.quality->ssim)});
         frame.statistics.push_back({"WSSIM", number(view.result.quality->wssim)});
       }
-      const reference::CacheState& cache = view.runtime.cacheState();
+      const CacheState& cache = view.runtime.cacheState();
       frame.images.push_back(rgbaImage("rendered", screen, view.color));
       frame.images.push_back(rgbaImage("reference", screen, view.reference));
       frame.images.push_back(differenceImage(screen, view.color, view.reference));

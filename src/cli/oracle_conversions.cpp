@@ -2,27 +2,26 @@
 
 namespace vt {
 
-oracle::CacheState publicCacheState(const reference::CacheState& cache) {
+oracle::CacheState publicCacheState(const CacheState& cache) {
   oracle::CacheState state{false, cache.framesX, cache.framesY, {}};
   for (const uint64_t index : cache.residentPages) {
     const PageId page = fromAbsoluteIndex(index);
-    const glm::u16vec4 entry = cache.entry(page);
+    const glm::u16vec4 entry = cache.indirection.entry(page);
     state.pages.push_back({page.level, page.x, page.y, entry.x, entry.y});
   }
   return state;
 }
 
-oracle::RenderOptions publicRenderOptions(const reference::RenderSettings& settings,
+oracle::RenderOptions publicRenderOptions(const RenderSettings& settings,
                                           const std::string& modelFile) {
   oracle::RenderOptions options;
   options.modelFile = modelFile;
   if (modelFile.empty())
-    options.profile =
-        settings.model
-            ? oracle::publicProfile(*settings.model)
-            : oracle::publicProfile(settings.profile == reference::PrecisionProfile::kLlvmpipe
-                                        ? reference::llvmpipeModel()
-                                        : reference::exactModel());
+    options.profile = settings.model
+                          ? oracle::publicProfile(*settings.model)
+                          : oracle::publicProfile(settings.profile == PrecisionProfile::kLlvmpipe
+                                                      ? llvmpipeModel()
+                                                      : exactModel());
   options.needEncoding =
       settings.need8 ? oracle::NeedEncoding::k8Bit : oracle::NeedEncoding::k32Bit;
   options.filtering =

@@ -4,16 +4,16 @@
 // convert with the API implementation's own oracle::publicScene and oracle::flatNeed.
 
 #include "reference/api/api_internal.h"
-#include "reference/cache_state.h"
 #include "reference/renderer.h"
+#include "render/cache_state.h"
 #include "scene/clip_space_mesh.h"
 #include "vt/oracle.h"
 
 namespace vt {
 
 // Each resident page in the frame its indirection entry names.
-oracle::CacheState publicCacheState(const reference::CacheState& cache);
-oracle::RenderOptions publicRenderOptions(const reference::RenderSettings& settings,
+oracle::CacheState publicCacheState(const CacheState& cache);
+oracle::RenderOptions publicRenderOptions(const RenderSettings& settings,
                                           const std::string& modelFile = "");
 
 }  // namespace vt

@@ -15,10 +15,8 @@
 #include "common/input_file.h"
 #include "common/output_path.h"
 #include "eval/image_metrics.h"
-#include "gl/gl_frame_renderer.h"
-#include "gl/headless_context.h"
-#include "reference/frame_images.h"
-#include "reference/renderer.h"
+#include "render/backend.h"
+#include "render/frame_images.h"
 #include "scene/box_room.h"
 #include "scene/obj_mesh.h"
 #include "shader/needbuffer.h"
@@ -99,11 +97,10 @@ void addRenderCommand(CLI::App& app) {
     if (!o->needbuffer.empty()) requireOutputFile(o->needbuffer, inputs);
     if (!o->needbuffer.empty() && std::filesystem::path(o->needbuffer) == o->output)
       throw InputError(o->output, "given as both the colour image and the needbuffer image");
-    reference::RenderSettings settings;
+    RenderSettings settings;
     settings.viewport = parseSize(o->size);
-    settings.profile = reference::parsePrecisionProfile(o->profile);
-    settings.depthFormat =
-        o->depth == "24" ? reference::DepthFormat::kDepth24 : reference::DepthFormat::kDepth32F;
+    settings.profile = parsePrecisionProfile(o->profile);
+    settings.depthFormat = o->depth == "24" ? DepthFormat::kDepth24 : DepthFormat::kDepth32F;
     settings.trilinear = !o->bilinear;
     settings.exactFilter = !o->hardwareFilter;
     settings.need8 = o->need8;
@@ -115,57 +112,40 @@ void addRenderCommand(CLI::App& app) {
     const Mesh mesh = o->mesh.empty() ? boxRoom() : loadObjMesh(o->mesh);
     const Camera camera = o->camera.empty() ? boxRoomCamera() : parseCamera(o->camera);
     const ClipSpaceMesh clip = toClipSpace(mesh, camera, settings.viewport);
-    std::string backendName = "oracle, profile " + o->profile;
 
-    reference::Frame frame;
-    double milliseconds = 0.0;
-    const auto timed = [&](const auto& draw) {
-      const auto start = std::chrono::steady_clock::now();
-      draw();
-      milliseconds =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-              .count();
-    };
     // Both backends draw from the same cache state: the levels asked for, or every page that fits
     // into an 8192^2 cache texture (coarsest levels first), so that their frames can be compared
     // bit for bit. Only the oracle can do without one: textures whose pages do not fit are drawn
     // by it with every page resident, straight from the file.
-    const bool everyPage = o->residentLevels < 0;
-    const reference::CacheState cache =
-        reference::cacheOfLevels(reader, o->residentLevels - 1, 8192);
-    const bool cacheHoldsAll = cache.residentPages.size() == reader.storedPageCount();
-    if (o->backend == "gl") {
-      const HeadlessContext context;
-      GlFrameRenderer gl(cache);
-      gl.draw(clip, settings);  // compiles the shaders: not part of the frame time
-      GlFrame drawn;
-      timed([&] { drawn = gl.render(clip, settings); });
-      frame.viewport = settings.viewport;
-      frame.color = std::move(drawn.color);
-      frame.need = std::move(drawn.need);
-      backendName = "gl: " + context.renderer();
-    } else if (!everyPage || cacheHoldsAll) {
-      timed([&] { frame = reference::renderFrame(clip, cache, settings); });
-    } else {
-      const reference::ResidentTexture texture(reader);
-      timed([&] { frame = reference::renderFrame(clip, texture, settings); });
-    }
-    if (cache.residentPages.size() < reader.storedPageCount() && (o->backend == "gl" || !everyPage))
-      std::cout << "cache state: " << cache.residentPages.size() << " of "
+    const CacheState cache = cacheOfLevels(reader, o->residentLevels - 1, 8192);
+    const Backend backend = parseBackend(o->backend);
+    const BackendContext context(backend);
+    const std::unique_ptr<FrameRenderer> renderer =
+        o->residentLevels < 0 ? makeFrameRendererOfEveryPage(backend, reader, cache)
+                              : makeFrameRenderer(backend, cache);
+    renderer->warmUp(clip, settings);  // GL compiles its shaders: not part of the frame time
+    const auto start = std::chrono::steady_clock::now();
+    const Frame frame = renderer->render(clip, settings);
+    const double milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (const CacheState* drawn = renderer->cache();
+        drawn && drawn->residentPages.size() < reader.storedPageCount())
+      std::cout << "cache state: " << drawn->residentPages.size() << " of "
                 << reader.storedPageCount() << " pages resident\n";
 
     const NeededPages needed = neededPages(frame.need, settings.need8);
-    const std::vector<uint8_t> color = reference::colorImage(frame);
+    const std::vector<uint8_t> color = colorImage(frame);
     const auto width = static_cast<uint32_t>(settings.viewport.width),
                height = static_cast<uint32_t>(settings.viewport.height);
     writeImage8(o->output, width, height, 4, std::as_bytes(std::span(color)));
     if (!o->needbuffer.empty()) {
-      const std::vector<uint8_t> need = reference::needImage(frame, settings.need8);
+      const std::vector<uint8_t> need = needImage(frame, settings.need8);
       writeImage8(o->needbuffer, width, height, 4, std::as_bytes(std::span(need)));
     }
     std::cout << "rendered " << o->output << ": " << width << " x " << height << " in "
-              << milliseconds << " ms (" << backendName << "), " << needed.coveredPixels
-              << " pixels covered, " << needed.pages.size() << " distinct pages needed\n";
+              << milliseconds << " ms (" << renderer->describe(settings) << "), "
+              << needed.coveredPixels << " pixels covered, " << needed.pages.size()
+              << " distinct pages needed\n";
     if (!o->reference.empty()) {
       const std::vector<uint8_t> expected = readReference(o->reference, settings.viewport);
       const ImageView a{settings.viewport.width, settings.viewport.height, color};

@@ -24,7 +24,7 @@
 #include "gl/gl_frame_renderer.h"
 #include "gl/hud_overlay.h"
 #include "gl/window_context.h"
-#include "reference/frame_images.h"
+#include "render/frame_images.h"
 #include "runtime/page_streamer.h"
 #include "runtime/virtual_texture_runtime.h"
 #include "scene/box_room.h"
@@ -126,7 +126,7 @@ void addViewCommand(CLI::App& app) {
     WindowContext window(size.width, size.height, "vt view: " + o->texture);
     GlFrameRenderer gl(run.runtime().cacheState());
     HudOverlay hud;
-    reference::RenderSettings settings = flight.settings;
+    RenderSettings settings = flight.settings;
     std::vector<Keyframe> recorded;
     bool recording = o->recordFromStart;
     glm::dvec2 cursor = window.cursor();
@@ -160,10 +160,10 @@ void addViewCommand(CLI::App& app) {
       // Draw from the cache as it is, analyse, ask the thread, apply what arrived.
       const glm::ivec2 windowSize = window.framebufferSize();
       settings.viewport = {std::max(1, windowSize.x), std::max(1, windowSize.y)};
-      gl.uploadCache();
+      gl.cacheChanged();
       const auto drawStart = Clock::now();
-      const GlFrame drawn = gl.render(toClipSpace(mesh, camera, settings.viewport), settings,
-                                      run.runtime().needsDepth());
+      const Frame drawn = gl.render(toClipSpace(mesh, camera, settings.viewport), settings,
+                                    run.runtime().needsDepth());
       run.frame(frame, previous, camera,
                 DrawnFrame{.need = drawn.need, .depth = drawn.depth,
                            .needViewport = settings.viewport},
@@ -189,14 +189,14 @@ void addViewCommand(CLI::App& app) {
 
       const bool lastFrame = o->maxFrames > 0 && frame + 1 >= o->maxFrames;
       if (lastFrame && !o->screenshot.empty()) {
-        reference::Frame shot;  // rows bottom to top, as GL reads them
+        Frame shot;  // rows bottom to top, as GL reads them
         shot.viewport = {windowSize.x, windowSize.y};
         shot.color.resize(size_t(windowSize.x) * size_t(windowSize.y) * 4);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);  // the window's, not the renderer's target
         glReadBuffer(GL_BACK);
         glReadPixels(0, 0, windowSize.x, windowSize.y, GL_RGBA, GL_UNSIGNED_BYTE,
                      shot.color.data());
-        const std::vector<uint8_t> rows = reference::colorImage(shot);
+        const std::vector<uint8_t> rows = colorImage(shot);
         writeImage8(o->screenshot, static_cast<uint32_t>(windowSize.x),
                     static_cast<uint32_t>(windowSize.y), 4, std::as_bytes(std::span(rows)));
       }

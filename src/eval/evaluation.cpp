@@ -44,7 +44,7 @@ struct NeedImage {
 class SharedViews {
  public:
   SharedViews(const VirtualTextureReader& reader, const Mesh& mesh, const CameraPath& path,
-              const reference::RenderSettings& settings,
+              const RenderSettings& settings,
               const std::vector<FlightConfiguration>& configurations)
       : mesh_(mesh), path_(path), everything_(reader), settings_(settings) {
     settings_.needScaleLog2 = 0;
@@ -69,7 +69,7 @@ class SharedViews {
       const Camera camera = pass.camera == LookAhead::kNone
                                 ? current
                                 : lookAheadCamera(beforePrevious, previous, current, pass.camera);
-      reference::RenderSettings settings = settings_;
+      RenderSettings settings = settings_;
       settings.debugChannels = false;
       settings.needOnly = true;
       settings.needScaleLog2 = pass.scaleLog2;
@@ -83,7 +83,7 @@ class SharedViews {
     }
   }
 
-  const reference::Frame& view() const { return view_; }
+  const Frame& view() const { return view_; }
   double viewSeconds() const { return viewSeconds_; }
   // The pass's needbuffer (and depth) of the current frame; the view's own at full scale.
   const NeedImage* pass(LookAhead camera, int scaleLog2) const {
@@ -100,8 +100,8 @@ class SharedViews {
   const Mesh& mesh_;
   const CameraPath& path_;
   const reference::ResidentTexture everything_;
-  reference::RenderSettings settings_;
-  reference::Frame view_, scratch_;
+  RenderSettings settings_;
+  Frame view_, scratch_;
   double viewSeconds_ = 0.0;
   std::map<NeedPass, NeedImage> passes_;
 };
@@ -166,7 +166,7 @@ Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const 
   const unsigned threads =
       options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
   const reference::ThreadLimit parallelism(threads);
-  reference::RenderSettings settings = options.settings;
+  RenderSettings settings = options.settings;
   settings.threads = threads;
   settings.needScaleLog2 = 0;
   const int frames = path.frameCount();
@@ -191,7 +191,7 @@ Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const 
             reducedViewport(settings.viewport, configurations[r].needScaleLog2),
             initialPages(reader, configurations[r], views.view().need, settings.need8));
     const auto recolorStart = Clock::now();
-    std::vector<const reference::CacheState*> caches;
+    std::vector<const CacheState*> caches;
     std::vector<std::vector<uint8_t>*> colors;
     for (RunState& state : states) {
       caches.push_back(&state.run->runtime().cacheState());

@@ -23,8 +23,8 @@ struct EvaluationRun {
 using EvaluationProgress = std::function<void(uint64_t done, uint64_t total)>;
 
 struct EvaluationOptions {
-  reference::RenderSettings settings;  // the screen, profile, need8; threads are set per stage
-  unsigned jobs = 0;                   // runs at once; 0: every core
+  RenderSettings settings;  // the screen, profile, need8; threads are set per stage
+  unsigned jobs = 0;        // runs at once; 0: every core
   EvaluationProgress progress;
 };
 

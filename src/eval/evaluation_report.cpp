@@ -62,8 +62,7 @@ nlohmann::json figuresJson(const EvaluationDescription& description, const Evalu
 }
 
 nlohmann::json summaryJson(const EvaluationDescription& description, const CameraPath& path,
-                           const reference::RenderSettings& settings,
-                           const Evaluation& evaluation) {
+                           const RenderSettings& settings, const Evaluation& evaluation) {
   nlohmann::json motions = nlohmann::json::array();
   for (const NamedMotion& m : path.motions())
     motions.push_back({{"name", m.name}, {"kind", m.kind}, {"first", m.first}, {"last", m.last}});
@@ -94,7 +93,7 @@ nlohmann::json summaryJson(const EvaluationDescription& description, const Camer
           {"frames", path.frameCount()},
           {"width", settings.viewport.width},
           {"height", settings.viewport.height},
-          {"profile", reference::toString(settings.profile)},
+          {"profile", toString(settings.profile)},
           {"jobs", description.jobs},
           {"view_seconds", evaluation.viewSeconds},
           {"recolor_seconds", evaluation.recolorSeconds},
@@ -150,7 +149,7 @@ std::string summaryMarkdown(const nlohmann::json& summary) {
 
 void writeEvaluation(const std::filesystem::path& destination,
                      const EvaluationDescription& description, const CameraPath& path,
-                     const reference::RenderSettings& settings, const Evaluation& evaluation) {
+                     const RenderSettings& settings, const Evaluation& evaluation) {
   // Written whole into a temporary folder that then replaces `folder`: a previous evaluation
   // there stays complete until the new one is.
   TemporaryFolder staging(destination, "summary.json");

@@ -39,7 +39,7 @@ struct EvaluationDescription {
 };
 
 void writeEvaluation(const std::filesystem::path& folder, const EvaluationDescription& description,
-                     const CameraPath& path, const reference::RenderSettings& settings,
+                     const CameraPath& path, const RenderSettings& settings,
                      const Evaluation& evaluation);
 
 }  // namespace vt

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "eval/flight_run.h"
-#include "gl/gl_frame_renderer.h"
+#include "reference/renderer.h"
 #include "runtime/needbuffer_scale.h"
 #include "shader/needbuffer.h"
 
@@ -18,20 +18,18 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Draws camera views from the runtime's current cache state with the oracle or the GL path, at
-// the screen's resolution or at a reduced needbuffer's (jittered per frame), with asynchronous
-// readback as an option: then the main pass returns the previous frame's needbuffer and depth
-// (the GL path copies them through pixel-buffer objects behind a fence; the oracle keeps them).
+// Draws camera views from the runtime's current cache state, at the screen's resolution or at a
+// reduced needbuffer's (jittered per frame), with delayed readback as an option: then the main
+// pass returns the previous frame's needbuffer and depth (FrameRenderer::renderDelayed).
 class FrameDrawer {
  public:
-  FrameDrawer(const Mesh& mesh, const reference::RenderSettings& settings, bool gl,
-              int needScaleLog2)
-      : mesh_(mesh), settings_(settings), gl_(gl), needScaleLog2_(needScaleLog2) {}
+  FrameDrawer(const Mesh& mesh, const RenderSettings& settings, Backend backend, int needScaleLog2)
+      : mesh_(mesh), settings_(settings), backend_(backend), needScaleLog2_(needScaleLog2) {}
 
   // The runtime whose cache state the frames are drawn from.
   void attach(const VirtualTextureRuntime& runtime) {
     runtime_ = &runtime;
-    if (gl_) glRenderer_ = std::make_unique<GlFrameRenderer>(runtime.cacheState());
+    renderer_ = makeFrameRenderer(backend_, runtime.cacheState());
   }
 
   Viewport needViewport() const { return reducedViewport(settings_.viewport, needScaleLog2_); }
@@ -64,34 +62,17 @@ class FrameDrawer {
   ClipSpaceMesh pass(const Camera& camera, Viewport viewport, int scaleLog2, glm::vec2 jitter,
                      std::vector<uint8_t>* color, std::vector<glm::uvec4>* need,
                      std::vector<float>* depth, bool delayed) {
-    reference::RenderSettings settings = settings_;
+    RenderSettings settings = settings_;
     settings.viewport = viewport;
     settings.needScaleLog2 = scaleLog2;
-    settings.needOnly = color == nullptr;  // the oracle skips the texels nobody looks at
+    // Nobody looks at the colour: the oracle reads no texel, the GL path reads no colour back.
+    settings.needOnly = color == nullptr;
     const bool readDepth = depth != nullptr;
     const ClipSpaceMesh clip = toClipSpace(mesh_, camera, viewport, jitter);
-    if (glRenderer_) {
-      GlFrameRenderer* const gl = glRenderer_.get();
-      gl->uploadCache();  // the management step changed it since the last draw
-      if (delayed && need) {
-        std::optional<GlFrame> previous = gl->renderAsync(clip, settings, readDepth);
-        if (color) *color = gl->readColor();
-        *need = previous ? std::move(previous->need) : std::vector<glm::uvec4>{};
-        if (depth) *depth = previous ? std::move(previous->depth) : std::vector<float>{};
-        return clip;
-      }
-      GlFrame frame = gl->render(clip, settings, readDepth);
-      if (color) *color = std::move(frame.color);
-      if (need) *need = std::move(frame.need);
-      if (depth) *depth = std::move(frame.depth);
-      return clip;
-    }
-    reference::Frame frame = reference::renderFrame(clip, runtime_->cacheState(), settings);
+    renderer_->cacheChanged();  // the management step changed it since the last draw
+    Frame frame = delayed && need ? renderer_->renderDelayed(clip, settings, readDepth)
+                                  : renderer_->render(clip, settings, readDepth);
     if (color) *color = std::move(frame.color);
-    if (delayed && need) {
-      std::swap(frame.need, delayedNeed_);
-      if (readDepth) std::swap(frame.depth, delayedDepth_);
-    }
     if (need) *need = std::move(frame.need);
     if (depth) *depth = std::move(frame.depth);
     return clip;
@@ -99,27 +80,24 @@ class FrameDrawer {
 
   const Mesh& mesh_;
   const VirtualTextureRuntime* runtime_ = nullptr;
-  const reference::RenderSettings settings_;
-  const bool gl_;
+  const RenderSettings settings_;
+  const Backend backend_;
   const int needScaleLog2_;
-  std::unique_ptr<GlFrameRenderer> glRenderer_;
-  std::vector<glm::uvec4> delayedNeed_;
-  std::vector<float> delayedDepth_;
+  std::unique_ptr<FrameRenderer> renderer_;
 };
 
 }  // namespace
 
 std::vector<uint8_t> referenceImage(const reference::ResidentTexture& everything, const Mesh& mesh,
-                                    const Camera& camera,
-                                    const reference::RenderSettings& settings) {
-  reference::RenderSettings full = settings;
+                                    const Camera& camera, const RenderSettings& settings) {
+  RenderSettings full = settings;
   full.needScaleLog2 = 0;
   return reference::renderFrame(toClipSpace(mesh, camera, full.viewport), everything, full).color;
 }
 
 FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const CameraPath& path,
                  const FlightConfiguration& configuration, const FlightOptions& options) {
-  const reference::RenderSettings& settings = options.settings;
+  const RenderSettings& settings = options.settings;
   // The first frame's needbuffer with every page resident, for the initial cache state.
   std::vector<glm::uvec4> firstNeed;
   if (configuration.preloadVisible)
@@ -128,7 +106,7 @@ FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const Cam
                     .need;
   const std::vector<uint64_t> initial =
       initialPages(reader, configuration, firstNeed, settings.need8);
-  FrameDrawer drawer(mesh, settings, options.gl, configuration.needScaleLog2);
+  FrameDrawer drawer(mesh, settings, options.backend, configuration.needScaleLog2);
   FlightRun run(reader, configuration, options, drawer.needViewport(), initial);
   drawer.attach(run.runtime());
 

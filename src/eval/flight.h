@@ -16,7 +16,8 @@
 
 #include "eval/flight_configuration.h"
 #include "format/virtual_texture_reader.h"
-#include "reference/renderer.h"
+#include "reference/texture_source.h"
+#include "render/backend.h"
 #include "runtime/page_streamer.h"
 #include "runtime/virtual_texture_runtime.h"
 #include "scene/camera_path.h"
@@ -79,8 +80,8 @@ struct FlightCaptureView {
 };
 
 struct FlightOptions {
-  reference::RenderSettings settings;  // viewport (the screen), profile, threads, need8
-  bool gl = false;  // draw with the GL path (a current context is the caller's), else the oracle
+  RenderSettings settings;             // viewport (the screen), profile, threads, need8
+  Backend backend = Backend::kOracle;  // GL: a current context is the caller's
   bool threadedStreaming = false;  // a streaming thread in real time over `link`, not the budget
   LinkModel link;
   // The reference image of a frame (RGBA8, rows bottom to top, the screen's size); when set,
@@ -100,7 +101,6 @@ FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const Cam
 
 // The frame drawn with every page resident, at `settings`' viewport: the reference image.
 std::vector<uint8_t> referenceImage(const reference::ResidentTexture& everything, const Mesh& mesh,
-                                    const Camera& camera,
-                                    const reference::RenderSettings& settings);
+                                    const Camera& camera, const RenderSettings& settings);
 
 }  // namespace vt

@@ -81,7 +81,7 @@ void FlightRun::frame(int frameNumber, const Camera& previous, const Camera& cur
                       const DrawnFrame& drawn, double drawSeconds) {
   FlightTimes& times = result_.times;
   times.draw += drawSeconds;
-  const reference::RenderSettings& settings = options_.settings;
+  const RenderSettings& settings = options_.settings;
   const auto frameIndex = static_cast<uint64_t>(frameNumber);
 
   // Analysis: the needbuffer, with the configuration's prediction of the next views.

@@ -17,8 +17,9 @@
 #include "eval/flight_records.h"
 #include "format/virtual_texture_reader.h"
 #include "reference/frame_comparison.h"
-#include "reference/precision_model.h"
+#include "reference/renderer.h"
 #include "reference/texture_source.h"
+#include "render/precision_model.h"
 #include "scene/obj_mesh.h"
 #include "shader/needbuffer.h"
 
@@ -80,17 +81,16 @@ struct Recorded {
 // Flies `configuration` and keeps every `every`-th frame.
 std::vector<Recorded> flyAndRecord(const VirtualTextureReader& reader, const Mesh& mesh,
                                    const CameraPath& path, const FlightConfiguration& configuration,
-                                   Viewport viewport, reference::PrecisionProfile profile,
-                                   int every, bool gl,
-                                   const reference::PrecisionModel* judge = nullptr) {
+                                   Viewport viewport, PrecisionProfile profile, int every,
+                                   Backend backend, const PrecisionModel* judge = nullptr) {
   FlightOptions options;
   options.settings.viewport = viewport;
   options.settings.profile = profile;
   options.settings.need8 = need8Encodes(reader.description().finestLevel());
-  options.gl = gl;
+  options.backend = backend;
   const reference::ResidentTexture everything(reader);
-  reference::RenderSettings referenceSettings = options.settings;
-  referenceSettings.profile = reference::PrecisionProfile::kExact;
+  RenderSettings referenceSettings = options.settings;
+  referenceSettings.profile = PrecisionProfile::kExact;
   // Reference images for the recorded frames only.
   options.reference = [&](int frame) {
     return frame % every == 0 ? referenceImage(everything, mesh, path.at(frame), referenceSettings)
@@ -109,10 +109,9 @@ std::vector<Recorded> flyAndRecord(const VirtualTextureReader& reader, const Mes
   if (judge && !judge->pinned()) {
     options.wantsCapture = [every](int frame) { return frame % every == 0; };
     options.capture = [&](const FlightCaptureView& view) {
-      reference::RenderSettings settings = options.settings;
-      reference::applyModel(settings, *judge);
-      const reference::Frame oracle =
-          reference::renderFrame(view.mesh, view.runtime.cacheState(), settings);
+      RenderSettings settings = options.settings;
+      applyModel(settings, *judge);
+      const Frame oracle = reference::renderFrame(view.mesh, view.runtime.cacheState(), settings);
       judged.emplace_back(view.frame,
                           reference::compareFrames(oracle, view.color, view.need, settings.need8));
     };
@@ -139,7 +138,7 @@ void generateGolden(const GoldenRequest& request, const std::filesystem::path& d
   const std::filesystem::path& folder = staging.path();
   const std::vector<Recorded> recorded =
       flyAndRecord(reader, mesh, path, request.configuration, request.viewport, request.profile,
-                   request.every, false);
+                   request.every, Backend::kOracle);
   nlohmann::json frames = nlohmann::json::array();
   for (const Recorded& r : recorded) {
     writeColorImage(folder / imageName(r.frame), request.viewport, r.color);
@@ -161,7 +160,7 @@ void generateGolden(const GoldenRequest& request, const std::filesystem::path& d
                                  {"configuration", request.configuration.toJson()},
                                  {"width", request.viewport.width},
                                  {"height", request.viewport.height},
-                                 {"profile", reference::toString(request.profile)},
+                                 {"profile", toString(request.profile)},
                                  {"every", request.every},
                                  {"frames", frames}};
   writeFileAtomically(folder / "golden.json", golden.dump(1) + "\n");
@@ -177,9 +176,10 @@ bool GoldenCheck::passed() const {
 
 GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesystem::path& texture,
                         const std::filesystem::path& mesh, const std::filesystem::path& path,
-                        bool gl, const reference::PrecisionModel& glModel,
+                        Backend backend, const PrecisionModel& glModel,
                         const std::filesystem::path& reportFolder) {
-  const reference::PrecisionProfile glProfile = glModel.arithmetic;
+  const bool gl = backend == Backend::kGl;
+  const PrecisionProfile glProfile = glModel.arithmetic;
   const std::filesystem::path manifest = folder / "golden.json";
   // Whole numbers only: a float converted to int out of its range is undefined.
   const auto whole = [](const nlohmann::json& value, const char* what) {
@@ -190,7 +190,7 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
   nlohmann::json golden;
   FlightConfiguration configuration;
   Viewport viewport;
-  reference::PrecisionProfile profile;
+  PrecisionProfile profile;
   int every = 1;
   try {
     golden = readJsonFile(manifest, "golden set");
@@ -198,7 +198,7 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
       throw std::invalid_argument("format is not '" + std::string(kFormat) + "'");
     configuration = FlightConfiguration::fromJson(golden.at("configuration"), {});
     viewport = {whole(golden.at("width"), "width"), whole(golden.at("height"), "height")};
-    profile = reference::parsePrecisionProfile(golden.at("profile").get<std::string>());
+    profile = parsePrecisionProfile(golden.at("profile").get<std::string>());
     every = whole(golden.at("every"), "every");
     for (const char* key : {"texture_identity", "mesh_checksum", "path_checksum"})
       golden.at(key).get<std::string>();
@@ -228,9 +228,9 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
                                  ": the goldens were made from another file");
 
   GoldenCheck check;
-  check.backend = gl ? "gl" : "oracle";
+  check.backend = toString(backend);
   check.profile = gl ? glProfile : profile;
-  check.model = gl ? glModel.name : reference::toString(profile);
+  check.model = gl ? glModel.name : toString(profile);
   const CameraPath cameraPath = CameraPath::load(path);
   requirePathPixelsFit(path, static_cast<uint64_t>(cameraPath.frameCount()),
                        static_cast<uint64_t>(viewport.width),
@@ -239,7 +239,7 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
   const std::filesystem::path& report = staging.path();
   const std::vector<Recorded> recorded =
       flyAndRecord(reader, loadObjMesh(mesh), cameraPath, configuration, viewport, check.profile,
-                   every, gl, gl ? &glModel : nullptr);
+                   every, backend, gl ? &glModel : nullptr);
   const bool exact = !gl || glModel.pinned();
   nlohmann::json frames = nlohmann::json::array();
   for (const auto& expected : golden["frames"]) {
@@ -293,15 +293,14 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
                       {"passed", frame.passed}});
     check.frames.push_back(frame);
   }
-  writeFileAtomically(report / "check.json",
-                      nlohmann::json{{"golden", folder.string()},
-                                     {"backend", check.backend},
-                                     {"profile", reference::toString(check.profile)},
-                                     {"model", check.model},
-                                     {"passed", check.passed()},
-                                     {"frames", frames}}
-                              .dump(2) +
-                          "\n");
+  writeFileAtomically(report / "check.json", nlohmann::json{{"golden", folder.string()},
+                                                            {"backend", check.backend},
+                                                            {"profile", toString(check.profile)},
+                                                            {"model", check.model},
+                                                            {"passed", check.passed()},
+                                                            {"frames", frames}}
+                                                     .dump(2) +
+                                                 "\n");
   staging.commit();
   return check;
 }

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "eval/flight.h"
-#include "reference/precision_model.h"
+#include "render/precision_model.h"
 
 namespace vt {
 
@@ -26,7 +26,7 @@ struct GoldenRequest {
   std::filesystem::path texture, mesh, path;  // the mesh and path files must exist
   FlightConfiguration configuration;
   Viewport viewport{160, 100};
-  reference::PrecisionProfile profile = reference::PrecisionProfile::kExact;
+  PrecisionProfile profile = PrecisionProfile::kExact;
   int every = 25;  // record frames 0, every, 2 every, ...
 };
 
@@ -46,14 +46,14 @@ struct GoldenFrameCheck {
 
 struct GoldenCheck {
   std::string backend;
-  reference::PrecisionProfile profile = reference::PrecisionProfile::kExact;
+  PrecisionProfile profile = PrecisionProfile::kExact;
   std::string model;  // the model that judged
   std::vector<GoldenFrameCheck> frames;
   bool passed() const;
 };
 
-// Flies the golden's flight again with the oracle or (gl = true, a current GL context is the
-// caller's) the GL path and compares. The texture, mesh and path files are the golden's unless
+// Flies the golden's flight again with `backend` (GL: a current context is the caller's) and
+// compares. The texture, mesh and path files are the golden's unless
 // given; they must be the same by identity and checksum (InputError otherwise). With the oracle,
 // or GL under a pinned model (llvmpipe), every recorded frame must match bit for bit; GL under a
 // model with free parameters (gl45, a model file) is judged by the oracle's result sets for each
@@ -61,7 +61,7 @@ struct GoldenCheck {
 // frame, frameNNNN.difference.png (colour difference x 16) into `report` with check.json.
 GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesystem::path& texture,
                         const std::filesystem::path& mesh, const std::filesystem::path& path,
-                        bool gl, const reference::PrecisionModel& glModel,
+                        Backend backend, const PrecisionModel& glModel,
                         const std::filesystem::path& report);
 
 }  // namespace vt

@@ -4,7 +4,7 @@
 
 #include "common/level_hues.h"
 #include "format/page_address.h"
-#include "reference/frame_images.h"
+#include "render/frame_images.h"
 
 namespace vt {
 namespace {
@@ -47,15 +47,14 @@ InspectImage differenceImage(Viewport viewport, std::span<const uint8_t> got,
 }
 
 InspectImage needbufferImage(Viewport viewport, std::span<const glm::uvec4> need, bool need8) {
-  reference::Frame frame;
+  Frame frame;
   frame.viewport = viewport;
   frame.need.assign(need.begin(), need.end());
-  return {"needbuffer (level)", viewport.width, viewport.height,
-          reference::needImage(frame, need8)};
+  return {"needbuffer (level)", viewport.width, viewport.height, needImage(frame, need8)};
 }
 
 InspectImage residentLevelImage(Viewport viewport, std::span<const glm::uvec4> need, bool need8,
-                                const reference::CacheState& cache) {
+                                const CacheState& cache) {
   InspectImage image{"resident level", viewport.width, viewport.height, {}};
   image.rgba.assign(static_cast<size_t>(viewport.width) * viewport.height * 4, 0);
   for (int row = 0; row < viewport.height; ++row)
@@ -63,14 +62,14 @@ InspectImage residentLevelImage(Viewport viewport, std::span<const glm::uvec4> n
       uint8_t* out = image.rgba.data() + (static_cast<size_t>(row) * viewport.width + x) * 4;
       out[3] = 255;
       const auto page = decodeNeed(need[flippedRow(viewport, row) + static_cast<size_t>(x)], need8);
-      if (!page || page->level >= cache.indirection.size()) continue;
-      const auto& hue = levelHue(cache.entry(*page).z);
+      if (!page || page->level >= cache.indirection.levelCount()) continue;
+      const auto& hue = levelHue(cache.indirection.entry(*page).z);
       std::copy(hue.begin(), hue.end(), out);
     }
   return image;
 }
 
-InspectImage cacheAtlasImage(const reference::CacheState& cache, int maxSide) {
+InspectImage cacheAtlasImage(const CacheState& cache, int maxSide) {
   const uint32_t side = std::max(cache.widthTexels, cache.heightTexels);
   const uint32_t shrink = std::max<uint32_t>(
       1, (side + static_cast<uint32_t>(maxSide) - 1) / static_cast<uint32_t>(maxSide));
@@ -93,7 +92,7 @@ InspectImage cacheAtlasImage(const reference::CacheState& cache, int maxSide) {
     // A resident page's own indirection entry names its frame.
     const PageId id = fromAbsoluteIndex(page);
     const auto& hue = levelHue(id.level);
-    const uint32_t fx = cache.entry(id).x, fy = cache.entry(id).y;
+    const uint32_t fx = cache.indirection.entry(id).x, fy = cache.indirection.entry(id).y;
     const int x0 = static_cast<int>(fx * frameSide / shrink),
               y0 = static_cast<int>(fy * frameSide / shrink),
               x1 = std::min(width, static_cast<int>((fx + 1) * frameSide / shrink)) - 1,

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "eval/inspect_page.h"
-#include "reference/cache_state.h"
-#include "reference/frame.h"
+#include "render/cache_state.h"
+#include "render/frame.h"
 
 namespace vt {
 
@@ -25,7 +25,7 @@ InspectImage differenceImage(Viewport viewport, std::span<const uint8_t> got,
                              std::span<const uint8_t> want);
 InspectImage needbufferImage(Viewport viewport, std::span<const glm::uvec4> need, bool need8);
 InspectImage residentLevelImage(Viewport viewport, std::span<const glm::uvec4> need, bool need8,
-                                const reference::CacheState& cache);
-InspectImage cacheAtlasImage(const reference::CacheState& cache, int maxSide);
+                                const CacheState& cache);
+InspectImage cacheAtlasImage(const CacheState& cache, int maxSide);
 
 }  // namespace vt

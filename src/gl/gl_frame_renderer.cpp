@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "gl/virtual_texture_program.h"
+#include "shader/needbuffer.h"
 
 namespace vt {
 namespace {
@@ -23,120 +24,118 @@ std::vector<glm::uvec4> readNeed(size_t pixels, bool need8, Read read) {
   return need;
 }
 
-}  // namespace
-
-GlFrameRenderer::GlFrameRenderer(const reference::CacheState& cache)
-    : GlFrameRenderer(cache, virtualTextureFragmentSource()) {}
-
-GlFrameRenderer::GlFrameRenderer(const reference::CacheState& cache,
-                                 const std::string& fragmentSource)
-    : cache_(cache), program_(virtualTextureVertexSource(), fragmentSource) {
-  const TextureDescription& d = cache.description;
-  glCreateTextures(GL_TEXTURE_2D, 1, &indirection_);
-  const auto finestSide = static_cast<GLsizei>(pagesPerSide(d.finestLevel()));
-  glTextureStorage2D(indirection_, 1, GL_RGBA16UI, finestSide + finestSide / 2, finestSide);
-  glTextureParameteri(indirection_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTextureParameteri(indirection_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glCreateTextures(GL_TEXTURE_2D, 1, &texels_);
-  const auto width = static_cast<GLsizei>(cache.widthTexels),
-             height = static_cast<GLsizei>(cache.heightTexels);
-  glTextureStorage2D(texels_, 1, GL_RGBA8, width, height);
-  glTextureParameteri(texels_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTextureParameteri(texels_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(texels_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(texels_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-
-  glCreateVertexArrays(1, &vertexArray_);
-  glCreateBuffers(1, &vertices_);
-  glCreateBuffers(1, &indices_);
-  glVertexArrayVertexBuffer(vertexArray_, 0, vertices_, 0, sizeof(ClipVertex));
-  glVertexArrayElementBuffer(vertexArray_, indices_);
-  for (GLuint a = 0; a < 2; ++a) {
-    glEnableVertexArrayAttrib(vertexArray_, a);
-    glVertexArrayAttribBinding(vertexArray_, a, 0);
-  }
-  glVertexArrayAttribFormat(vertexArray_, 0, 4, GL_FLOAT, GL_FALSE, offsetof(ClipVertex, position));
-  glVertexArrayAttribFormat(vertexArray_, 1, 2, GL_FLOAT, GL_FALSE, offsetof(ClipVertex, uv));
-  uploadCache();
+size_t pixelCount(Viewport viewport) {
+  return static_cast<size_t>(viewport.width) * static_cast<size_t>(viewport.height);
 }
 
-void GlFrameRenderer::uploadCache() {
+}  // namespace
+
+GlFrameRenderer::GlFrameRenderer(const CacheState& cache)
+    : GlFrameRenderer(cache, virtualTextureFragmentSource()) {}
+
+GlFrameRenderer::GlFrameRenderer(const CacheState& cache, const std::string& fragmentSource)
+    : cache_(cache),
+      program_(virtualTextureVertexSource(), fragmentSource),
+      indirection_(createTexture(GL_TEXTURE_2D)),
+      texels_(createTexture(GL_TEXTURE_2D)),
+      vertexArray_(createVertexArray()),
+      vertices_(createBuffer()),
+      indices_(createBuffer()) {
+  const TextureDescription& d = cache.description;
+  const auto finestSide = static_cast<GLsizei>(pagesPerSide(d.finestLevel()));
+  glTextureStorage2D(indirection_.get(), 1, GL_RGBA16UI, finestSide + finestSide / 2, finestSide);
+  glTextureParameteri(indirection_.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(indirection_.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  const auto width = static_cast<GLsizei>(cache.widthTexels),
+             height = static_cast<GLsizei>(cache.heightTexels);
+  glTextureStorage2D(texels_.get(), 1, GL_RGBA8, width, height);
+  glTextureParameteri(texels_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(texels_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(texels_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(texels_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+
+  const GLuint vertexArray = vertexArray_.get();
+  glVertexArrayVertexBuffer(vertexArray, 0, vertices_.get(), 0, sizeof(ClipVertex));
+  glVertexArrayElementBuffer(vertexArray, indices_.get());
+  for (GLuint a = 0; a < 2; ++a) {
+    glEnableVertexArrayAttrib(vertexArray, a);
+    glVertexArrayAttribBinding(vertexArray, a, 0);
+  }
+  glVertexArrayAttribFormat(vertexArray, 0, 4, GL_FLOAT, GL_FALSE, offsetof(ClipVertex, position));
+  glVertexArrayAttribFormat(vertexArray, 1, 2, GL_FLOAT, GL_FALSE, offsetof(ClipVertex, uv));
+  cacheChanged();
+}
+
+void GlFrameRenderer::cacheChanged() {
   const TextureDescription& d = cache_.description;
   // Level m of the table at its origin in the one texture (virtual_texture_program.cpp).
   const auto finestSide = static_cast<GLint>(pagesPerSide(d.finestLevel()));
   for (uint32_t m = 0; m < d.levelCount; ++m) {
     const auto side = static_cast<GLsizei>(pagesPerSide(m));
     const bool finest = m == d.finestLevel();
-    glTextureSubImage2D(indirection_, 0, finest ? 0 : finestSide,
+    glTextureSubImage2D(indirection_.get(), 0, finest ? 0 : finestSide,
                         finest ? 0 : finestSide - 2 * side, side, side, GL_RGBA_INTEGER,
-                        GL_UNSIGNED_SHORT, cache_.indirection[m].data());
+                        GL_UNSIGNED_SHORT, cache_.indirection.level(m).data());
   }
-  glTextureSubImage2D(texels_, 0, 0, 0, static_cast<GLsizei>(cache_.widthTexels),
+  glTextureSubImage2D(texels_.get(), 0, 0, 0, static_cast<GLsizei>(cache_.widthTexels),
                       static_cast<GLsizei>(cache_.heightTexels), GL_RGBA, GL_UNSIGNED_BYTE,
                       cache_.texels.data());
-}
-
-GlFrameRenderer::~GlFrameRenderer() {
-  if (readbackFence_) glDeleteSync(readbackFence_);
-  glDeleteBuffers(2, readbackBuffers_);
-  glDeleteBuffers(1, &vertices_);
-  glDeleteBuffers(1, &indices_);
-  glDeleteVertexArrays(1, &vertexArray_);
-  glDeleteFramebuffers(1, &framebuffer_);
-  glDeleteTextures(3, targets_);
-  glDeleteTextures(1, &texels_);
-  glDeleteTextures(1, &indirection_);
 }
 
 void GlFrameRenderer::prepareTargets(Viewport viewport, bool need8) {
   if (framebuffer_ && viewport.width == viewport_.width && viewport.height == viewport_.height &&
       need8 == need8_)
     return;
-  glDeleteFramebuffers(1, &framebuffer_);
-  glDeleteTextures(3, targets_);
+  framebuffer_.reset();
+  for (GlTexture& target : targets_) target.reset();
   viewport_ = viewport;
   need8_ = need8;
-  glCreateTextures(GL_TEXTURE_2D, 3, targets_);
-  glTextureStorage2D(targets_[0], 1, GL_RGBA8, viewport.width, viewport.height);
-  glTextureStorage2D(targets_[1], 1, need8 ? GL_RGBA8UI : GL_RGBA32UI, viewport.width,
-                     viewport.height);
-  glTextureStorage2D(targets_[2], 1, GL_DEPTH_COMPONENT32F, viewport.width, viewport.height);
-  glCreateFramebuffers(1, &framebuffer_);
-  glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0, targets_[0], 0);
-  glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT1, targets_[1], 0);
-  glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, targets_[2], 0);
+  for (GlTexture& target : targets_) target = createTexture(GL_TEXTURE_2D);
+  const GLuint color = targets_[0].get(), need = targets_[1].get(), depth = targets_[2].get();
+  glTextureStorage2D(color, 1, GL_RGBA8, viewport.width, viewport.height);
+  glTextureStorage2D(need, 1, need8 ? GL_RGBA8UI : GL_RGBA32UI, viewport.width, viewport.height);
+  glTextureStorage2D(depth, 1, GL_DEPTH_COMPONENT32F, viewport.width, viewport.height);
+  framebuffer_ = createFramebuffer();
+  glNamedFramebufferTexture(framebuffer_.get(), GL_COLOR_ATTACHMENT0, color, 0);
+  glNamedFramebufferTexture(framebuffer_.get(), GL_COLOR_ATTACHMENT1, need, 0);
+  glNamedFramebufferTexture(framebuffer_.get(), GL_DEPTH_ATTACHMENT, depth, 0);
   const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  glNamedFramebufferDrawBuffers(framebuffer_, 2, buffers);
+  glNamedFramebufferDrawBuffers(framebuffer_.get(), 2, buffers);
 }
 
 void GlFrameRenderer::uploadMesh(const ClipSpaceMesh& mesh) {
-  glNamedBufferData(vertices_, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(ClipVertex)),
+  glNamedBufferData(vertices_.get(),
+                    static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(ClipVertex)),
                     mesh.vertices.data(), GL_STATIC_DRAW);
-  glNamedBufferData(indices_, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(uint32_t)),
+  glNamedBufferData(indices_.get(), static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(uint32_t)),
                     mesh.indices.data(), GL_STATIC_DRAW);
 }
 
-void GlFrameRenderer::draw(const ClipSpaceMesh& mesh, const reference::RenderSettings& settings) {
+void GlFrameRenderer::draw(const ClipSpaceMesh& mesh, const RenderSettings& settings) {
   submit(mesh, settings);
   glFinish();
 }
 
-void GlFrameRenderer::submit(const ClipSpaceMesh& mesh, const reference::RenderSettings& settings) {
+void GlFrameRenderer::warmUp(const ClipSpaceMesh& mesh, const RenderSettings& settings) {
+  draw(mesh, settings);
+}
+
+void GlFrameRenderer::submit(const ClipSpaceMesh& mesh, const RenderSettings& settings) {
   const TextureDescription& d = cache_.description;
   prepareTargets(settings.viewport, settings.need8);
   uploadMesh(mesh);
   const GLfloat clearColor[4] = {0, 0, 0, 0}, one = 1.0f;
-  const glm::uvec4 clearNeed = reference::needClearValue(settings.need8);
-  glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 0, clearColor);
+  const glm::uvec4 clearNeed = needClearValue(settings.need8);
+  glClearNamedFramebufferfv(framebuffer_.get(), GL_COLOR, 0, clearColor);
   // The integer needbuffer is cleared as a texture: Mesa 22.3's softpipe loses a framebuffer
   // clear of an integer attachment when depth is cleared and drawn after it (README, softpipe).
   if (settings.need8) {
     const glm::u8vec4 narrow(clearNeed);
-    glClearTexImage(targets_[1], 0, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, &narrow.x);
+    glClearTexImage(targets_[1].get(), 0, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, &narrow.x);
   } else {
-    glClearTexImage(targets_[1], 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, &clearNeed.x);
+    glClearTexImage(targets_[1].get(), 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, &clearNeed.x);
   }
-  glClearNamedFramebufferfv(framebuffer_, GL_DEPTH, 0, &one);
+  glClearNamedFramebufferfv(framebuffer_.get(), GL_DEPTH, 0, &one);
 
   glUseProgram(program_.id());
   glUniform1i(program_.uniform("uVt.pageSize"), static_cast<GLint>(d.pageSize));
@@ -151,102 +150,108 @@ void GlFrameRenderer::submit(const ClipSpaceMesh& mesh, const reference::RenderS
   glUniform1i(program_.uniform("uFinestLevel"), static_cast<GLint>(d.finestLevel()));
   glUniform1i(program_.uniform("uIndirection"), 0);
   glUniform1i(program_.uniform("uCache"), 1);
-  glBindTextureUnit(0, indirection_);
-  glBindTextureUnit(1, texels_);
+  glBindTextureUnit(0, indirection_.get());
+  glBindTextureUnit(1, texels_.get());
 
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
   glViewport(0, 0, settings.viewport.width, settings.viewport.height);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  glBindVertexArray(vertexArray_);
+  glBindVertexArray(vertexArray_.get());
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.indices.size()), GL_UNSIGNED_INT, nullptr);
 }
 
-GlFrame GlFrameRenderer::render(const ClipSpaceMesh& mesh,
-                                const reference::RenderSettings& settings, bool readDepth) {
+Frame GlFrameRenderer::render(const ClipSpaceMesh& mesh, const RenderSettings& settings,
+                              bool readDepth) {
   draw(mesh, settings);
-  const size_t pixels =
-      static_cast<size_t>(settings.viewport.width) * static_cast<size_t>(settings.viewport.height);
-  GlFrame frame;
-  frame.color = readColor();
+  const size_t pixels = pixelCount(settings.viewport);
+  Frame frame;
+  frame.viewport = settings.viewport;
+  if (!settings.needOnly) frame.color = readColor();
   frame.need = readNeed(pixels, settings.need8, [&](void* destination, size_t bytes) {
-    glGetTextureImage(targets_[1], 0, GL_RGBA_INTEGER,
+    glGetTextureImage(targets_[1].get(), 0, GL_RGBA_INTEGER,
                       settings.need8 ? GL_UNSIGNED_BYTE : GL_UNSIGNED_INT,
                       static_cast<GLsizei>(bytes), destination);
   });
-  if (readDepth) {  // only for the Distance heuristic: a scene pays only for what it uses
+  if (readDepth) {
     frame.depth.resize(pixels);
-    glGetTextureImage(targets_[2], 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+    glGetTextureImage(targets_[2].get(), 0, GL_DEPTH_COMPONENT, GL_FLOAT,
                       static_cast<GLsizei>(pixels * sizeof(float)), frame.depth.data());
   }
   return frame;
 }
 
 void GlFrameRenderer::present(glm::ivec2 window) const {
-  glNamedFramebufferReadBuffer(framebuffer_, GL_COLOR_ATTACHMENT0);
-  glBlitNamedFramebuffer(framebuffer_, 0, 0, 0, viewport_.width, viewport_.height, 0, 0, window.x,
-                         window.y, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glNamedFramebufferReadBuffer(framebuffer_.get(), GL_COLOR_ATTACHMENT0);
+  glBlitNamedFramebuffer(framebuffer_.get(), 0, 0, 0, viewport_.width, viewport_.height, 0, 0,
+                         window.x, window.y, GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 
-std::optional<GlFrame> GlFrameRenderer::renderAsync(const ClipSpaceMesh& mesh,
-                                                    const reference::RenderSettings& settings,
-                                                    bool readDepth) {
+Frame GlFrameRenderer::renderDelayed(const ClipSpaceMesh& mesh, const RenderSettings& settings,
+                                     bool readDepth) {
   submit(mesh, settings);
-  std::optional<GlFrame> previous = collectReadback();  // the GPU works on this frame meanwhile
-  const size_t pixels =
-      static_cast<size_t>(settings.viewport.width) * static_cast<size_t>(settings.viewport.height);
+  Frame frame = collectReadback();  // the GPU works on this frame meanwhile
+  startReadback(settings, readDepth);
+  frame.viewport = settings.viewport;
+  if (!settings.needOnly) frame.color = readColor();
+  return frame;
+}
+
+void GlFrameRenderer::startReadback(const RenderSettings& settings, bool readDepth) {
+  const size_t pixels = pixelCount(settings.viewport);
   const size_t needBytes = pixels * (settings.need8 ? 4 : 16);
-  if (!readbackBuffers_[0]) glCreateBuffers(2, readbackBuffers_);
-  glNamedBufferData(readbackBuffers_[0], static_cast<GLsizeiptr>(needBytes), nullptr,
-                    GL_STREAM_READ);
-  glBindBuffer(GL_PIXEL_PACK_BUFFER, readbackBuffers_[0]);
-  glGetTextureImage(targets_[1], 0, GL_RGBA_INTEGER,
+  if (!readback_.buffers[0])
+    for (GlBuffer& buffer : readback_.buffers) buffer = createBuffer();
+  const GLuint need = readback_.buffers[0].get(), depth = readback_.buffers[1].get();
+  glNamedBufferData(need, static_cast<GLsizeiptr>(needBytes), nullptr, GL_STREAM_READ);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, need);
+  glGetTextureImage(targets_[1].get(), 0, GL_RGBA_INTEGER,
                     settings.need8 ? GL_UNSIGNED_BYTE : GL_UNSIGNED_INT,
                     static_cast<GLsizei>(needBytes), nullptr);
   if (readDepth) {
-    glNamedBufferData(readbackBuffers_[1], static_cast<GLsizeiptr>(pixels * sizeof(float)), nullptr,
+    glNamedBufferData(depth, static_cast<GLsizeiptr>(pixels * sizeof(float)), nullptr,
                       GL_STREAM_READ);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, readbackBuffers_[1]);
-    glGetTextureImage(targets_[2], 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, depth);
+    glGetTextureImage(targets_[2].get(), 0, GL_DEPTH_COMPONENT, GL_FLOAT,
                       static_cast<GLsizei>(pixels * sizeof(float)), nullptr);
   }
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-  readbackFence_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  readback_.fence = insertFence();
   glFlush();
-  readbackViewport_ = settings.viewport;
-  readbackNeed8_ = settings.need8;
-  readbackDepth_ = readDepth;
-  return previous;
+  readback_.viewport = settings.viewport;
+  readback_.need8 = settings.need8;
+  readback_.depth = readDepth;
 }
 
-std::optional<GlFrame> GlFrameRenderer::collectReadback() {
-  if (!readbackFence_) return std::nullopt;
-  while (glClientWaitSync(readbackFence_, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000) ==
+Frame GlFrameRenderer::collectReadback() {
+  Frame frame;
+  if (!readback_.fence) return frame;
+  while (glClientWaitSync(readback_.fence.get(), GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000) ==
          GL_TIMEOUT_EXPIRED) {
   }
-  glDeleteSync(readbackFence_);
-  readbackFence_ = nullptr;
-  const size_t pixels =
-      static_cast<size_t>(readbackViewport_.width) * static_cast<size_t>(readbackViewport_.height);
-  GlFrame frame;
-  frame.need = readNeed(pixels, readbackNeed8_, [&](void* destination, size_t bytes) {
-    glGetNamedBufferSubData(readbackBuffers_[0], 0, static_cast<GLsizeiptr>(bytes), destination);
+  readback_.fence.reset();
+  const size_t pixels = pixelCount(readback_.viewport);
+  frame.need = readNeed(pixels, readback_.need8, [&](void* destination, size_t bytes) {
+    glGetNamedBufferSubData(readback_.buffers[0].get(), 0, static_cast<GLsizeiptr>(bytes),
+                            destination);
   });
-  if (readbackDepth_) {
+  if (readback_.depth) {
     frame.depth.resize(pixels);
-    glGetNamedBufferSubData(readbackBuffers_[1], 0, static_cast<GLsizeiptr>(pixels * sizeof(float)),
-                            frame.depth.data());
+    glGetNamedBufferSubData(readback_.buffers[1].get(), 0,
+                            static_cast<GLsizeiptr>(pixels * sizeof(float)), frame.depth.data());
   }
   return frame;
 }
 
 std::vector<uint8_t> GlFrameRenderer::readColor() const {
-  const size_t pixels =
-      static_cast<size_t>(viewport_.width) * static_cast<size_t>(viewport_.height);
-  std::vector<uint8_t> color(pixels * 4);
-  glGetTextureImage(targets_[0], 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(pixels * 4),
-                    color.data());
+  std::vector<uint8_t> color(pixelCount(viewport_) * 4);
+  glGetTextureImage(targets_[0].get(), 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                    static_cast<GLsizei>(color.size()), color.data());
   return color;
+}
+
+std::string GlFrameRenderer::describe(const RenderSettings&) const {
+  return "gl: " + std::string(reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
 }
 
 }  // namespace vt

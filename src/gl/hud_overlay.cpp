@@ -2,30 +2,23 @@
 
 namespace vt {
 
-HudOverlay::HudOverlay() { glCreateFramebuffers(1, &framebuffer_); }
-
-HudOverlay::~HudOverlay() {
-  glDeleteFramebuffers(1, &framebuffer_);
-  glDeleteTextures(1, &texture_);
-}
-
 void HudOverlay::draw(const HudImage& image, glm::ivec2 window) {
   if (image.width == 0 || image.height == 0) return;
   if (image.width != width_ || image.height != height_) {  // texture storage is immutable
-    glDeleteTextures(1, &texture_);
-    glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
-    glTextureStorage2D(texture_, 1, GL_RGBA8, static_cast<GLsizei>(image.width),
+    texture_.reset();
+    texture_ = createTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(texture_.get(), 1, GL_RGBA8, static_cast<GLsizei>(image.width),
                        static_cast<GLsizei>(image.height));
-    glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0, texture_, 0);
+    glNamedFramebufferTexture(framebuffer_.get(), GL_COLOR_ATTACHMENT0, texture_.get(), 0);
     width_ = image.width;
     height_ = image.height;
   }
-  glTextureSubImage2D(texture_, 0, 0, 0, static_cast<GLsizei>(image.width),
+  glTextureSubImage2D(texture_.get(), 0, 0, 0, static_cast<GLsizei>(image.width),
                       static_cast<GLsizei>(image.height), GL_RGBA, GL_UNSIGNED_BYTE,
                       image.rgba.data());
-  glNamedFramebufferReadBuffer(framebuffer_, GL_COLOR_ATTACHMENT0);
+  glNamedFramebufferReadBuffer(framebuffer_.get(), GL_COLOR_ATTACHMENT0);
   const auto w = static_cast<GLint>(image.width), h = static_cast<GLint>(image.height);
-  glBlitNamedFramebuffer(framebuffer_, 0, 0, 0, w, h, 0, window.y - h, w, window.y,
+  glBlitNamedFramebuffer(framebuffer_.get(), 0, 0, 0, w, h, 0, window.y - h, w, window.y,
                          GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 

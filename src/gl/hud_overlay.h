@@ -5,21 +5,20 @@
 
 #include <glm/glm.hpp>
 
+#include "gl/gl_objects.h"
 #include "gl/hud_text.h"
 
 namespace vt {
 
 class HudOverlay {
  public:
-  HudOverlay();
-  ~HudOverlay();
-  HudOverlay(const HudOverlay&) = delete;
-  HudOverlay& operator=(const HudOverlay&) = delete;
+  HudOverlay() : framebuffer_(createFramebuffer()) {}
 
   void draw(const HudImage& image, glm::ivec2 window);
 
  private:
-  GLuint texture_ = 0, framebuffer_ = 0;
+  GlFramebuffer framebuffer_;
+  GlTexture texture_;
   uint32_t width_ = 0, height_ = 0;
 };
 

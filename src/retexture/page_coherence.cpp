@@ -35,16 +35,16 @@ PageCoherence measureCoherence(const TexturedScene& scene, const Retexturing& la
                                const CoherenceSettings& settings) {
   TextureDescription description{.pageSize = layout.pageSize, .border = 1, .channels = 4};
   while (description.sideTexels() < layout.side) ++description.levelCount;
-  const reference::CacheState cache = reference::rootOnlyCache(description);
+  const CacheState cache = rootOnlyCache(description);
   const Mesh mesh{scene.positions, uvs, scene.indices};
-  reference::RenderSettings render{
+  RenderSettings render{
       .viewport = {static_cast<int>(settings.width), static_cast<int>(settings.height)},
       .threads = settings.threads};
   PageCoherence coherence;
   double sumPer1000 = 0.0, sumPages = 0.0;
   uint32_t coveredViews = 0;
   for (const Camera& view : coherenceViews(scene)) {
-    const reference::Frame frame =
+    const Frame frame =
         reference::renderFrame(toClipSpace(mesh, view, render.viewport), cache, render);
     const NeededPages needed = neededPages(frame.need, false);
     ++coherence.views;

@@ -39,8 +39,9 @@ VirtualTextureRuntime::VirtualTextureRuntime(const VirtualTextureReader& reader,
   cache_.widthTexels = options.framesX * d.storedPageSide();
   cache_.heightTexels = options.framesY * d.storedPageSide();
   cache_.texels.assign(size_t{cache_.widthTexels} * cache_.heightTexels * 4, 0);
-  cache_.indirection.resize(d.levelCount);
-  for (uint32_t m = 0; m < d.levelCount; ++m) cache_.indirection[m] = table_.level(m);
+  cache_.indirection = IndirectionTable(d.levelCount);
+  for (uint32_t m = 0; m < d.levelCount; ++m)
+    std::ranges::copy(table_.level(m), cache_.indirection.level(m).begin());
   // The root first: every lookup then finds a resident page.
   uint64_t evicted = 0;
   insert(0, reader.readPage(PageId{}), evicted);
@@ -57,7 +58,7 @@ void VirtualTextureRuntime::insert(uint64_t page, std::span<const std::byte> tex
     ++evicted;
   }
   table_.insert(fromAbsoluteIndex(page), placement->frame);
-  reference::storePage(cache_, placement->frame.x, placement->frame.y, texels);
+  storePage(cache_, placement->frame.x, placement->frame.y, texels);
 }
 
 void VirtualTextureRuntime::syncIndirection() {
@@ -70,7 +71,7 @@ void VirtualTextureRuntime::syncIndirection() {
         const uint64_t first =
             ((uint64_t{root.y} << shift) + y) * stride + (uint64_t{root.x} << shift);
         std::copy_n(table_.level(m).begin() + static_cast<long>(first), side,
-                    cache_.indirection[m].begin() + static_cast<long>(first));
+                    cache_.indirection.level(m).begin() + static_cast<long>(first));
       }
     }
   }

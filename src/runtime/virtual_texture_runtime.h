@@ -1,7 +1,7 @@
 #pragma once
 // The management step of the renderer (thesis 3.2.2): streamed pages go into the page cache (LRU
 // frames, locked levels), the page table follows incrementally, and the cache state the renderers
-// read (cache texture and indirection table, reference/cache_state.h) is updated where it changed.
+// read (cache texture and indirection table, render/cache_state.h) is updated where it changed.
 // Then, after a frame is drawn, the analysis step (3.2.4) turns its needbuffer into the requests
 // for the streaming step, and the frame's statistics.
 
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "format/virtual_texture_reader.h"
-#include "reference/cache_state.h"
+#include "render/cache_state.h"
 #include "runtime/needbuffer_analysis.h"
 #include "runtime/page_cache.h"
 #include "runtime/page_priority.h"
@@ -50,7 +50,7 @@ class VirtualTextureRuntime {
  public:
   VirtualTextureRuntime(const VirtualTextureReader& reader, const RuntimeOptions& options);
 
-  const reference::CacheState& cacheState() const { return cache_; }
+  const CacheState& cacheState() const { return cache_; }
   const PageTable& pageTable() const { return table_; }
   const PageCache& pageCache() const { return pageCache_; }
 
@@ -94,7 +94,7 @@ class VirtualTextureRuntime {
   RuntimeOptions options_;
   PageCache pageCache_;
   PageTable table_;
-  reference::CacheState cache_;
+  CacheState cache_;
   NeedBufferAnalysis lastAnalysis_;  // with keepAnalysis only
   uint64_t lastFrame_ = 0;
 };

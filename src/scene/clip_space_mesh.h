@@ -25,11 +25,4 @@ struct Viewport {
   int height = 0;
 };
 
-// The oracle names them as its own inputs.
-namespace reference {
-using vt::ClipSpaceMesh;
-using vt::ClipVertex;
-using vt::Viewport;
-}  // namespace reference
-
 }  // namespace vt

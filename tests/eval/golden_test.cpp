@@ -35,8 +35,8 @@ struct Fixture {
     request.every = 7;
   }
   GoldenCheck check(const std::filesystem::path& texture) {
-    return checkGolden(dir / "golden", texture, request.mesh, request.path, false,
-                       reference::exactModel(), dir / "report");
+    return checkGolden(dir / "golden", texture, request.mesh, request.path, Backend::kOracle,
+                       exactModel(), dir / "report");
   }
 };
 

@@ -38,13 +38,11 @@ TEST(SsimReference, AgreesWithScikitImageOnRenderedFrames) {
   writeSyntheticTexture(
       dir / "t.vt", {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
   const VirtualTextureReader reader(dir / "t.vt");
-  reference::RenderSettings settings;
+  RenderSettings settings;
   settings.viewport = {160, 96};
   const ClipSpaceMesh mesh = toClipSpace(boxRoom(), boxRoomCamera(), settings.viewport);
-  const reference::Frame all =
-      reference::renderFrame(mesh, reference::ResidentTexture(reader), settings);
-  const reference::Frame coarse =
-      reference::renderFrame(mesh, reference::cacheOfLevels(reader, 2, 4096), settings);
+  const Frame all = reference::renderFrame(mesh, reference::ResidentTexture(reader), settings);
+  const Frame coarse = reference::renderFrame(mesh, cacheOfLevels(reader, 2, 4096), settings);
   const ImageView a{settings.viewport.width, settings.viewport.height, all.color};
   const ImageView b{settings.viewport.width, settings.viewport.height, coarse.color};
   writeDoubles(dir / "a.f64", luminance(a));

@@ -15,7 +15,7 @@
 #include "cli/run_command.h"
 #include "common/posix_file.h"
 #include "gl/headless_context.h"
-#include "reference/precision_model_file.h"
+#include "render/precision_model_file.h"
 #include "test_support.h"
 
 namespace vt {
@@ -31,8 +31,8 @@ bool onLlvmpipeWithFma(const HeadlessContext& context) {
 TEST(Calibration, LlvmpipeRediscoversTheHandWrittenModelParameterByParameter) {
   const HeadlessContext context;
   if (!onLlvmpipeWithFma(context)) GTEST_SKIP() << "not llvmpipe with FMA: " << context.renderer();
-  const reference::PrecisionModel got = calibrate::calibrate().model;
-  const reference::PrecisionModel want = reference::llvmpipeModel();
+  const PrecisionModel got = calibrate::calibrate().model;
+  const PrecisionModel want = llvmpipeModel();
   EXPECT_EQ(got.arithmetic, want.arithmetic);
   EXPECT_EQ(got.subpixelBits, want.subpixelBits);
   EXPECT_EQ(got.fillRulePinned, want.fillRulePinned);
@@ -50,7 +50,7 @@ TEST(Calibration, LlvmpipeRediscoversTheHandWrittenModelParameterByParameter) {
   EXPECT_EQ(got.colorRoundsToNearest, want.colorRoundsToNearest);
   EXPECT_EQ(got.denormalsPinned, want.denormalsPinned);
   // And nothing else: the fields above are all the parameters.
-  reference::PrecisionModel same = got;
+  PrecisionModel same = got;
   same.name = want.name;
   same.renderer = want.renderer;
   same.glVersion = want.glVersion;
@@ -68,22 +68,22 @@ TEST(Calibration, IsDeterministicAndItsFileReadsBackAsTheModel) {
   EXPECT_EQ(calibrate::calibrationJson(calibrate::calibrate()), json);
   test::ScratchDirectory dir;
   std::ofstream(dir / "model.json") << json;
-  EXPECT_EQ(reference::readModelFile(dir / "model.json"), first.model);
+  EXPECT_EQ(readModelFile(dir / "model.json"), first.model);
   EXPECT_EQ(first.fits.size(), 9u);
   for (const calibrate::ParameterFit& fit : first.fits) EXPECT_GT(fit.probes, 0u) << fit.parameter;
 }
 
 TEST(Calibration, AModelFromAnotherDriverVersionIsNamedInAWarning) {
-  reference::PrecisionModel model = reference::llvmpipeModel();
-  EXPECT_EQ(reference::calibrationMismatch(model, "anything", "4.5"), "");  // shipped
+  PrecisionModel model = llvmpipeModel();
+  EXPECT_EQ(calibrationMismatch(model, "anything", "4.5"), "");  // shipped
   model.name = "calibrated";
   model.renderer = "llvmpipe (LLVM 15.0.6, 256 bits)";
   model.glVersion = "4.5 (Core Profile) Mesa 22.3.6";
-  EXPECT_EQ(reference::calibrationMismatch(model, model.renderer, model.glVersion), "");
-  EXPECT_THAT(reference::calibrationMismatch(model, model.renderer, "4.5 (Core Profile) Mesa 23.0.4"),
+  EXPECT_EQ(calibrationMismatch(model, model.renderer, model.glVersion), "");
+  EXPECT_THAT(calibrationMismatch(model, model.renderer, "4.5 (Core Profile) Mesa 23.0.4"),
               HasSubstr("measured with 4.5 (Core Profile) Mesa 22.3.6, this driver is 4.5 (Core "
                         "Profile) Mesa 23.0.4: re-run vt calibrate"));
-  EXPECT_THAT(reference::calibrationMismatch(model, "softpipe", model.glVersion),
+  EXPECT_THAT(calibrationMismatch(model, "softpipe", model.glVersion),
               HasSubstr("this is softpipe: run vt calibrate here"));
 }
 
@@ -146,14 +146,14 @@ TEST(CalibrateCommand, SoftpipesCalibratedModelExplainsEveryPixel) {
   const nlohmann::json summary = calibrateAndCrosscheck(dir, &err);
   EXPECT_EQ(summary["gl_renderer"], "softpipe");
   EXPECT_EQ(summary["totals"]["unexplained"], 0u);
-  const reference::PrecisionModel model = reference::readModelFile(dir / "model.json");
+  const PrecisionModel model = readModelFile(dir / "model.json");
   EXPECT_EQ(model.renderer, "softpipe");
   EXPECT_EQ(model.sqrtUlps, 0.0);
   EXPECT_EQ(model.arithmeticUlps, 0.0);
-  EXPECT_EQ(model.filter, reference::FilterArithmetic::kFloat);
+  EXPECT_EQ(model.filter, FilterArithmetic::kFloat);
   EXPECT_TRUE(model.colorRoundsToNearest);
-  EXPECT_EQ(model.log2, reference::Log2Arithmetic::kBounded);
-  EXPECT_LE(model.log2Ulps, reference::gl45Model().log2Ulps);  // within GLSL 4.50's 3 ULP
+  EXPECT_EQ(model.log2, Log2Arithmetic::kBounded);
+  EXPECT_LE(model.log2Ulps, gl45Model().log2Ulps);  // within GLSL 4.50's 3 ULP
 }
 
 }  // namespace

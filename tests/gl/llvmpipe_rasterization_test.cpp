@@ -40,15 +40,15 @@ TEST_F(LlvmpipeRasterization, OracleMatchesEveryPixelBitForBit) {
     GTEST_SKIP() << "not llvmpipe: " << context.renderer();
   const VirtualTextureReader reader(dir_ / "t.vt");
   const reference::ResidentTexture texture(reader);
-  reference::RenderSettings settings;
+  RenderSettings settings;
   settings.debugChannels = true;
-  settings.profile = __builtin_cpu_supports("fma") ? reference::PrecisionProfile::kLlvmpipe
-                                                   : reference::PrecisionProfile::kExact;
+  settings.profile =
+      __builtin_cpu_supports("fma") ? PrecisionProfile::kLlvmpipe : PrecisionProfile::kExact;
   settings.viewport = {160, 120};
   for (const unsigned seed : {1u, 2u, 3u}) {
-    const reference::ClipSpaceMesh mesh = calibrate::randomTriangles(seed, 120);
+    const ClipSpaceMesh mesh = calibrate::randomTriangles(seed, 120);
     const calibrate::RasterReadback gl = calibrate::drawTriangles(mesh, settings.viewport);
-    const reference::Frame oracle = reference::renderFrame(mesh, texture, settings);
+    const Frame oracle = reference::renderFrame(mesh, texture, settings);
     size_t coverage = 0, uv = 0, derivatives = 0, depth = 0, covered = 0;
     for (size_t i = 0; i < oracle.triangle.size(); ++i) {
       const int32_t glTriangle = gl.triangle[i];

@@ -23,9 +23,9 @@ namespace vt {
 namespace {
 
 // Textured triangles at many scales and angles: magnified, minified, grazing, some clipped.
-reference::ClipSpaceMesh texturedScene(unsigned seed) {
+ClipSpaceMesh texturedScene(unsigned seed) {
   std::mt19937 random(seed);
-  reference::ClipSpaceMesh mesh;
+  ClipSpaceMesh mesh;
   test::appendRandomTriangles(mesh, random, 80);
   // s and t exactly 0 and 1 at the corners of a screen-filling background quad drawn last.
   const uint32_t base = static_cast<uint32_t>(mesh.vertices.size());
@@ -57,21 +57,21 @@ TEST_P(LlvmpipeShading, OracleMatchesColourAndNeedbufferBitForBit) {
   for (uint64_t p = 0; p < pageCount(2); ++p) resident.push_back(p);
   for (uint64_t p = firstPageOfLevel(3); p < firstPageOfLevel(4); p += 2) resident.push_back(p);
   for (uint64_t p = firstPageOfLevel(4); p < pageCount(4); p += 7) resident.push_back(p);
-  const reference::CacheState cache = reference::makeCacheState(reader, resident, 12, 8);
+  const CacheState cache = makeCacheState(reader, resident, 12, 8);
 
-  reference::RenderSettings settings;
+  RenderSettings settings;
   settings.viewport = {192, 128};
-  settings.profile = __builtin_cpu_supports("fma") ? reference::PrecisionProfile::kLlvmpipe
-                                                   : reference::PrecisionProfile::kExact;
+  settings.profile =
+      __builtin_cpu_supports("fma") ? PrecisionProfile::kLlvmpipe : PrecisionProfile::kExact;
   settings.exactFilter = GetParam().exactFilter;
   settings.trilinear = GetParam().trilinear;
   settings.need8 = GetParam().need8;
   settings.needScaleLog2 = GetParam().needScaleLog2;
   GlFrameRenderer renderer(cache);
   for (const unsigned seed : {11u, 12u}) {
-    const reference::ClipSpaceMesh mesh = texturedScene(seed);
-    const GlFrame gl = renderer.render(mesh, settings, /*readDepth=*/true);
-    const reference::Frame oracle = reference::renderFrame(mesh, cache, settings);
+    const ClipSpaceMesh mesh = texturedScene(seed);
+    const Frame gl = renderer.render(mesh, settings, /*readDepth=*/true);
+    const Frame oracle = reference::renderFrame(mesh, cache, settings);
     size_t colour = 0, need = 0, maxDifference = 0, covered = 0, depth = 0;
     ASSERT_EQ(gl.depth.size(), oracle.depth.size());
     for (size_t i = 0; i < oracle.need.size(); ++i) {

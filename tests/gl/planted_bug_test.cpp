@@ -71,9 +71,9 @@ std::string plant(const PlantedBug& bug) {
 
 // Magnified, minified and grazing triangles, a background quad with s and t exactly 0 and 1 at
 // its corners, and a quad whose coordinates run past 1 (the shader clamps them to exactly 1.0).
-reference::ClipSpaceMesh scene() {
+ClipSpaceMesh scene() {
   std::mt19937 random(11);
-  reference::ClipSpaceMesh mesh;
+  ClipSpaceMesh mesh;
   const auto quad = [&](std::array<glm::vec4, 4> p, std::array<glm::vec2, 4> uv) {
     const auto base = static_cast<uint32_t>(mesh.vertices.size());
     for (int k = 0; k < 4; ++k) mesh.vertices.push_back({p[k], uv[k]});
@@ -94,7 +94,7 @@ reference::ClipSpaceMesh scene() {
 
 struct Verdict {
   uint64_t unexplained = 0;
-  std::array<uint64_t, reference::kResultReasons> by{};
+  std::array<uint64_t, kResultReasons> by{};
 };
 
 class PlantedBugs : public ::testing::Test {
@@ -102,19 +102,19 @@ class PlantedBugs : public ::testing::Test {
   static void SetUpTestSuite() { ::setenv("LP_NUM_THREADS", "2", 1); }
 
   // The bug drawn by GL, judged under `model`, in both of the crosscheck's modes.
-  Verdict judge(const PlantedBug* bug, const reference::PrecisionModel& model) {
+  Verdict judge(const PlantedBug* bug, const PrecisionModel& model) {
     Verdict verdict;
     for (const bool texelFetch : {true, false}) {
-      reference::RenderSettings settings;
+      RenderSettings settings;
       settings.viewport = {160, 120};
-      reference::applyModel(settings, model);
+      applyModel(settings, model);
       settings.exactFilter = texelFetch;
       settings.trilinear = texelFetch;
       settings.need8 = !texelFetch;
       GlFrameRenderer renderer(*cache_, bug ? plant(*bug) : virtualTextureFragmentSource());
-      const reference::ClipSpaceMesh mesh = scene();
-      const GlFrame gl = renderer.render(mesh, settings);
-      const reference::Frame oracle = reference::renderFrame(mesh, *cache_, settings);
+      const ClipSpaceMesh mesh = scene();
+      const Frame gl = renderer.render(mesh, settings);
+      const Frame oracle = reference::renderFrame(mesh, *cache_, settings);
       const reference::FrameComparison c =
           reference::compareFrames(oracle, gl.color, gl.need, settings.need8);
       verdict.unexplained += c.unexplained;
@@ -138,35 +138,33 @@ class PlantedBugs : public ::testing::Test {
     for (uint64_t p = 0; p < pageCount(2); ++p) resident.push_back(p);
     for (uint64_t p = firstPageOfLevel(3); p < firstPageOfLevel(4); p += 2) resident.push_back(p);
     for (uint64_t p = firstPageOfLevel(4); p < pageCount(4); p += 7) resident.push_back(p);
-    cache_ = std::make_unique<reference::CacheState>(
-        reference::makeCacheState(*reader_, resident, 12, 8));
+    cache_ = std::make_unique<CacheState>(makeCacheState(*reader_, resident, 12, 8));
   }
 
   test::ScratchDirectory dir_;
   std::unique_ptr<HeadlessContext> context_;
   std::unique_ptr<VirtualTextureReader> reader_;
-  std::unique_ptr<reference::CacheState> cache_;
+  std::unique_ptr<CacheState> cache_;
 };
 
 TEST_F(PlantedBugs, TheRealShaderPassesBothModels) {
-  EXPECT_EQ(judge(nullptr, reference::llvmpipeModel()).unexplained, 0u);
-  EXPECT_EQ(judge(nullptr, reference::gl45Model()).unexplained, 0u);
+  EXPECT_EQ(judge(nullptr, llvmpipeModel()).unexplained, 0u);
+  EXPECT_EQ(judge(nullptr, gl45Model()).unexplained, 0u);
 }
 
 TEST_F(PlantedBugs, EveryBugIsCaughtUnderLlvmpipeAndGl45CatchesWhatTheSpecificationForbids) {
   for (const PlantedBug& bug : kBugs) {
-    const Verdict pinned = judge(&bug, reference::llvmpipeModel());
-    const Verdict loose = judge(&bug, reference::gl45Model());
+    const Verdict pinned = judge(&bug, llvmpipeModel());
+    const Verdict loose = judge(&bug, gl45Model());
     std::printf(
         "planted bug | %-24s | llvmpipe: %7llu unexplained (%s %llu) | gl45: %7llu "
         "unexplained\n",
-        bug.name, static_cast<unsigned long long>(pinned.unexplained),
-        reference::reasonName(bug.reason),
+        bug.name, static_cast<unsigned long long>(pinned.unexplained), reasonName(bug.reason),
         static_cast<unsigned long long>(pinned.by[static_cast<size_t>(bug.reason)]),
         static_cast<unsigned long long>(loose.unexplained));
     EXPECT_GT(pinned.unexplained, 0u) << bug.name;
     EXPECT_GT(pinned.by[static_cast<size_t>(bug.reason)], 0u)
-        << bug.name << ": the llvmpipe model should name " << reference::reasonName(bug.reason);
+        << bug.name << ": the llvmpipe model should name " << reasonName(bug.reason);
     if (!bug.allowedByGl45) {
       EXPECT_GT(loose.unexplained, 0u) << bug.name << " passes gl45";
     }

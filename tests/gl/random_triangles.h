@@ -10,7 +10,7 @@
 
 namespace vt::test {
 
-inline void appendRandomTriangles(reference::ClipSpaceMesh& mesh, std::mt19937& random, int count) {
+inline void appendRandomTriangles(ClipSpaceMesh& mesh, std::mt19937& random, int count) {
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f), wRange(0.4f, 4.0f);
   for (int k = 0; k < count; ++k) {
     const float spread = k % 4 == 0 ? 0.02f : (k % 4 == 1 ? 0.2f : 0.6f);

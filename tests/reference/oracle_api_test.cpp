@@ -56,12 +56,12 @@ TEST(OracleApi, RendersTheSameFrameAsTheOracleItWraps) {
 
   const VirtualTextureReader reader(dir / "t.vt");
   const reference::ResidentTexture everything(reader);
-  reference::RenderSettings settings;
+  RenderSettings settings;
   settings.viewport = {96, 64};
-  settings.profile = reference::PrecisionProfile::kLlvmpipe;
+  settings.profile = PrecisionProfile::kLlvmpipe;
   settings.need8 = true;
   const NamedScene named = testScene("room");
-  const reference::Frame expected = reference::renderFrame(
+  const Frame expected = reference::renderFrame(
       toClipSpace(named.mesh, named.camera, settings.viewport), everything, settings);
   EXPECT_EQ(frame.color, expected.color);
   EXPECT_EQ(frame.depth, expected.depth);

@@ -8,6 +8,8 @@
 
 #include "build/synthetic_texture.h"
 #include "reference/renderer.h"
+#include "reference/visibility.h"
+#include "shader/needbuffer.h"
 #include "test_support.h"
 
 namespace vt::reference {

@@ -10,8 +10,9 @@
 #include <limits>
 
 #include "build/synthetic_texture.h"
-#include "reference/frame_images.h"
 #include "reference/renderer.h"
+#include "reference/triangle_setup.h"
+#include "render/frame_images.h"
 #include "scene/camera.h"
 #include "test_support.h"
 

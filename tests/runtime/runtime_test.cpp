@@ -8,7 +8,7 @@
 #include <set>
 
 #include "build/synthetic_texture.h"
-#include "reference/cache_state.h"
+#include "render/cache_state.h"
 #include "runtime/virtual_texture_runtime.h"
 #include "test_support.h"
 
@@ -26,21 +26,20 @@ class Runtime : public ::testing::Test {
 
   // Checks the whole cache state against the page table's resident set, texel by texel.
   void expectConsistent(const VirtualTextureRuntime& runtime) {
-    const reference::CacheState& cache = runtime.cacheState();
+    const CacheState& cache = runtime.cacheState();
     const TextureDescription& d = cache.description;
     const uint32_t side = d.storedPageSide();
     for (uint32_t m = 0; m < d.levelCount; ++m)
       for (uint64_t p = 0; p < pagesInLevel(m); ++p) {
         PageId page = fromRelativeIndex(p, m);
         while (!runtime.pageTable().resident(page)) page = parent(page);
-        const glm::u16vec4 entry = cache.entry(fromRelativeIndex(p, m));
+        const glm::u16vec4 entry = cache.indirection.entry(fromRelativeIndex(p, m));
         ASSERT_EQ(entry.z, page.level);
         ASSERT_EQ(runtime.pageCache().frameOf(absoluteIndex(page)), (FrameId{entry.x, entry.y}));
         // The frame's first texel row equals the page's.
         const std::vector<std::byte> texels = reader_->readPage(page);
         for (uint32_t x = 0; x < side; ++x) {
-          const glm::u8vec4 expected =
-              reference::expandToRgba(texels.data() + x * d.channels, d.channels);
+          const glm::u8vec4 expected = expandToRgba(texels.data() + x * d.channels, d.channels);
           const uint8_t* got =
               cache.texels.data() +
               (size_t{entry.y} * side * cache.widthTexels + entry.x * side + x) * 4;
@@ -135,8 +134,10 @@ TEST_F(Runtime, TheRootNeverLeavesATinyCache) {
     }
     runtime.apply(std::move(pages));
     ASSERT_TRUE(runtime.pageCache().contains(0)) << "round " << round;
-    for (const auto& level : runtime.cacheState().indirection)
-      for (const glm::u16vec4& entry : level) ASSERT_LE(entry.z, 3) << "round " << round;
+    const IndirectionTable& indirection = runtime.cacheState().indirection;
+    for (uint32_t m = 0; m < indirection.levelCount(); ++m)
+      for (const glm::u16vec4& entry : indirection.level(m))
+        ASSERT_LE(entry.z, 3) << "round " << round;
     expectConsistent(runtime);
   }
 }

@@ -71,7 +71,7 @@ struct CaptureCheck {
 // capture's, or inputs the oracle cannot draw (see render).
 VT_ORACLE_API CaptureCheck checkCapture(const Capture& capture, const Texture& texture,
                                         Profile profile, unsigned threads = 0);
-// The same under the precision model of a model file (reference/precision_model_file.h).
+// The same under the precision model of a model file (src/render/precision_model_file.h).
 VT_ORACLE_API CaptureCheck checkCapture(const Capture& capture, const Texture& texture,
                                         const std::filesystem::path& modelFile,
                                         unsigned threads = 0);

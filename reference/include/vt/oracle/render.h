@@ -51,7 +51,7 @@ VT_ORACLE_API std::string toString(Sampling sampling);      // "texel_fetch", "h
 
 struct RenderOptions {
   Profile profile = Profile::kExact;
-  // A precision model file (reference/precision_model_file.h) to judge under instead of
+  // A precision model file (src/render/precision_model_file.h) to judge under instead of
   // `profile`; empty: `profile`. Throws Error when it cannot be read.
   std::string modelFile;
   NeedEncoding needEncoding = NeedEncoding::k32Bit;

@@ -1,15 +1,15 @@
-#include "reference/precision_model_file.h"
+#include "render/precision_model_file.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <vector>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "common/error.h"
 #include "common/json_text.h"
 
-namespace vt::reference {
+namespace vt {
 
 // Names of the enums in model files (found by argument-dependent lookup, so in this namespace).
 NLOHMANN_JSON_SERIALIZE_ENUM(PrecisionProfile, {{PrecisionProfile::kExact, "exact"},
@@ -177,8 +177,8 @@ std::optional<std::filesystem::path> measuredModelFile(const std::string& glRend
   for (const auto& entry : std::filesystem::directory_iterator(folder, error))
     if (entry.path().extension() == ".json") files.push_back(entry.path());
   if (error)
-    throw InputError(folder, "cannot list the precision models (VT_PRECISION_MODELS): " +
-                                 error.message());
+    throw InputError(folder,
+                     "cannot list the precision models (VT_PRECISION_MODELS): " + error.message());
   std::sort(files.begin(), files.end());
   for (const std::filesystem::path& file : files)
     if (readModelFile(file).renderer == glRenderer) return file;
@@ -195,4 +195,4 @@ PrecisionModel resolveModel(const std::string& nameOrFile, const std::string& gl
   return readModelFile(nameOrFile);
 }
 
-}  // namespace vt::reference
+}  // namespace vt

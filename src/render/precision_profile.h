@@ -8,10 +8,12 @@
 //             evaluation fma(dqdy, y, fma(dqdx, x, q0)), window z with fma, log2 and exp2 as
 //             llvmpipe's polynomials, denormals flushed to zero in fragment arithmetic. Pin
 //             GALLIUM_OVERRIDE_CPU_CAPS to match a CPU without FMA (then use `exact` planes).
+//
+// The oracle computes in these arithmetics in reference/profile_arithmetic.h.
 
 #include <string>
 
-namespace vt::reference {
+namespace vt {
 
 enum class PrecisionProfile { kExact, kLlvmpipe };
 
@@ -23,22 +25,4 @@ bool usesFusedPlanes(PrecisionProfile profile);
 // Whether fragment arithmetic flushes denormals to zero (DAZ and FTZ).
 bool flushesDenormals(PrecisionProfile profile);
 
-// llvmpipe's log2 (DESIGN section 7, rule 8), bit for bit.
-float llvmpipeLog2(float x);
-
-// The profile's log2.
-float profileLog2(PrecisionProfile profile, float x);
-
-// Sets the calling thread's denormal flushing to what `profile` does; restores on destruction.
-class DenormalMode {
- public:
-  explicit DenormalMode(PrecisionProfile profile);
-  ~DenormalMode();
-  DenormalMode(const DenormalMode&) = delete;
-  DenormalMode& operator=(const DenormalMode&) = delete;
-
- private:
-  unsigned saved_;
-};
-
-}  // namespace vt::reference
+}  // namespace vt

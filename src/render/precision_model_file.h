@@ -21,9 +21,9 @@
 #include <optional>
 #include <string>
 
-#include "reference/precision_model.h"
+#include "render/precision_model.h"
 
-namespace vt::reference {
+namespace vt {
 
 PrecisionModel readModelFile(const std::filesystem::path& file);
 std::string modelJson(const PrecisionModel& model);
@@ -47,4 +47,4 @@ std::optional<std::filesystem::path> measuredModelFile(const std::string& glRend
 // gl45).
 PrecisionModel resolveModel(const std::string& nameOrFile, const std::string& glRenderer);
 
-}  // namespace vt::reference
+}  // namespace vt

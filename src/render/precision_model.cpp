@@ -1,8 +1,23 @@
-#include "reference/precision_model.h"
+#include "render/precision_model.h"
 
+#include <map>
 #include <stdexcept>
+#include <string>
 
-namespace vt::reference {
+namespace vt {
+
+namespace {
+
+// One source for every parameter: a model pinned by one measurement or one arithmetic.
+std::map<std::string, std::string> everyParameterFrom(const std::string& source) {
+  std::map<std::string, std::string> sources;
+  for (const char* parameter : {"subpixel_bits", "fill_rule", "depth", "attributes", "log2", "sqrt",
+                                "arithmetic", "filter", "color_conversion", "denormals"})
+    sources[parameter] = source;
+  return sources;
+}
+
+}  // namespace
 
 bool PrecisionModel::pinned() const {
   return coveragePinned() && depthUlps == 0 && depthRoundsToNearest && attributeUlps == 0 &&
@@ -16,11 +31,8 @@ PrecisionModel llvmpipeModel() {
   m.arithmetic = PrecisionProfile::kLlvmpipe;
   m.log2 = Log2Arithmetic::kLlvmpipe;
   m.filter = FilterArithmetic::kLlvmpipe8Bit;
-  const std::string measured =
-      "measured on Mesa 22.3.6 llvmpipe, x86-64 with FMA: DESIGN section 7";
-  for (const char* parameter : {"subpixel_bits", "fill_rule", "depth", "attributes", "log2", "sqrt",
-                                "arithmetic", "filter", "color_conversion", "denormals"})
-    m.sources[parameter] = measured;
+  m.sources =
+      everyParameterFrom("measured on Mesa 22.3.6 llvmpipe, x86-64 with FMA: DESIGN section 7");
   return m;
 }
 
@@ -28,10 +40,7 @@ PrecisionModel exactModel() {
   PrecisionModel m;
   m.name = "exact";
   m.arithmetic = PrecisionProfile::kExact;
-  const std::string ieee = "the oracle's IEEE float arithmetic in source order, pinned";
-  for (const char* parameter : {"subpixel_bits", "fill_rule", "depth", "attributes", "log2", "sqrt",
-                                "arithmetic", "filter", "color_conversion", "denormals"})
-    m.sources[parameter] = ieee;
+  m.sources = everyParameterFrom("the oracle's IEEE float arithmetic in source order, pinned");
   return m;
 }
 
@@ -111,4 +120,4 @@ PrecisionModel modelForRenderer(const std::string& glRenderer) {
   return gl45Model();
 }
 
-}  // namespace vt::reference
+}  // namespace vt

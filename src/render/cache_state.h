@@ -6,8 +6,7 @@
 //
 // Layout: frame (fx, fy) starts at texel (fx, fy) * (P + 2B), rows of increasing t. Texels are
 // RGBA8 whatever the texture's channels (gray spreads to RGB, missing alpha is opaque). The
-// indirection table has one level per page level m, 2^m x 2^m entries (fx, fy, i, 0), which the
-// GL path stores as mip level L - m of an RGBA16UI texture.
+// indirection table is render/indirection_table.h.
 
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -15,20 +14,17 @@
 #include <vector>
 
 #include "format/virtual_texture_reader.h"
+#include "render/indirection_table.h"
 
-namespace vt::reference {
+namespace vt {
 
 struct CacheState {
   TextureDescription description;
   uint32_t framesX = 0, framesY = 0;
   uint32_t widthTexels = 0, heightTexels = 0;
-  std::vector<uint64_t> residentPages;                 // absolute indices, frame by frame
-  std::vector<uint8_t> texels;                         // RGBA8, widthTexels x heightTexels
-  std::vector<std::vector<glm::u16vec4>> indirection;  // [m][px + py * 2^m]
-
-  glm::u16vec4 entry(PageId page) const {
-    return indirection[page.level][page.x + (size_t{page.y} << page.level)];
-  }
+  std::vector<uint64_t> residentPages;  // absolute indices, frame by frame
+  std::vector<uint8_t> texels;          // RGBA8, widthTexels x heightTexels
+  IndirectionTable indirection;
 };
 
 // A page and the frame that holds it.
@@ -68,4 +64,4 @@ void storePage(CacheState& cache, uint32_t frameX, uint32_t frameY,
 // RGBA8 of one stored texel of `channels` components.
 glm::u8vec4 expandToRgba(const std::byte* texel, uint32_t channels);
 
-}  // namespace vt::reference
+}  // namespace vt

@@ -1,4 +1,4 @@
-#include "reference/precision_profile.h"
+#include "reference/profile_arithmetic.h"
 
 #include <xmmintrin.h>
 
@@ -6,28 +6,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <stdexcept>
 
 namespace vt::reference {
-
-PrecisionProfile parsePrecisionProfile(const std::string& name) {
-  if (name == "exact") return PrecisionProfile::kExact;
-  if (name == "llvmpipe") return PrecisionProfile::kLlvmpipe;
-  throw std::invalid_argument("precision profile '" + name + "' is not one of exact, llvmpipe");
-}
-
-std::string toString(PrecisionProfile profile) {
-  switch (profile) {
-    case PrecisionProfile::kExact:
-      return "exact";
-    case PrecisionProfile::kLlvmpipe:
-      return "llvmpipe";
-  }
-  return "unknown";
-}
-
-bool usesFusedPlanes(PrecisionProfile profile) { return profile == PrecisionProfile::kLlvmpipe; }
-bool flushesDenormals(PrecisionProfile profile) { return profile == PrecisionProfile::kLlvmpipe; }
 
 float llvmpipeLog2(float x) {
   // Rule 8: e = exponent - 127, m = mantissa in [1, 2), y = (m - 1) / (m + 1), z = y * y,

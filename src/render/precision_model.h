@@ -18,9 +18,9 @@
 #include <map>
 #include <string>
 
-#include "reference/precision_profile.h"
+#include "render/precision_profile.h"
 
-namespace vt::reference {
+namespace vt {
 
 // How a sampler's GL_LINEAR weights the four texels.
 enum class FilterArithmetic {
@@ -97,4 +97,4 @@ PrecisionModel namedModel(const std::string& name);
 // (llvmpipe without FMA computes neither rule 8's fused polynomial nor the fused planes).
 PrecisionModel modelForRenderer(const std::string& glRenderer);
 
-}  // namespace vt::reference
+}  // namespace vt

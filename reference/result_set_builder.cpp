@@ -1,9 +1,11 @@
+#include "reference/result_set_builder.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 
 #include "reference/interval.h"
-#include "reference/result_set_builder.h"
+#include "reference/profile_arithmetic.h"
 #include "shader/shader_cpp.h"
 
 namespace vt::reference {
@@ -505,12 +507,6 @@ class Builder {
 
 }  // namespace
 
-const char* reasonName(int bit) {
-  static const char* const kNames[kResultReasons] = {"coverage", "depth", "attributes", "lod",
-                                                     "filter"};
-  return bit >= 0 && bit < kResultReasons ? kNames[bit] : "unknown";
-}
-
 void appendResultSet(const PrecisionModel& model, const SetShading& shading,
                      const std::vector<SetupTriangle>& triangles,
                      const std::vector<int32_t>& candidates, int px, int py, Viewport viewport,
@@ -567,19 +563,6 @@ void appendResultSet(const PrecisionModel& model, const SetShading& shading,
     empty.reasons = oracle.index < 0 ? 0 : kReasonCoverage;
     out.push_back(empty);
   }
-}
-
-bool ambiguous(const ResultSets& sets, size_t pixel) {
-  if (sets.empty()) return false;
-  const uint32_t first = sets.offsets[pixel], last = sets.offsets[pixel + 1];
-  if (last - first != 1) return true;
-  const Alternative& a = sets.alternatives[first];
-  if (a.triangle < 0) return false;
-  if (a.levelLo != a.levelHi || a.colorLo != a.colorHi) return true;
-  const double scale = std::ldexp(1.0, a.levelLo);
-  const int last_ = (1 << a.levelLo) - 1;
-  return floorToInt(a.uvLo.x * scale, last_) != floorToInt(a.uvHi.x * scale, last_) ||
-         floorToInt(a.uvLo.y * scale, last_) != floorToInt(a.uvHi.y * scale, last_);
 }
 
 }  // namespace vt::reference

@@ -8,14 +8,12 @@
 #include <vector>
 
 #include "format/page_address.h"
-#include "reference/frame.h"
+#include "render/frame.h"
 #include "shader/needbuffer.h"
 
-namespace vt::reference {
-
-using vt::decodeNeed;
+namespace vt {
 
 std::vector<uint8_t> colorImage(const Frame& frame);
 std::vector<uint8_t> needImage(const Frame& frame, bool need8);
 
-}  // namespace vt::reference
+}  // namespace vt

@@ -3,27 +3,14 @@
 // parameter free, everything a conforming implementation could produce at a pixel.
 //
 // A pixel's set is a list of alternatives, one per triangle that may own the pixel (and one with
-// no triangle where the pixel may stay empty). For each the oracle bounds, with interval
-// arithmetic over the model's parameters (interval.h):
-//   - the vertices: each within 2^-subpixelBits pixel of its float window position (snapping to
-//     the model's sub-pixel grid), hence the barycentric coordinates at the pixel centre, the
-//     coverage (sure, possible, impossible) and the window depth;
-//   - (s, t) at the pixel and at the other three pixels of its 2x2 quad (helpers included), as
-//     the perspective-correct ratio of two interpolated planes; fine derivatives from the same
-//     interpolated planes (so their errors stay correlated, as on the hardware);
-//   - the LOD through sqrt and log2 with the model's errors, hence the needed levels;
-//   - per channel the colour: the bilinear filter over every texel position (s, t) can reach on
-//     every level the LOD can blend, each page looked up in the indirection table, widened by the
-//     sub-texel and weight precision, blended over the reachable weights, and converted to 8 bits
-//     as the model allows.
-// Which triangle may own a pixel follows the GL rules on the candidates Embree gathers: it must
-// possibly cover the centre and possibly pass GL_LESS against every candidate that surely covers.
+// no triangle where the pixel may stay empty). The oracle builds them
+// (reference/result_set_builder.h); a comparison reads them (reference/frame_comparison.h).
 
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>
 
-namespace vt::reference {
+namespace vt {
 
 // The parameter that explains a difference (or that admitted an alternative).
 enum ResultReason : uint8_t {
@@ -60,4 +47,4 @@ struct ResultSets {
 // Whether the set of pixel i holds more than one value.
 bool ambiguous(const ResultSets& sets, size_t pixel);
 
-}  // namespace vt::reference
+}  // namespace vt

@@ -1,4 +1,4 @@
-#include "reference/cache_state.h"
+#include "render/cache_state.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "common/resource_limits.h"
 
-namespace vt::reference {
+namespace vt {
 
 glm::u8vec4 expandToRgba(const std::byte* t, uint32_t channels) {
   const auto c = [&](uint32_t k) { return std::to_integer<uint8_t>(t[k]); };
@@ -71,14 +71,13 @@ CacheState placePages(const VirtualTextureReader& reader, std::span<const Placed
   }
   if (frameOf[0][0].x < 0)
     throw std::invalid_argument("the root page (0) is not resident: every lookup falls back to it");
-  state.indirection.resize(d.levelCount);
+  state.indirection = IndirectionTable(d.levelCount);
   for (uint32_t m = 0; m < d.levelCount; ++m) {
-    state.indirection[m].resize(pagesInLevel(m));
     for (uint64_t p = 0; p < pagesInLevel(m); ++p) {
       const PageId page = fromRelativeIndex(p, m);
       const glm::ivec2 frame = frameOf[m][p];
-      state.indirection[m][p] =
-          frame.x >= 0 ? glm::u16vec4(frame.x, frame.y, m, 0) : state.entry(parent(page));
+      state.indirection.set(page, frame.x >= 0 ? glm::u16vec4(frame.x, frame.y, m, 0)
+                                               : state.indirection.entry(parent(page)));
     }
   }
   return state;
@@ -142,9 +141,8 @@ CacheState rootOnlyCache(const TextureDescription& description) {
   cache.widthTexels = cache.heightTexels = description.storedPageSide();
   cache.residentPages = {0};
   cache.texels.assign(uint64_t{cache.widthTexels} * cache.heightTexels * 4, 0);
-  for (uint32_t m = 0; m < description.levelCount; ++m)
-    cache.indirection.emplace_back(pagesPerSide(m) * pagesPerSide(m), glm::u16vec4(0));
+  cache.indirection = IndirectionTable(description.levelCount);
   return cache;
 }
 
-}  // namespace vt::reference
+}  // namespace vt

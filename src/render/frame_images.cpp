@@ -1,10 +1,10 @@
-#include "reference/frame_images.h"
+#include "render/frame_images.h"
 
 #include <array>
 
 #include "common/level_hues.h"
 
-namespace vt::reference {
+namespace vt {
 namespace {
 
 size_t flippedIndex(const Frame& frame, int px, int imageRow) {
@@ -46,4 +46,4 @@ std::vector<uint8_t> needImage(const Frame& frame, bool need8) {
   return image;
 }
 
-}  // namespace vt::reference
+}  // namespace vt

@@ -1,4 +1,4 @@
-#include "reference/precision_model.h"
+#include "render/precision_model.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
-#include "reference/precision_model_file.h"
+#include "render/precision_model_file.h"
 #include "test_support.h"
 
 namespace vt::reference {

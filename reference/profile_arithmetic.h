@@ -1,0 +1,27 @@
+#pragma once
+// The precision profiles' arithmetic where it is more than IEEE float in source order
+// (render/precision_profile.h): llvmpipe's log2 and the denormal flushing of fragment arithmetic.
+
+#include "render/precision_profile.h"
+
+namespace vt::reference {
+
+// llvmpipe's log2 (DESIGN section 7, rule 8), bit for bit.
+float llvmpipeLog2(float x);
+
+// The profile's log2.
+float profileLog2(PrecisionProfile profile, float x);
+
+// Sets the calling thread's denormal flushing to what `profile` does; restores on destruction.
+class DenormalMode {
+ public:
+  explicit DenormalMode(PrecisionProfile profile);
+  ~DenormalMode();
+  DenormalMode(const DenormalMode&) = delete;
+  DenormalMode& operator=(const DenormalMode&) = delete;
+
+ private:
+  unsigned saved_;
+};
+
+}  // namespace vt::reference

@@ -1,0 +1,37 @@
+#include "render/backend.h"
+
+#include <stdexcept>
+
+#include "gl/gl_frame_renderer.h"
+#include "gl/headless_context.h"
+#include "reference/oracle_frame_renderer.h"
+
+namespace vt {
+
+Backend parseBackend(const std::string& name) {
+  if (name == "oracle") return Backend::kOracle;
+  if (name == "gl") return Backend::kGl;
+  throw std::invalid_argument("backend '" + name + "' is not one of oracle, gl");
+}
+
+std::string toString(Backend backend) { return backend == Backend::kGl ? "gl" : "oracle"; }
+
+BackendContext::BackendContext(Backend backend)
+    : gl_(backend == Backend::kGl ? std::make_unique<HeadlessContext>() : nullptr) {}
+
+BackendContext::~BackendContext() = default;
+
+std::unique_ptr<FrameRenderer> makeFrameRenderer(Backend backend, const CacheState& cache) {
+  if (backend == Backend::kGl) return std::make_unique<GlFrameRenderer>(cache);
+  return std::make_unique<reference::OracleFrameRenderer>(cache);
+}
+
+std::unique_ptr<FrameRenderer> makeFrameRendererOfEveryPage(Backend backend,
+                                                            const VirtualTextureReader& reader,
+                                                            const CacheState& fitting) {
+  if (backend == Backend::kOracle && fitting.residentPages.size() < reader.storedPageCount())
+    return std::make_unique<reference::OracleFrameRenderer>(reader);
+  return makeFrameRenderer(backend, fitting);
+}
+
+}  // namespace vt

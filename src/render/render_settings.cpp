@@ -1,0 +1,10 @@
+#include "render/render_settings.h"
+
+namespace vt {
+
+void applyModel(RenderSettings& settings, const PrecisionModel& model) {
+  settings.profile = model.arithmetic;
+  settings.model = std::make_shared<const PrecisionModel>(model);
+}
+
+}  // namespace vt
