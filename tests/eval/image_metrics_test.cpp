@@ -38,13 +38,42 @@ TEST(ImageMetrics, ConstantImagesHaveTheirClosedFormValues) {
 struct Definition {
   double ssim, wssim;
 };
+
+// SSIM's Q of one window from its weighted means and mean squares (the constants and the order of
+// operations of image_metrics.cpp), and the means of Q over the windows in window order: plain,
+// and weighted by WSSIM's weight (falling from the image's centre; pixel centres at +0.5).
+class WindowAverages {
+ public:
+  WindowAverages(const ImageView& image, int taps)
+      : first_(-(taps / 2)),
+        centreX_(0.5 * image.width),
+        centreY_(0.5 * image.height),
+        radius_(std::hypot(centreX_, centreY_)) {}
+
+  void add(int left, int top, double mx, double my, double xx, double yy, double xy) {
+    const double c1 = (0.01 * 255) * (0.01 * 255), c2 = (0.03 * 255) * (0.03 * 255);
+    const double vx = xx - mx * mx, vy = yy - my * my, cxy = xy - mx * my;
+    const double q =
+        ((2 * mx * my + c1) * (2 * cxy + c2)) / ((mx * mx + my * my + c1) * (vx + vy + c2));
+    const double r = std::hypot(left - first_ + 0.5 - centreX_, top - first_ + 0.5 - centreY_);
+    const double w = std::max(0.0, 1.0 - r / radius_);
+    sum_ += q;
+    count_ += 1;
+    weighted_ += w * q;
+    weights_ += w;
+  }
+
+  Definition result() const { return {sum_ / count_, weighted_ / weights_}; }
+
+ private:
+  int first_;
+  double centreX_, centreY_, radius_;
+  double sum_ = 0, count_ = 0, weighted_ = 0, weights_ = 0;
+};
 Definition byDefinition(const ImageView& a, const ImageView& b, const std::vector<double>& taps) {
   const std::vector<double> x = luminance(a), y = luminance(b);
-  const int n = static_cast<int>(taps.size()), first = -(n / 2);
-  const double c1 = 2.55 * 2.55, c2 = 7.65 * 7.65;
-  const double centreX = 0.5 * a.width, centreY = 0.5 * a.height;
-  const double radius = std::hypot(centreX, centreY);
-  double sum = 0, count = 0, weighted = 0, weights = 0;
+  const int n = static_cast<int>(taps.size());
+  WindowAverages averages(a, n);
   for (int top = 0; top + n <= a.height; ++top)
     for (int left = 0; left + n <= a.width; ++left) {
       double mx = 0, my = 0, xx = 0, yy = 0, xy = 0;
@@ -59,16 +88,9 @@ Definition byDefinition(const ImageView& a, const ImageView& b, const std::vecto
           yy += k * y[p] * y[p];
           xy += k * x[p] * y[p];
         }
-      const double q = ((2 * mx * my + c1) * (2 * (xy - mx * my) + c2)) /
-                       ((mx * mx + my * my + c1) * (xx - mx * mx + yy - my * my + c2));
-      const double r = std::hypot(left - first + 0.5 - centreX, top - first + 0.5 - centreY);
-      const double w = std::max(0.0, 1.0 - r / radius);
-      sum += q;
-      count += 1;
-      weighted += w * q;
-      weights += w;
+      averages.add(left, top, mx, my, xx, yy, xy);
     }
-  return {sum / count, weighted / weights};
+  return averages.result();
 }
 
 TEST(ImageMetrics, SeparableWindowsAgreeWithTheDefinition) {
@@ -133,11 +155,8 @@ TEST(ImageMetrics, APreparedReferenceComparesLikeAFreshOne) {
 Definition inSeparableOrder(const ImageView& a, const ImageView& b,
                             const std::vector<double>& taps) {
   const std::vector<double> x = luminance(a), y = luminance(b);
-  const int n = static_cast<int>(taps.size()), first = -(n / 2);
-  const double c1 = (0.01 * 255) * (0.01 * 255), c2 = (0.03 * 255) * (0.03 * 255);
-  const double centreX = 0.5 * a.width, centreY = 0.5 * a.height;
-  const double radius = std::hypot(centreX, centreY);
-  double sum = 0, count = 0, weighted = 0, weights = 0;
+  const int n = static_cast<int>(taps.size());
+  WindowAverages averages(a, n);
   for (int top = 0; top + n <= a.height; ++top)
     for (int left = 0; left + n <= a.width; ++left) {
       double mx = 0, my = 0, xx = 0, yy = 0, xy = 0;
@@ -160,16 +179,9 @@ Definition inSeparableOrder(const ImageView& a, const ImageView& b,
         yy += k * ryy;
         xy += k * rxy;
       }
-      const double vx = xx - mx * mx, vy = yy - my * my, cxy = xy - mx * my;
-      const double q = ((2 * mx * my + c1) * (2 * cxy + c2)) / ((mx * mx + my * my + c1) * (vx + vy + c2));
-      const double r = std::hypot(left - first + 0.5 - centreX, top - first + 0.5 - centreY);
-      const double w = std::max(0.0, 1.0 - r / radius);
-      sum += q;
-      count += 1;
-      weighted += w * q;
-      weights += w;
+      averages.add(left, top, mx, my, xx, yy, xy);
     }
-  return {sum / count, weighted / weights};
+  return averages.result();
 }
 
 // Frames of an evaluation mostly equal their reference but in patches: compare() skips the
