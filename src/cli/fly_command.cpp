@@ -14,7 +14,6 @@
 #include "cli/argument_checks.h"
 #include "cli/commands.h"
 #include "cli/configuration_options.h"
-#include "cli/flight_capture.h"
 #include "cli/size_argument.h"
 #include "common/output_path.h"
 #include "common/posix_file.h"
@@ -28,6 +27,7 @@
 #include "scene/camera_path.h"
 #include "scene/obj_mesh.h"
 #include "shader/needbuffer.h"
+#include "verify/flight_capture.h"
 
 namespace vt {
 namespace {

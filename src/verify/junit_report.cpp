@@ -1,4 +1,4 @@
-#include "cli/junit_report.h"
+#include "verify/junit_report.h"
 
 #include <cstdio>
 

@@ -1,8 +1,8 @@
-#include "cli/flight_capture.h"
+#include "verify/flight_capture.h"
 
 #include <cstdio>
 
-#include "cli/oracle_conversions.h"
+#include "verify/oracle_conversions.h"
 #include "vt/oracle/capture.h"
 
 namespace vt {

@@ -1,4 +1,4 @@
-#include "cli/oracle_conversions.h"
+#include "verify/oracle_conversions.h"
 
 namespace vt {
 

@@ -1,4 +1,4 @@
-#include "cli/crosscheck_captures.h"
+#include "verify/crosscheck_captures.h"
 
 #include <chrono>
 #include <cstdio>
@@ -7,10 +7,10 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "cli/comparison_report.h"
-#include "cli/junit_report.h"
 #include "common/posix_file.h"
 #include "render/precision_model_file.h"
+#include "verify/comparison_report.h"
+#include "verify/junit_report.h"
 #include "vt/oracle.h"
 
 namespace vt {
@@ -50,17 +50,20 @@ std::string pixelLine(const oracle::PixelDifference& d, int height) {
 
 }  // namespace
 
-bool crosscheckCaptures(const CapturesCheckOptions& options) {
+CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options) {
   const std::vector<std::filesystem::path> manifests = oracle::findCaptures(options.captures);
   if (manifests.empty())
     throw oracle::Error(options.captures.string() + ": no captures (*.json) in the folder");
-  std::filesystem::create_directories(options.output);
+  TemporaryFolder staging(options.output, "summary.json");
+  const std::filesystem::path& folder = staging.path();
 
   std::map<std::filesystem::path, std::unique_ptr<oracle::Texture>> textures;
   std::vector<JUnitCase> cases;
   nlohmann::json frames = nlohmann::json::array();
-  ComparisonTotals totals;
-  size_t errors = 0;
+  CapturesCheck check;
+  check.captures = manifests.size();
+  ComparisonTotals& totals = check.totals;
+  size_t& errors = check.unreadable;
   std::printf("crosscheck of %zu captures in %s\n", manifests.size(),
               options.captures.string().c_str());
   for (const std::filesystem::path& manifest : manifests) {
@@ -79,17 +82,18 @@ bool crosscheckCaptures(const CapturesCheckOptions& options) {
       const bool named = !measured && (options.profile == "auto" || options.profile == "exact" ||
                                        options.profile == "llvmpipe" || options.profile == "gl45");
       const oracle::CaptureCheck check =
-          named ? oracle::checkCapture(capture, *texture,
-                                       options.profile == "auto"
-                                           ? oracle::profileForRenderer(capture.renderer)
-                                           : oracle::parseProfile(options.profile),
-                                       options.threads)
-                : oracle::checkCapture(capture, *texture,
-                                       measured ? *measured : std::filesystem::path(options.profile),
-                                       options.threads);
+          named
+              ? oracle::checkCapture(capture, *texture,
+                                     options.profile == "auto"
+                                         ? oracle::profileForRenderer(capture.renderer)
+                                         : oracle::parseProfile(options.profile),
+                                     options.threads)
+              : oracle::checkCapture(capture, *texture,
+                                     measured ? *measured : std::filesystem::path(options.profile),
+                                     options.threads);
       const oracle::Comparison& c = check.comparison;
       const oracle::Viewport v = capture.scene.viewport;
-      writeComparisonImages(options.output, name, v, c);
+      writeComparisonImages(folder, name, v, c);
       nlohmann::json mismatches = nlohmann::json::array();
       for (const oracle::PixelDifference& d : c.mismatches)
         mismatches.push_back(pixelJson(d, v.height));
@@ -127,7 +131,7 @@ bool crosscheckCaptures(const CapturesCheckOptions& options) {
     cases.push_back(testCase);
   }
 
-  const bool passed = totals.unexplained == 0 && errors == 0;
+  const bool passed = check.passed();
   nlohmann::json totalsJson = totals.json();
   totalsJson["captures"] = manifests.size();
   totalsJson["unreadable"] = errors;
@@ -136,13 +140,13 @@ bool crosscheckCaptures(const CapturesCheckOptions& options) {
                                   {"frames", frames},
                                   {"totals", totalsJson},
                                   {"passed", passed}};
-  writeFileAtomically(options.output / "summary.json", summary.dump(2) + "\n");
-  writeJUnitReport(options.output / "junit.xml", "vt crosscheck " + options.captures.string(),
-                   cases);
+  writeFileAtomically(folder / "summary.json", summary.dump(2) + "\n");
+  writeJUnitReport(folder / "junit.xml", "vt crosscheck " + options.captures.string(), cases);
   std::printf("crosscheck: %s, %zu of %zu captures unreadable: %s\n", totals.line().c_str(), errors,
               manifests.size(), passed ? "passed" : "FAILED");
   std::fflush(stdout);
-  return passed;
+  staging.commit();
+  return check;
 }
 
 }  // namespace vt

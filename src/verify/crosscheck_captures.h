@@ -1,0 +1,34 @@
+#pragma once
+// vt crosscheck --captures DIR: every capture of a folder (<vt/oracle/capture.h>), from any
+// renderer, compared with the oracle under a precision profile.
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+
+#include "verify/comparison_report.h"
+
+namespace vt {
+
+struct CapturesCheckOptions {
+  std::filesystem::path captures;
+  // Receives summary.json, junit.xml and per capture the colour difference and the pixel classes,
+  // complete or not at all: written into a temporary folder that replaces `output` at the end.
+  std::filesystem::path output;
+  // exact, llvmpipe, gl45, a model file (.json), or auto: per capture, a measured model of its
+  // renderer ($VT_PRECISION_MODELS), else the shipped model for its renderer's name.
+  std::string profile = "auto";
+  unsigned threads = 0;  // the oracle's; 0: every core
+};
+
+struct CapturesCheck {
+  ComparisonTotals totals;
+  size_t captures = 0, unreadable = 0;
+  bool passed() const { return totals.unexplained == 0 && unreadable == 0; }
+};
+
+// Prints one line per capture. A capture that cannot be read counts as unreadable and fails the
+// check; a folder without captures throws oracle::Error before anything is written.
+CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options);
+
+}  // namespace vt

@@ -1,0 +1,136 @@
+#include "verify/crosscheck_scenes.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "common/posix_file.h"
+#include "format/virtual_texture_reader.h"
+#include "gl/headless_context.h"
+#include "render/backend.h"
+#include "render/precision_model_file.h"
+#include "scene/clip_space_mesh.h"
+#include "shader/needbuffer.h"
+#include "verify/oracle_conversions.h"
+
+namespace vt {
+namespace {
+
+std::string environment(const char* name) {
+  const char* value = std::getenv(name);
+  return value ? value : "";
+}
+
+struct Mode {
+  const char* name;
+  bool exactFilter, trilinear, need8;
+};
+
+// The model file handed to the oracle's API by its name: a measured model that auto found, or
+// the file named; none for the shipped models, which travel as a profile.
+std::string modelFileFor(const std::string& model, const std::string& renderer) {
+  if (model == "auto") {
+    const std::optional<std::filesystem::path> measured = measuredModelFile(renderer);
+    return measured ? measured->string() : "";
+  }
+  return model == "exact" || model == "llvmpipe" || model == "gl45" ? "" : model;
+}
+
+}  // namespace
+
+std::vector<NamedScene> flythroughViews(const Mesh& mesh, const CameraPath& path, int every) {
+  std::vector<NamedScene> views;
+  for (int frame = 0; frame < path.frameCount(); frame += every) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame%04d", frame);
+    views.push_back({name, mesh, path.at(frame)});
+  }
+  return views;
+}
+
+std::vector<NamedScene> namedSceneViews(const std::string& list) {
+  std::vector<NamedScene> views;
+  if (list == "all") {
+    for (const std::string& name : testSceneNames()) views.push_back(testScene(name));
+    return views;
+  }
+  std::stringstream names(list);
+  for (std::string name; std::getline(names, name, ',');) views.push_back(testScene(name));
+  return views;
+}
+
+ScenesCheck crosscheckScenes(const ScenesCheckOptions& options) {
+  TemporaryFolder staging(options.output, "summary.json");
+  const std::filesystem::path& folder = staging.path();
+  ::setenv("LP_NUM_THREADS",
+           environment("LP_NUM_THREADS").empty() ? "2" : environment("LP_NUM_THREADS").c_str(), 1);
+  const HeadlessContext context;
+  ScenesCheck check{context.renderer(), context.version(), "", {}};
+  RenderSettings settings;
+  settings.viewport = options.viewport;
+  const PrecisionModel model = resolveModel(options.model, check.renderer);
+  if (const std::string warning = calibrationMismatch(model, check.renderer, check.version);
+      !warning.empty())
+    std::cerr << "vt crosscheck: " << warning << "\n";
+  applyModel(settings, model);
+  check.model = settings.model->name;
+  const std::string modelFile = modelFileFor(options.model, check.renderer);
+
+  const VirtualTextureReader reader(options.texture);
+  // Uploaded for GL, and the same pages in the same frames prepared for the oracle's API.
+  const CacheState cache = cacheOfLevels(reader, -1, 8192);
+  const std::unique_ptr<FrameRenderer> gl = makeFrameRenderer(Backend::kGl, cache);
+  const oracle::Texture texture = oracle::Texture::open(options.texture);
+  const oracle::PreparedCache prepared(texture, publicCacheState(cache));
+
+  std::vector<Mode> modes = {{"texelfetch-trilinear-need32", true, true, false},
+                             {"linear-bilinear-need8", false, false, true}};
+  if (!need8Encodes(reader.description().finestLevel())) modes.pop_back();
+
+  nlohmann::json summary;
+  summary["gl_renderer"] = check.renderer;
+  summary["gl_version"] = check.version;
+  summary["model"] = check.model;
+  summary["texture"] = options.texture.string();
+  summary["resident_pages"] = cache.residentPages.size();
+  summary["settings"] = {{"LP_NUM_THREADS", environment("LP_NUM_THREADS")},
+                         {"GALLIVM_PERF", environment("GALLIVM_PERF")},
+                         {"GALLIUM_OVERRIDE_CPU_CAPS", environment("GALLIUM_OVERRIDE_CPU_CAPS")},
+                         {"cpu_fma", static_cast<bool>(__builtin_cpu_supports("fma"))}};
+  summary["frames"] = nlohmann::json::array();
+  std::cout << "crosscheck on " << check.renderer << ", model " << check.model << ", "
+            << settings.viewport.width << " x " << settings.viewport.height << "\n";
+  for (const NamedScene& scene : options.views) {
+    const ClipSpaceMesh mesh = toClipSpace(scene.mesh, scene.camera, settings.viewport);
+    const oracle::Scene publicMesh = oracle::publicScene(mesh, settings.viewport);
+    for (const Mode& mode : modes) {
+      settings.exactFilter = mode.exactFilter;
+      settings.trilinear = mode.trilinear;
+      settings.need8 = mode.need8;
+      const oracle::Frame expected =
+          oracle::render(texture, publicMesh, prepared, publicRenderOptions(settings, modelFile));
+      const Frame frame = gl->render(mesh, settings);
+      const oracle::Comparison c =
+          oracle::compare(expected, frame.color, oracle::flatNeed(frame.need));
+      writeComparisonImages(folder, scene.name + "-" + mode.name, publicMesh.viewport, c);
+      nlohmann::json record = {{"scene", scene.name}, {"mode", mode.name}};
+      record.update(comparisonJson(c));
+      summary["frames"].push_back(record);
+      check.totals.add(c);
+      printComparison(scene.name, mode.name, c);
+    }
+  }
+  summary["totals"] = check.totals.json();
+  summary["passed"] = check.passed();
+  writeFileAtomically(folder / "summary.json", summary.dump(2) + "\n");
+  staging.commit();
+  std::printf("crosscheck: %s: %s\n", check.totals.line().c_str(),
+              check.passed() ? "passed" : "FAILED");
+  std::fflush(stdout);
+  return check;
+}
+
+}  // namespace vt
