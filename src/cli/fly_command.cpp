@@ -20,8 +20,8 @@
 #include "common/resource_limits.h"
 #include "eval/flight.h"
 #include "eval/flight_records.h"
-#include "gl/headless_context.h"
 #include "reference/texture_source.h"
+#include "render/backend.h"
 #include "runtime/needbuffer_scale.h"
 #include "scene/box_room.h"
 #include "scene/camera_path.h"
@@ -130,13 +130,11 @@ void addFlyCommand(CLI::App& app) {
     const FlightConfiguration configuration = configurationOptions->configuration();
     options.threadedStreaming = o->streaming == "thread";
     options.link = LinkModel{o->linkLatency, o->linkMegabytes * 1e6};
-    std::unique_ptr<HeadlessContext> context;
-    if (o->backend == "gl") context = std::make_unique<HeadlessContext>();
     options.backend = parseBackend(o->backend);
-    if (o->profile != "auto")
-      options.settings.profile = parsePrecisionProfile(o->profile);
-    else if (context)
-      options.settings.profile = modelForRenderer(context->renderer()).arithmetic;
+    const BackendContext context(options.backend);
+    options.settings.profile = o->profile == "auto"
+                                   ? modelForRenderer(context.renderer()).arithmetic
+                                   : parsePrecisionProfile(o->profile);
     // Reference images: every page resident, drawn by the oracle at the screen's resolution
     // (DESIGN section 5).
     std::unique_ptr<reference::ResidentTexture> everything;
@@ -164,8 +162,7 @@ void addFlyCommand(CLI::App& app) {
     }
 
     if (!o->capture.empty()) {
-      const std::string renderer =
-          context ? context->renderer() : "vt oracle (" + toString(options.settings.profile) + ")";
+      const std::string renderer = context.captureName(options.settings);
       options.wantsCapture = [&](int frame) { return frame % o->captureEvery == 0; };
       options.capture = [&, renderer](const FlightCaptureView& view) {
         writeFlightCapture(captureStaging->path(), view, reader, options.settings, renderer);

@@ -13,7 +13,7 @@
 #include "common/error.h"
 #include "common/output_path.h"
 #include "eval/golden.h"
-#include "gl/headless_context.h"
+#include "render/backend.h"
 #include "render/precision_model_file.h"
 
 namespace vt {
@@ -78,18 +78,16 @@ void addGoldenCommand(CLI::App& app) {
       ->capture_default_str();
   check->callback([c] {
     requireOutputFolder(c->output, {c->golden, c->texture, c->mesh, c->path});
-    std::unique_ptr<HeadlessContext> context;
-    PrecisionModel glModel = exactModel();
-    if (c->backend == "gl") {
-      context = std::make_unique<HeadlessContext>();
-      glModel = resolveModel(c->model, context->renderer());
-      if (const std::string warning =
-              calibrationMismatch(glModel, context->renderer(), context->version());
-          !warning.empty())
-        std::cerr << "vt golden check: " << warning << "\n";
-    }
-    const GoldenCheck result = checkGolden(c->golden, c->texture, c->mesh, c->path,
-                                           parseBackend(c->backend), glModel, c->output);
+    const Backend backend = parseBackend(c->backend);
+    const BackendContext context(backend);
+    // The oracle judges itself under the golden set's own profile; the model matters for GL.
+    const PrecisionModel glModel = resolveModel(c->model, context.renderer());
+    if (const std::string warning =
+            calibrationMismatch(glModel, context.renderer(), context.version());
+        !warning.empty())
+      std::cerr << "vt golden check: " << warning << "\n";
+    const GoldenCheck result =
+        checkGolden(c->golden, c->texture, c->mesh, c->path, backend, glModel, c->output);
     size_t passed = 0;
     for (const GoldenFrameCheck& frame : result.frames) {
       passed += frame.passed;

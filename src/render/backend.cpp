@@ -21,6 +21,15 @@ BackendContext::BackendContext(Backend backend)
 
 BackendContext::~BackendContext() = default;
 
+std::string BackendContext::renderer() const { return gl_ ? gl_->renderer() : kOracleRenderer; }
+
+std::string BackendContext::version() const { return gl_ ? gl_->version() : ""; }
+
+std::string BackendContext::captureName(const RenderSettings& settings) const {
+  return gl_ ? gl_->renderer()
+             : std::string(kOracleRenderer) + " (" + toString(settings.profile) + ")";
+}
+
 std::unique_ptr<FrameRenderer> makeFrameRenderer(Backend backend, const CacheState& cache) {
   if (backend == Backend::kGl) return std::make_unique<GlFrameRenderer>(cache);
   return std::make_unique<reference::OracleFrameRenderer>(cache);

@@ -7,6 +7,7 @@
 
 #include "format/virtual_texture_reader.h"
 #include "render/frame_renderer.h"
+#include "render/render_settings.h"
 
 namespace vt {
 
@@ -20,12 +21,24 @@ std::string toString(Backend backend);
 
 // What drawing with a backend needs on the calling thread while it lasts: for the GL path a
 // headless OpenGL 4.5 context (gl/headless_context.h), made current here; for the oracle nothing.
+inline constexpr const char* kOracleRenderer = "vt oracle";
+
 class BackendContext {
  public:
   explicit BackendContext(Backend backend);
   ~BackendContext();
   BackendContext(const BackendContext&) = delete;
   BackendContext& operator=(const BackendContext&) = delete;
+
+  // Who draws: GL_RENDERER and GL_VERSION of the context, or kOracleRenderer and the project's
+  // version for the oracle. Precision models are chosen by this name (modelForRenderer,
+  // resolveModel): for the oracle's name they give the oracle's own arithmetic, exact.
+  std::string renderer() const;
+  std::string version() const;
+  // The renderer's name for a capture drawn under `settings`: GL_RENDERER, or the oracle's name
+  // with its arithmetic ("vt oracle (llvmpipe)"), which picks that model when the capture is
+  // judged under auto.
+  std::string captureName(const RenderSettings& settings) const;
 
  private:
   std::unique_ptr<HeadlessContext> gl_;

@@ -1,16 +1,10 @@
 #include "scene/obj_mesh.h"
 
-#include <tiny_obj_loader.h>
-
-#include <cmath>
-#include <fstream>
-#include <iterator>
-#include <sstream>
 #include <string>
-#include <vector>
 
 #include "common/error.h"
 #include "common/input_file.h"
+#include "scene/obj_faces.h"
 
 namespace vt {
 
@@ -20,34 +14,18 @@ Mesh loadObjMesh(const std::filesystem::path& path) {
 }
 
 Mesh parseObjMesh(std::string_view text, const std::filesystem::path& path) {
-  tinyobj::attrib_t attributes;
-  std::vector<tinyobj::shape_t> shapes;
-  std::vector<tinyobj::material_t> materials;
-  std::string warning, error;
-  std::istringstream stream{std::string(text)};
   // No material reader: `mtllib` lines are skipped, the mesh needs no materials.
-  if (!tinyobj::LoadObj(&attributes, &shapes, &materials, &warning, &error, &stream, nullptr,
-                        /*triangulate=*/true, /*default_vcols_fallback=*/true))
-    throw InputError(path, "cannot read OBJ: " + error);
+  const ObjFaces obj = readObjFaces(text, path);
   Mesh mesh;
-  for (const auto& shape : shapes) {
-    for (const auto& index : shape.mesh.indices) {
-      if (index.texcoord_index < 0)
-        throw InputError(path, "shape '" + shape.name + "' has a face without texture coordinates");
-      const size_t v = static_cast<size_t>(index.vertex_index),
-                   t = static_cast<size_t>(index.texcoord_index);
-      if (3 * v + 2 >= attributes.vertices.size() || 2 * t + 1 >= attributes.texcoords.size())
-        throw InputError(path, "shape '" + shape.name + "' has an index out of range");
-      const glm::vec3 p(attributes.vertices[3 * v], attributes.vertices[3 * v + 1],
-                        attributes.vertices[3 * v + 2]);
-      const glm::vec2 uv(attributes.texcoords[2 * t], 1.0f - attributes.texcoords[2 * t + 1]);
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) ||
-          !std::isfinite(uv.x) || !std::isfinite(uv.y))
-        throw InputError(path, "shape '" + shape.name + "' has a vertex that is not finite");
-      mesh.indices.push_back(static_cast<uint32_t>(mesh.positions.size()));
-      mesh.positions.push_back(p);
-      mesh.uvs.push_back(uv);
-    }
+  for (const ObjFace& face : obj.faces) {
+    if (face.positions.size() < 3) continue;  // a point or a line draws nothing
+    if (!face.finite())
+      throw InputError(path,
+                       "shape '" + obj.shapes[face.shape] + "' has a vertex that is not finite");
+    fanTriangles(static_cast<uint32_t>(mesh.positions.size()),
+                 static_cast<uint32_t>(face.positions.size()), mesh.indices);
+    mesh.positions.insert(mesh.positions.end(), face.positions.begin(), face.positions.end());
+    mesh.uvs.insert(mesh.uvs.end(), face.uvs.begin(), face.uvs.end());
   }
   if (mesh.indices.empty()) throw InputError(path, "the mesh has no triangles");
   return mesh;

@@ -1,8 +1,9 @@
 #pragma once
-// Loads a triangle mesh with texture coordinates from a Wavefront OBJ file (tinyobjloader).
-// Texture coordinates are taken as virtual coordinates (s, t) with t along the texture's rows:
-// OBJ's v is flipped (t = 1 - v), as OBJ images have v up. Faces without texture coordinates, and
-// indices out of range, are errors naming the file.
+// Loads a triangle mesh with texture coordinates from a Wavefront OBJ file (scene/obj_faces.h:
+// polygons fanned from their first corner). Texture coordinates are taken as virtual coordinates
+// (s, t) with t along the texture's rows: OBJ's v is flipped (t = 1 - v), as OBJ images have v
+// up. Faces without texture coordinates, indices out of range and vertices that are not finite
+// are errors naming the file.
 
 #include <filesystem>
 #include <string_view>

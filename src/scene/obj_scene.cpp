@@ -12,6 +12,7 @@
 #include "common/image_file.h"
 #include "common/input_file.h"
 #include "scene/missing_texture.h"
+#include "scene/obj_faces.h"
 
 namespace vt {
 namespace {
@@ -145,61 +146,26 @@ TexturedScene loadObjScene(const std::filesystem::path& path,
 TexturedScene loadObjScene(const ObjSceneText& source, const std::filesystem::path& imageFolder) {
   const std::filesystem::path& path = source.path;
   std::map<std::string, std::filesystem::path> folders = materialFolders(source);
-  tinyobj::attrib_t attributes;
-  std::vector<tinyobj::shape_t> shapes;
-  std::vector<tinyobj::material_t> materials;
-  std::string warning, error;
-  std::istringstream obj(source.obj);
   LibraryReader libraries(source.materialLibraries);
-  // Each polygon stays one face (no triangulation); vertex colours are not used.
-  if (!tinyobj::LoadObj(&attributes, &shapes, &materials, &warning, &error, &obj, &libraries,
-                        /*triangulate=*/false, /*default_vcols_fallback=*/true))
-    throw InputError(path, "cannot read OBJ: " + error);
+  // Each polygon stays one face; vertex colours are not used.
+  const ObjFaces obj = readObjFaces(source.obj, path, &libraries);
 
   TexturedScene scene;
   scene.name = path.stem().string();
-  MaterialTextures textures(std::move(folders), imageFolder, materials, source, scene);
-  for (const auto& shape : shapes) {
-    size_t offset = 0;
-    for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
-      const size_t corners = shape.mesh.num_face_vertices[f];
-      std::vector<glm::vec3> positions;
-      std::vector<glm::vec2> uvs;
-      for (size_t c = 0; c < corners; ++c) {
-        const tinyobj::index_t& index = shape.mesh.indices[offset + c];
-        if (index.texcoord_index < 0)
-          throw InputError(path,
-                           "shape '" + shape.name + "' has a face without texture coordinates");
-        const auto v = static_cast<size_t>(index.vertex_index),
-                   t = static_cast<size_t>(index.texcoord_index);
-        if (index.vertex_index < 0 || 3 * v + 2 >= attributes.vertices.size() ||
-            2 * t + 1 >= attributes.texcoords.size())
-          throw InputError(path, "shape '" + shape.name + "' has an index out of range");
-        positions.emplace_back(attributes.vertices[3 * v], attributes.vertices[3 * v + 1],
-                               attributes.vertices[3 * v + 2]);
-        uvs.emplace_back(attributes.texcoords[2 * t], 1.0f - attributes.texcoords[2 * t + 1]);
-      }
-      offset += corners;
-      bool finite = corners >= 3;
-      for (size_t c = 0; c < corners; ++c)
-        finite = finite && std::isfinite(positions[c].x) && std::isfinite(positions[c].y) &&
-                 std::isfinite(positions[c].z) && std::isfinite(uvs[c].x) &&
-                 std::isfinite(uvs[c].y);
-      if (!finite) {
-        ++(corners >= 3 ? scene.skipped.notFinite : scene.skipped.degenerate);
-        continue;
-      }
-      const int material = shape.mesh.material_ids.empty() ? -1 : shape.mesh.material_ids[f];
-      const auto base = static_cast<uint32_t>(scene.positions.size());
-      TexturedFace face{.texture = textures.textureFor(material),
-                        .firstIndex = static_cast<uint32_t>(scene.indices.size()),
-                        .indexCount = static_cast<uint32_t>(3 * (corners - 2))};
-      scene.positions.insert(scene.positions.end(), positions.begin(), positions.end());
-      scene.uvs.insert(scene.uvs.end(), uvs.begin(), uvs.end());
-      for (uint32_t c = 1; c + 1 < corners; ++c)
-        scene.indices.insert(scene.indices.end(), {base, base + c, base + c + 1});
-      scene.faces.push_back(face);
+  MaterialTextures textures(std::move(folders), imageFolder, obj.materials, source, scene);
+  for (const ObjFace& face : obj.faces) {
+    if (!face.finite()) {
+      ++(face.positions.size() >= 3 ? scene.skipped.notFinite : scene.skipped.degenerate);
+      continue;
     }
+    const auto corners = static_cast<uint32_t>(face.positions.size());
+    const auto base = static_cast<uint32_t>(scene.positions.size());
+    scene.faces.push_back({.texture = textures.textureFor(face.material),
+                           .firstIndex = static_cast<uint32_t>(scene.indices.size()),
+                           .indexCount = 3 * (corners - 2)});
+    scene.positions.insert(scene.positions.end(), face.positions.begin(), face.positions.end());
+    scene.uvs.insert(scene.uvs.end(), face.uvs.begin(), face.uvs.end());
+    fanTriangles(base, corners, scene.indices);
   }
   if (scene.faces.empty()) throw InputError(path, "the mesh has no faces");
   return scene;

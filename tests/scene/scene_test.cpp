@@ -8,6 +8,7 @@
 #include "scene/box_room.h"
 #include "scene/camera.h"
 #include "scene/obj_mesh.h"
+#include "scene/obj_scene.h"
 #include "test_support.h"
 
 namespace vt {
@@ -61,17 +62,33 @@ TEST(BoxRoom, MapsEveryFaceInsideTheTexture) {
   }
 }
 
-TEST(ObjMesh, LoadsTrianglesAndFlipsV) {
+// A quad whose diagonal 1-3 is the shorter one (a loader that picks the shorter diagonal would cut
+// it there) and a pentagon: both loaders fan every polygon from its first corner, so the same OBJ
+// draws the same triangles whether it is flown as a mesh or retextured as a scene. Each corner's
+// vt is its position's (x / 16, y / 4), so the flip to t = 1 - v shows.
+TEST(ObjMesh, BothLoadersFanPolygonsFromTheirFirstCornerAndFlipV) {
   test::ScratchDirectory dir;
-  std::ofstream(dir / "quad.obj")
-      << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-         "f 1/1 2/2 3/3 4/4\n";
-  const Mesh mesh = loadObjMesh(dir / "quad.obj");
-  ASSERT_EQ(mesh.indices.size(), 6u);  // the quad, triangulated
-  for (size_t v = 0; v < mesh.positions.size(); ++v) {
-    // OBJ's v = 0 is the texture's last row (t = 1): here vt equals the position's (x, y).
-    EXPECT_EQ(mesh.uvs[v], glm::vec2(mesh.positions[v].x, 1.0f - mesh.positions[v].y));
-  }
+  const std::vector<glm::vec3> corners = {{0, 0, 0},  {3, 0, 0},  {4, 4, 0},  {0, 1, 0}, {10, 0, 0},
+                                          {11, 0, 0}, {12, 1, 0}, {11, 2, 0}, {10, 1, 0}};
+  std::ofstream obj(dir / "polygons.obj");
+  for (const glm::vec3& p : corners) obj << "v " << p.x << " " << p.y << " 0\n";
+  for (const glm::vec3& p : corners) obj << "vt " << p.x / 16 << " " << p.y / 4 << "\n";
+  obj << "f 1/1 2/2 3/3 4/4\nf 5/5 6/6 7/7 8/8 9/9\n";
+  obj.close();
+  const Mesh mesh = loadObjMesh(dir / "polygons.obj");
+  const std::vector<uint32_t> fan = {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7, 4, 7, 8};
+  EXPECT_EQ(mesh.indices, fan);
+  EXPECT_EQ(mesh.positions, corners);
+  for (size_t v = 0; v < corners.size(); ++v)
+    EXPECT_EQ(mesh.uvs[v], glm::vec2(corners[v].x / 16, 1.0f - corners[v].y / 4));
+
+  const TexturedScene scene = loadObjScene(dir / "polygons.obj", dir / "images");
+  EXPECT_EQ(scene.indices, fan);
+  EXPECT_EQ(scene.positions, mesh.positions);
+  EXPECT_EQ(scene.uvs, mesh.uvs);
+  ASSERT_EQ(scene.faces.size(), 2u);
+  EXPECT_EQ(scene.faces[1].firstIndex, 6u);
+  EXPECT_EQ(scene.faces[1].indexCount, 9u);
 }
 
 TEST(ObjMesh, BadFilesNameTheProblem) {
