@@ -5,6 +5,7 @@
 // conversion of a colour and the shader's uniform parameters, which every oracle pass shares.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -28,17 +29,25 @@ class ResidentBackend {
 
   float log2(float x) { return profileLog2(profile_, x); }
 
-  // Neighbouring fragments mostly look up the page the last lookup named: then neither the
-  // ancestor search nor the shared page table (a lock) is needed again.
+  // Neighbouring fragments mostly look up pages a recent lookup named (trilinear filtering
+  // alternates between two levels; a quad may straddle a page edge): those are remembered, so the
+  // ancestor search and the shared page table (a lock) are needed only for a page not among the
+  // last kRemembered.
   shader::uvec4 vtFetchIndirection(shader::ivec2 page, int level) {
     const PageId wanted{static_cast<uint32_t>(page.x), static_cast<uint32_t>(page.y),
                         static_cast<uint32_t>(level)};
-    if (texels_ == nullptr || wanted != wanted_) {
-      wanted_ = wanted;
-      current_ = texture_->residentPage(wanted);
-      texels_ = &texture_->texels(current_);
-    }
-    return shader::uvec4(0u, 0u, current_.level, 0u);
+    for (size_t k = 0; k < remembered_; ++k)
+      if (recent_[k].wanted == wanted) {
+        texels_ = recent_[k].texels;
+        return shader::uvec4(0u, 0u, recent_[k].resident.level, 0u);
+      }
+    Lookup& slot = recent_[next_];
+    next_ = (next_ + 1) % kRemembered;
+    remembered_ = std::min(remembered_ + 1, kRemembered);
+    slot.wanted = wanted;
+    slot.resident = texture_->residentPage(wanted);
+    slot.texels = texels_ = &texture_->texels(slot.resident);
+    return shader::uvec4(0u, 0u, slot.resident.level, 0u);
   }
 
   glm::u8vec4 fetch8(shader::ivec2 texel) const {
@@ -59,8 +68,14 @@ class ResidentBackend {
  private:
   const ResidentTexture* texture_;
   PrecisionProfile profile_;
-  PageId wanted_{}, current_{};
-  const std::vector<std::byte>* texels_ = nullptr;
+  struct Lookup {
+    PageId wanted, resident;
+    const std::vector<std::byte>* texels;
+  };
+  static constexpr size_t kRemembered = 4;
+  std::array<Lookup, kRemembered> recent_{};
+  size_t remembered_ = 0, next_ = 0;
+  const std::vector<std::byte>* texels_ = nullptr;  // the last lookup's page
 };
 
 // The shader's view of a CacheState: the indirection table and the cache texture as uploaded.
