@@ -28,8 +28,22 @@ float llvmpipeLog2(float x) {
   return std::fma(y, p, e);
 }
 
+float softpipeLog2(float x) {
+  // tgsi_exec's micro_lg2: the C library's logf, then one float multiply by (float)M_LOG2E.
+  const float natural = std::log(x);
+  return natural * 1.442695f;
+}
+
 float profileLog2(PrecisionProfile profile, float x) {
-  return profile == PrecisionProfile::kLlvmpipe ? llvmpipeLog2(x) : std::log2(x);
+  switch (profile) {
+    case PrecisionProfile::kLlvmpipe:
+      return llvmpipeLog2(x);
+    case PrecisionProfile::kSoftpipe:
+      return softpipeLog2(x);
+    case PrecisionProfile::kExact:
+      break;
+  }
+  return std::log2(x);
 }
 
 DenormalMode::DenormalMode(PrecisionProfile profile) : saved_(_mm_getcsr()) {

@@ -22,19 +22,7 @@ namespace {
 using shader::vec2;
 using shader::vec4;
 
-struct Attributes {
-  vec2 uv;
-  float w;
-};
-
-Attributes attributesAt(const SetupTriangle& t, int px, int py, bool fused) {
-  const float q = evaluatePlane(t.oneOverW, px, py, fused);
-  const float recip = 1.0f / q;
-  return {
-      vec2(evaluatePlane(t.s, px, py, fused) * recip, evaluatePlane(t.t, px, py, fused) * recip),
-      recip};
-}
-
+using Attributes = PixelAttributes;
 
 }  // namespace
 
@@ -101,7 +89,8 @@ void sizeFrame(Frame& frame, Viewport viewport, bool debug) {
 struct FrameJob {
   const RenderSettings& settings;
   Viewport viewport;
-  bool fused, debug;
+  PrecisionProfile profile;
+  bool debug;
   const std::vector<SetupTriangle>& triangles;
   const Visibility& visibility;
   const PrecisionModel* model;  // null under a pinned model: no result sets
@@ -169,7 +158,7 @@ class TileShader {
       quadTriangle_[static_cast<size_t>(slot)] = triangle;
       const SetupTriangle& t = job_.triangles[static_cast<size_t>(triangle)];
       for (int q = 0; q < 4; ++q)
-        at[static_cast<size_t>(q)] = attributesAt(t, qx + (q & 1), qy + (q >> 1), job_.fused);
+        at[static_cast<size_t>(q)] = attributesAt(t, qx + (q & 1), qy + (q >> 1), job_.profile);
       ++slots_;
     }
     return at;
@@ -206,10 +195,9 @@ class TileShader {
     const Attributes below = at[static_cast<size_t>(column)],
                      above = at[static_cast<size_t>(2 + column)];
     const vec2 dUVdx = right.uv - left.uv, dUVdy = above.uv - below.uv;
-    const shader::VtFragment f = job_.settings.needOnly
-                                     ? needOfFragment(here.uv, dUVdx, dUVdy)
-                                     : shader_.vtShadeFragment(here.uv, dUVdx, dUVdy,
-                                                               job_.parameters);
+    const shader::VtFragment f =
+        job_.settings.needOnly ? needOfFragment(here.uv, dUVdx, dUVdy)
+                               : shader_.vtShadeFragment(here.uv, dUVdx, dUVdy, job_.parameters);
 
     Frame& frame = job_.frame;
     const size_t index = indexOf(px, py);
@@ -282,24 +270,23 @@ SetShading setShading(const TextureDescription& d, const RenderSettings& setting
   return shading;
 }
 
-
 template <class Backend, class Source>
 void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescription& d,
             glm::vec2 cacheSize, const RenderSettings& settings, Frame& frame) {
   const Viewport viewport = settings.viewport;
   // The thread limit covers everything: setup, Embree's scene build and the tiles.
   const ThreadLimit parallelism(settings.threads);
-  const bool fused = usesFusedPlanes(settings.profile);
-  const std::vector<SetupTriangle> triangles = setupTriangles(mesh, viewport, fused);
+  const std::vector<SetupTriangle> triangles = setupTriangles(mesh, viewport, settings.profile);
   // Under a model with free parameters, a coarser sub-pixel grid may cover centres one pixel
   // beyond those the 8-bit grid covers.
   const PrecisionModel* model =
       settings.model && !settings.model->pinned() ? settings.model.get() : nullptr;
-  const Visibility visibility(triangles, viewport, settings.depthFormat, fused, model ? 1 : 0);
+  const Visibility visibility(triangles, viewport, settings.depthFormat, settings.profile,
+                              model ? 1 : 0);
   sizeFrame(frame, viewport, settings.debugChannels);
   const FrameJob job{settings,
                      viewport,
-                     fused,
+                     settings.profile,
                      settings.debugChannels,
                      triangles,
                      visibility,

@@ -168,10 +168,9 @@ class Builder {
 
   // Window depth of candidate t at (px, py) as the depth test compares it.
   Interval depth(const SetupTriangle& t, int px, int py, DepthFormat format) const {
-    const bool fused = usesFusedPlanes(model_.arithmetic);
     const bool pinned =
         model_.coveragePinned() && model_.depthUlps == 0 && model_.depthRoundsToNearest;
-    const double own = windowDepth(t, px, py, fused);
+    const double own = windowDepth(t, px, py, model_.arithmetic);
     if (pinned) return Interval::point(own);
     const Barycentrics l = barycentrics(
         cornerBoxes(t, std::ldexp(1.0, -model_.subpixelBits), viewport_), px + 0.5, py + 0.5);
@@ -194,12 +193,7 @@ class Builder {
     Interval dsdx, dtdx, dsdy, dtdy;
     if (attributesPinned) {
       // The oracle's own float values at the quad's pixels (renderer.cpp computes them alike).
-      const bool fused = usesFusedPlanes(model_.arithmetic);
-      const auto at = [&](int x, int y) {
-        const float recip = 1.0f / evaluatePlane(t.oneOverW, x, y, fused);
-        return glm::vec2(evaluatePlane(t.s, x, y, fused) * recip,
-                         evaluatePlane(t.t, x, y, fused) * recip);
-      };
+      const auto at = [&](int x, int y) { return attributesAt(t, x, y, model_.arithmetic).uv; };
       const glm::vec2 here = at(px, py);
       const glm::vec2 dx = at(qx + 1, qy + row) - at(qx, qy + row);
       const glm::vec2 dy = at(qx + column, qy + 1) - at(qx + column, qy);

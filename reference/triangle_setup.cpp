@@ -1,7 +1,9 @@
 #include "reference/triangle_setup.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 
 #include "reference/parallel_for.h"
 
@@ -167,13 +169,147 @@ bool setupOne(WindowVertex v0, WindowVertex v1, WindowVertex v2, Viewport viewpo
   return out.minX <= out.maxX && out.minY <= out.maxY;
 }
 
+// float to int as x86-64's cvttss2si converts it (the C casts of softpipe's setup): toward zero,
+// and INT_MIN for NaN and values out of range.
+int truncateToInt(float value) {
+  if (!(value >= -2147483648.0f && value < 2147483648.0f)) return INT32_MIN;
+  return static_cast<int>(value);
+}
+
+// One edge of softpipe's setup (sp_setup.c): from start to end, its x at the first row centre
+// at or above the start, and its rows from there.
+struct SpanEdge {
+  float dx = 0, dy = 0, dxdy = 0, sx = 0, sy = 0;
+};
+
+SpanEdge spanEdge(const WindowVertex& from, const WindowVertex& to, float startX, float startY) {
+  SpanEdge e;
+  e.dx = to.x - from.x;
+  e.dy = to.y - from.y;
+  e.sy = std::ceil(startY);
+  e.dxdy = e.dy != 0.0f ? e.dx / e.dy : 0.0f;
+  e.sx = startX + (e.sy - startY) * e.dxdy;
+  return e;
+}
+
+// softpipe's plane through values at vmin, vmid and vmax (tri_linear_coeff), with a0 its value at
+// the centre of pixel (0, 0).
+Plane softpipePlane(float aMin, float aMid, float aMax, const SpanEdge& ebot, const SpanEdge& emaj,
+                    float ooa, const WindowVertex& vmin) {
+  const float botda = aMid - aMin, majda = aMax - aMin;
+  const float a = ebot.dy * majda - botda * emaj.dy;
+  const float b = emaj.dx * botda - majda * ebot.dx;
+  Plane plane;
+  plane.dadx = a * ooa;
+  plane.dady = b * ooa;
+  plane.a0 = aMin - (plane.dadx * (vmin.x - 0.5f) + plane.dady * (vmin.y - 0.5f));
+  return plane;
+}
+
+// Sets up one (fan) triangle as softpipe does (reference/softpipe-arithmetic.md, 2.2 to 3.1), in
+// draw order v0, v1, v2; returns false when 1 / area is not finite or no pixel centre of the
+// viewport is covered.
+bool setupSoftpipe(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
+                   Viewport viewport, SetupTriangle& out) {
+  // Sorted by window y, ties by <= (setup_sort_vertices).
+  const WindowVertex *vmin, *vmid, *vmax;
+  if (v0.y <= v1.y) {
+    if (v1.y <= v2.y) {
+      vmin = &v0, vmid = &v1, vmax = &v2;
+    } else if (v2.y <= v0.y) {
+      vmin = &v2, vmid = &v0, vmax = &v1;
+    } else {
+      vmin = &v0, vmid = &v2, vmax = &v1;
+    }
+  } else {
+    if (v0.y <= v2.y) {
+      vmin = &v1, vmid = &v0, vmax = &v2;
+    } else if (v2.y <= v1.y) {
+      vmin = &v2, vmid = &v1, vmax = &v0;
+    } else {
+      vmin = &v1, vmid = &v2, vmax = &v0;
+    }
+  }
+  // Pixel centres: + 0.5 on x, - 0.5 on y (sp_setup.c's pixel_offset).
+  const float xMin = vmin->x + 0.5f, xMid = vmid->x + 0.5f;
+  const float yMin = vmin->y - 0.5f, yMid = vmid->y - 0.5f, yMax = vmax->y - 0.5f;
+  SpanEdge emaj = spanEdge(*vmin, *vmax, xMin, yMin);
+  SpanEdge ebot = spanEdge(*vmin, *vmid, xMin, yMin);
+  const SpanEdge etop = spanEdge(*vmid, *vmax, xMid, yMid);
+  const float area = emaj.dx * ebot.dy - ebot.dx * emaj.dy;
+  const float ooa = 1.0f / area;
+  if (!std::isfinite(ooa)) return false;
+  const int bottomRows = truncateToInt(std::ceil(yMid - ebot.sy));
+  const int topRows = truncateToInt(std::ceil(yMax - etop.sy));
+
+  // The halves, as subtriangle() walks them: emaj is the left edge when the area is negative.
+  // Both edges of the bottom half then advance by its rows, so emaj enters the top half from
+  // there rather than recomputed at vmid.
+  const auto half = [](const SpanEdge& left, const SpanEdge& right, int rows) {
+    ScanlineHalf h;
+    h.firstRow = truncateToInt(left.sy);
+    h.rows = rows;
+    h.left = {left.sx, left.dxdy};
+    h.right = {right.sx, right.dxdy};
+    return h;
+  };
+  const bool majorLeft = ooa < 0.0f;
+  out.halves[0] = majorLeft ? half(emaj, ebot, bottomRows) : half(ebot, emaj, bottomRows);
+  emaj.sx = emaj.sx + static_cast<float>(bottomRows) * emaj.dxdy;
+  emaj.sy = emaj.sy + static_cast<float>(bottomRows);
+  out.halves[1] = majorLeft ? half(emaj, etop, topRows) : half(etop, emaj, topRows);
+  out.scanline = true;
+  out.width = viewport.width;
+
+  const auto plane = [&](float aMin, float aMid, float aMax) {
+    return softpipePlane(aMin, aMid, aMax, ebot, emaj, ooa, *vmin);
+  };
+  // softpipe's planes read emaj's dx and dy only, which the advance above leaves as they were.
+  out.z = plane(vmin->z, vmid->z, vmax->z);
+  out.oneOverW = plane(vmin->oow, vmid->oow, vmax->oow);
+  out.s = plane(vmin->uv.x * vmin->oow, vmid->uv.x * vmid->oow, vmax->uv.x * vmax->oow);
+  out.t = plane(vmin->uv.y * vmin->oow, vmid->uv.y * vmid->oow, vmax->uv.y * vmax->oow);
+  const auto corner = [](const WindowVertex& v) {
+    return WindowCorner{v.x, v.y, v.z, v.oow, v.uv.x * v.oow, v.uv.y * v.oow};
+  };
+  out.corners = {corner(v0), corner(v1), corner(v2)};
+
+  // The pixels the spans cover inside the viewport bound the candidates exactly.
+  out.minX = viewport.width, out.maxX = -1, out.minY = viewport.height, out.maxY = -1;
+  for (const ScanlineHalf& h : out.halves) {
+    const int first = std::max(h.firstRow, 0);
+    const int64_t end =
+        std::min<int64_t>(static_cast<int64_t>(h.firstRow) + h.rows, viewport.height);
+    for (int py = first; py < end; ++py) {
+      const std::array<int, 2> span = h.span(py, viewport.width);
+      if (span[0] >= span[1]) continue;
+      out.minX = std::min(out.minX, span[0]);
+      out.maxX = std::max(out.maxX, span[1] - 1);
+      out.minY = std::min(out.minY, py);
+      out.maxY = std::max(out.maxY, py);
+    }
+  }
+  return out.minX <= out.maxX && out.minY <= out.maxY;
+}
+
 }  // namespace
+
+std::array<int, 2> ScanlineHalf::span(int py, int width) const {
+  const int64_t i = static_cast<int64_t>(py) - firstRow;
+  if (i < 0 || i >= rows) return {0, 0};
+  const float row = static_cast<float>(i);
+  const int l = std::max(truncateToInt(left.sx + row * left.dxdy), 0);
+  const int r = std::min(truncateToInt(right.sx + row * right.dxdy), width);
+  return {l, r};
+}
 
 namespace {
 
 // Sets up mesh triangle k: culls, clips, and appends its (fan) triangles to `out`.
-void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport, bool fused,
-                    std::vector<SetupTriangle>& out, SetupStatistics& stats) {
+void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport,
+                    PrecisionProfile profile, std::vector<SetupTriangle>& out,
+                    SetupStatistics& stats) {
+  const bool fused = usesFusedPlanes(profile);
   ++stats.triangles;
   std::vector<ClipPoint> polygon;
   polygon.reserve(9);
@@ -217,7 +353,8 @@ void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport, bool
     const WindowVertex a = toWindow(polygon[fan ? i - 1 : 0], viewport, fused);
     const WindowVertex b = toWindow(polygon[fan ? i : 1], viewport, fused);
     const WindowVertex c = toWindow(polygon[fan ? 0 : 2], viewport, fused);
-    if (setupOne(a, b, c, viewport, triangle))
+    if (rasterizesLikeSoftpipe(profile) ? setupSoftpipe(a, b, c, viewport, triangle)
+                                        : setupOne(a, b, c, viewport, triangle))
       out.push_back(triangle);
     else
       ++stats.empty;
@@ -226,8 +363,8 @@ void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport, bool
 
 }  // namespace
 
-std::vector<SetupTriangle> setupTriangles(const ClipSpaceMesh& mesh, Viewport viewport, bool fused,
-                                          SetupStatistics* statistics) {
+std::vector<SetupTriangle> setupTriangles(const ClipSpaceMesh& mesh, Viewport viewport,
+                                          PrecisionProfile profile, SetupStatistics* statistics) {
   // Blocks of triangles in parallel, concatenated in draw order: the result does not depend on
   // the thread count (the caller's ThreadLimit; on std::threads, every core).
   constexpr size_t kBlock = 2048;
@@ -236,7 +373,7 @@ std::vector<SetupTriangle> setupTriangles(const ClipSpaceMesh& mesh, Viewport vi
   std::vector<SetupStatistics> partStats(blocks);
   parallelFor(blocks, 0, [&](size_t block) {
     for (size_t k = block * kBlock; k < std::min(triangles, (block + 1) * kBlock); ++k)
-      setupPrimitive(mesh, k, viewport, fused, parts[block], partStats[block]);
+      setupPrimitive(mesh, k, viewport, profile, parts[block], partStats[block]);
   });
   std::vector<SetupTriangle> result;
   SetupStatistics stats;

@@ -1,7 +1,10 @@
 #pragma once
 // Triangle setup as a GL rasterizer does it, following what Mesa's llvmpipe computes (DESIGN
 // section 7, rules 1 to 5): clipping against the frustum, the window transform, snapping to 1/256
-// pixel, the orientation fix, the attribute planes and the integer edge functions.
+// pixel, the orientation fix, the attribute planes and the integer edge functions. Under the
+// softpipe profile, what Mesa's softpipe computes instead (reference/softpipe-arithmetic.md,
+// sections 2 and 3): the same clipping, no snapping, planes from the lowest vertex and coverage by
+// float scanline spans.
 //
 // Window conventions (GL, framebuffer object):
 //
@@ -20,8 +23,10 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <glm/vec2.hpp>
 #include <vector>
 
+#include "render/precision_profile.h"
 #include "scene/clip_space_mesh.h"
 
 namespace vt::reference {
@@ -31,11 +36,20 @@ struct Plane {
   float dadx = 0.0f, dady = 0.0f, a0 = 0.0f;
 };
 
-// Rule 6: a plane at integer pixel coordinates, fused (llvmpipe on an FMA CPU) or not.
-inline float evaluatePlane(const Plane& plane, int px, int py, bool fused) {
+// Rule 6: a plane at integer pixel coordinates, fused (llvmpipe on an FMA CPU) or not; softpipe
+// evaluates it at its quad's origin (x0, y0), both even, and steps to the other three pixels:
+// (a0 + dadx * x0) + dady * y0, then + dadx for the right column, + dady for the upper row.
+inline float evaluatePlane(const Plane& plane, int px, int py, PrecisionProfile profile) {
+  if (rasterizesLikeSoftpipe(profile)) {
+    float value = (plane.a0 + plane.dadx * static_cast<float>(px & ~1)) +
+                  plane.dady * static_cast<float>(py & ~1);
+    if (px & 1) value = value + plane.dadx;
+    if (py & 1) value = value + plane.dady;
+    return value;
+  }
   const float x = static_cast<float>(px), y = static_cast<float>(py);
-  return fused ? std::fma(plane.dady, y, std::fma(plane.dadx, x, plane.a0))
-               : plane.dady * y + (plane.dadx * x + plane.a0);
+  return usesFusedPlanes(profile) ? std::fma(plane.dady, y, std::fma(plane.dadx, x, plane.a0))
+                                  : plane.dady * y + (plane.dadx * x + plane.a0);
 }
 
 // Edge function of rule 4: covered when c + 256 * (b * py - a * px) > 0 for all three edges.
@@ -48,6 +62,20 @@ struct Edge {
 // perspective attributes s/w and t/w. The result sets (result_set.h) interpolate from these.
 struct WindowCorner {
   float x = 0, y = 0, z = 0, oow = 0, sw = 0, tw = 0;
+};
+
+// softpipe's coverage of one half of a triangle (the rows below its middle vertex, or from it up):
+// `rows` rows from `firstRow`; row firstRow + i spans the pixels left <= px < right with
+// left = trunc(left.sx + i * left.dxdy) and right likewise, clamped to [0, width)
+// (reference/softpipe-arithmetic.md, 2.3).
+struct ScanlineHalf {
+  struct Edge {
+    float sx = 0.0f, dxdy = 0.0f;
+  };
+  int firstRow = 0, rows = 0;
+  Edge left, right;
+  // The span of row py, or an empty one (left >= right) outside the half.
+  std::array<int, 2> span(int py, int width) const;
 };
 
 // One triangle as the rasterizer sees it: after clipping (a clipped triangle becomes a fan of
@@ -64,11 +92,38 @@ struct SetupTriangle {
   // Bit i: the edge opposite corner i lies on the mesh triangle's boundary. Edges between two
   // triangles of a clipped fan are not: the shared-edge rule gives their pixels to one of the two.
   uint8_t outerEdges = 7;
+  // softpipe: coverage by spans instead of `edges`; a row of both halves takes the top half's
+  // span unless it is empty (the order softpipe writes them).
+  bool scanline = false;
+  int width = 0;                       // the viewport's, the spans' clip
+  std::array<ScanlineHalf, 2> halves;  // bottom, top
 
   bool covers(int px, int py) const {
+    if (scanline) {
+      for (const ScanlineHalf* half : {&halves[1], &halves[0]}) {
+        const std::array<int, 2> span = half->span(py, width);
+        if (span[0] < span[1]) return span[0] <= px && px < span[1];
+      }
+      return false;
+    }
     return edges[0].at(px, py) > 0 && edges[1].at(px, py) > 0 && edges[2].at(px, py) > 0;
   }
 };
+
+// The texture coordinates (s/w and t/w over 1/w) of a set-up triangle at pixel (px, py), and 1/w:
+// multiplied by the reciprocal of the 1/w plane (llvmpipe, exact) or divided by it (softpipe).
+struct PixelAttributes {
+  glm::vec2 uv;
+  float w;
+};
+inline PixelAttributes attributesAt(const SetupTriangle& t, int px, int py,
+                                    PrecisionProfile profile) {
+  const float q = evaluatePlane(t.oneOverW, px, py, profile);
+  const float recip = 1.0f / q;
+  const float s = evaluatePlane(t.s, px, py, profile), tt = evaluatePlane(t.t, px, py, profile);
+  if (rasterizesLikeSoftpipe(profile)) return {glm::vec2(s / q, tt / q), recip};
+  return {glm::vec2(s * recip, tt * recip), recip};
+}
 
 struct SetupStatistics {
   uint64_t triangles = 0;  // mesh triangles
@@ -79,10 +134,12 @@ struct SetupStatistics {
                            // the viewport: they draw nothing
 };
 
-// Sets up every triangle of `mesh` for `viewport`. `fused` selects fma (llvmpipe on an FMA CPU)
-// or separate multiply and add for the viewport transform of the mesh's vertices (x, y and z);
-// vertices made by clipping, and the plane setup itself (rule 3), never fuse.
-std::vector<SetupTriangle> setupTriangles(const ClipSpaceMesh& mesh, Viewport viewport, bool fused,
+// Sets up every triangle of `mesh` for `viewport` in the profile's rasterization. Under a profile
+// with fused planes the viewport transform of the mesh's vertices (x, y and z) uses fma
+// (llvmpipe on an FMA CPU); vertices made by clipping, and the plane setup itself (rule 3), never
+// fuse.
+std::vector<SetupTriangle> setupTriangles(const ClipSpaceMesh& mesh, Viewport viewport,
+                                          PrecisionProfile profile,
                                           SetupStatistics* statistics = nullptr);
 
 }  // namespace vt::reference

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <bit>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -23,15 +25,31 @@ struct BlockQuery {
   const std::vector<SetupTriangle>* triangles;
   int x0, y0;
   DepthFormat format;
-  bool fused;
+  PrecisionProfile profile;
   std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> hits;
   std::array<uint32_t, Visibility::kBlock * Visibility::kBlock> keys;
   std::vector<int32_t>* collect = nullptr;  // Visibility::candidates: every box crossed
 };
 
-// The stored depth as an ordered key: Z24 is round-half-even(z * 16777215); 32F is the float,
-// whose bits order like its values on [0, 1].
-uint32_t depthKey(float z, DepthFormat format) {
+// The stored depth as an ordered key (smaller is nearer). Z24 is round-half-even(z * 16777215)
+// of the clamped z; 32F is the float, whose bits order like its values on [0, 1]. softpipe
+// (reference/softpipe-arithmetic.md, 7.1) stores Z24 as the C cast (unsigned)(z * 16777215.0f),
+// which on x86-64 truncates through a 64-bit integer (NaN gives 0), and compares 32F as floats
+// over its unclamped z: negative depths order below 0, and a NaN never passes (kNever).
+constexpr uint32_t kNever = 0xffffffffu;
+uint32_t depthKey(float z, DepthFormat format, PrecisionProfile profile) {
+  if (rasterizesLikeSoftpipe(profile)) {
+    if (format == DepthFormat::kDepth24) {
+      const float scaled = z * 16777215.0f;
+      const int64_t whole = scaled >= -9223372036854775808.0f && scaled < 9223372036854775808.0f
+                                ? static_cast<int64_t>(scaled)
+                                : INT64_MIN;
+      return static_cast<uint32_t>(static_cast<uint64_t>(whole));
+    }
+    if (std::isnan(z)) return kNever;
+    const uint32_t bits = std::bit_cast<uint32_t>(z == 0.0f ? 0.0f : z);
+    return bits & 0x80000000u ? ~bits : bits | 0x80000000u;
+  }
   if (format == DepthFormat::kDepth24)
     return static_cast<uint32_t>(std::nearbyint(z * 16777215.0f));
   return std::bit_cast<uint32_t>(z);
@@ -69,9 +87,10 @@ void testCandidate(const RTCIntersectFunctionNArguments* args) {
     if (!t.covers(px, py)) continue;
     const size_t slot =
         static_cast<size_t>((px - query->x0) + Visibility::kBlock * (py - query->y0));
-    const float z = windowDepth(t, px, py, query->fused);
-    const uint32_t key = depthKey(z, query->format);
-    if (key >= depthKey(1.0f, query->format)) continue;  // GL_LESS against the cleared 1.0
+    const float z = windowDepth(t, px, py, query->profile);
+    const uint32_t key = depthKey(z, query->format, query->profile);
+    // GL_LESS against the cleared 1.0
+    if (key == kNever || key >= depthKey(1.0f, query->format, query->profile)) continue;
     const float stored =
         query->format == DepthFormat::kDepth24 ? static_cast<float>(key) / 16777215.0f : z;
     PixelHit& hit = query->hits[slot];
@@ -91,17 +110,22 @@ void testCandidateOccluded(const RTCOccludedFunctionNArguments*) {}
 
 }  // namespace
 
-float windowDepth(const SetupTriangle& t, int px, int py, bool fused) {
-  const float x = static_cast<float>(px), y = static_cast<float>(py);
-  const float z = fused ? std::fma(t.z.dady, y, std::fma(t.z.dadx, x, t.z.a0))
-                        : t.z.dady * y + (t.z.dadx * x + t.z.a0);
+float windowDepth(const SetupTriangle& t, int px, int py, PrecisionProfile profile) {
+  const float z = evaluatePlane(t.z, px, py, profile);
+  // softpipe: no offset term (its polygon offset is a draw stage, off) and no clamp (depth clamp
+  // is off); reference/softpipe-arithmetic.md, 7.1.
+  if (rasterizesLikeSoftpipe(profile)) return z;
   const float offset = z + 0.0f;  // polygon offset, added even when zero (rule 7)
   return std::clamp(offset, 0.0f, 1.0f);
 }
 
 Visibility::Visibility(const std::vector<SetupTriangle>& triangles, Viewport viewport,
-                       DepthFormat format, bool fused, int margin)
-    : triangles_(triangles), viewport_(viewport), format_(format), fused_(fused), margin_(margin) {
+                       DepthFormat format, PrecisionProfile profile, int margin)
+    : triangles_(triangles),
+      viewport_(viewport),
+      format_(format),
+      profile_(profile),
+      margin_(margin) {
   boxData_ = std::make_unique<BoxData>(BoxData{&triangles, margin});
 #ifdef VT_STD_THREAD_WORKERS
   // The ThreadSanitizer build (parallel_for.h): Embree's scene build runs on TBB, which TSan
@@ -140,7 +164,7 @@ std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> Visibility::block(
   query.x0 = x0;
   query.y0 = y0;
   query.format = format_;
-  query.fused = fused_;
+  query.profile = profile_;
   query.hits.fill(PixelHit{});
   query.keys.fill(0);
   alignas(64) RTCRayHit16 rays{};
@@ -172,7 +196,7 @@ void Visibility::candidates(int px, int py, std::vector<int32_t>& out) const {
   query.x0 = px;
   query.y0 = py;
   query.format = format_;
-  query.fused = fused_;
+  query.profile = profile_;
   query.collect = &out;
   RTCRayHit ray{};
   ray.ray.org_x = static_cast<float>(px) + 0.5f;

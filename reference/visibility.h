@@ -40,7 +40,7 @@ class Visibility {
   // `margin`: pixels by which each triangle's box of candidate centres grows, for a model under
   // which snapping to a coarser grid may cover centres beside those of the oracle's 8-bit grid.
   Visibility(const std::vector<SetupTriangle>& triangles, Viewport viewport, DepthFormat format,
-             bool fused, int margin = 0);
+             PrecisionProfile profile, int margin = 0);
   ~Visibility();
   Visibility(const Visibility&) = delete;
   Visibility& operator=(const Visibility&) = delete;
@@ -58,14 +58,15 @@ class Visibility {
   const std::vector<SetupTriangle>& triangles_;
   Viewport viewport_;
   DepthFormat format_;
-  bool fused_;
+  PrecisionProfile profile_;
   int margin_;
   std::unique_ptr<BoxData> boxData_;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
 };
 
-// Window z of a set-up triangle at a pixel centre, clamped to [0, 1] (rule 7).
-float windowDepth(const SetupTriangle& triangle, int px, int py, bool fused);
+// Window z of a set-up triangle at a pixel centre, clamped to [0, 1] (rule 7); under softpipe
+// neither offset nor clamped.
+float windowDepth(const SetupTriangle& triangle, int px, int py, PrecisionProfile profile);
 
 }  // namespace vt::reference

@@ -14,6 +14,8 @@ vt::PrecisionModel internalModel(Profile profile) {
       return vt::llvmpipeModel();
     case Profile::kGl45:
       return vt::gl45Model();
+    case Profile::kSoftpipe:
+      return vt::softpipeModel();
     default:
       return vt::exactModel();
   }
@@ -23,7 +25,8 @@ Profile parseProfile(const std::string& name) {
   if (name == "exact") return Profile::kExact;
   if (name == "llvmpipe") return Profile::kLlvmpipe;
   if (name == "gl45") return Profile::kGl45;
-  throw Error("unknown precision model '" + name + "' (exact, llvmpipe or gl45)");
+  if (name == "softpipe") return Profile::kSoftpipe;
+  throw Error("unknown precision model '" + name + "' (exact, llvmpipe, softpipe or gl45)");
 }
 
 std::string toString(Profile profile) { return internalModel(profile).name; }

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <filesystem>
@@ -78,10 +79,11 @@ ShaderMath measureShaderMath() {
   probe.inputs[0].z = 0x1p-130f;  // a denormal, times the 1 in y
   const std::vector<glm::vec4> out = runShaderProbe(probe);
 
-  uint64_t notLlvmpipe = 0, notIeee = 0, notSqrt = 0;
+  uint64_t notLlvmpipe = 0, notSoftpipe = 0, notIeee = 0, notSqrt = 0;
   for (size_t i = 0; i < out.size(); ++i) {
     const float x = probe.inputs[i].x;
     notLlvmpipe += !sameBits(out[i].x, reference::llvmpipeLog2(x));
+    notSoftpipe += !sameBits(out[i].x, reference::softpipeLog2(x));
     notIeee += !sameBits(out[i].x, std::log2(x));
     const double exact = std::log2(static_cast<double>(x));
     if (x >= 0.5f && x <= 2.0f)
@@ -101,13 +103,19 @@ ShaderMath measureShaderMath() {
     m.log2Arithmetic = Log2Arithmetic::kIeee;
     m.log2.finding = "the C library's log2f, bit for bit";
     m.log2.pinned = true;
+  } else if (notSoftpipe == 0) {
+    m.log2Arithmetic = Log2Arithmetic::kSoftpipe;
+    m.log2.finding =
+        "softpipe's logf(x) * 1.442695f (reference/softpipe-arithmetic.md, 5.2), bit for bit";
+    m.log2.pinned = true;
   } else {
-    m.log2.mismatches = std::min(notLlvmpipe, notIeee);
+    m.log2.mismatches = std::min({notLlvmpipe, notIeee, notSoftpipe});
     m.log2.largestResidual = m.log2Ulps;
     m.log2.finding = "neither llvmpipe's polynomial (" + describe(notLlvmpipe, n) +
-                     ") nor log2f (" + describe(notIeee, n) +
-                     "): largest error inside [0.5, 2] " + std::to_string(m.log2Absolute) +
-                     ", outside " + std::to_string(m.log2Ulps) + " ulps";
+                     ") nor log2f (" + describe(notIeee, n) + ") nor softpipe's logf * log2(e) (" +
+                     describe(notSoftpipe, n) + "): largest error inside [0.5, 2] " +
+                     std::to_string(m.log2Absolute) + ", outside " + std::to_string(m.log2Ulps) +
+                     " ulps";
   }
   m.sqrt = {"sqrt", "", n, notSqrt, notSqrt ? m.sqrtUlps : 0.0, notSqrt == 0, false};
   m.sqrt.finding = notSqrt == 0 ? "IEEE sqrt, correctly rounded, bit for bit"
@@ -117,7 +125,11 @@ ShaderMath measureShaderMath() {
   m.denormals = {"denormals",
                  m.flushesDenormals ? "a denormal times 1 gives 0: flushed to zero"
                                     : "a denormal times 1 stays a denormal: kept",
-                 1, 0, 0, true, false};
+                 1,
+                 0,
+                 0,
+                 true,
+                 false};
 
   // texelFetch of every unorm8 value.
   ShaderProbe fetch;
@@ -139,8 +151,9 @@ ShaderMath measureShaderMath() {
       m.conversionUlps = std::max(m.conversionUlps, ulpsFrom(got, expected[c]));
     }
   }
-  m.conversion = {"arithmetic", "", 1024, notConverted, notConverted ? m.conversionUlps : 0.0,
-                  notConverted == 0, false};
+  m.conversion = {
+      "arithmetic",      "",   1024, notConverted, notConverted ? m.conversionUlps : 0.0,
+      notConverted == 0, false};
   m.conversion.finding = notConverted == 0
                              ? "texelFetch of unorm8 k gives k * (1 / 255), bit for bit"
                              : describe(notConverted, 1024) + " from k * (1 / 255), largest " +
@@ -185,7 +198,8 @@ FilterFit measureFilter() {
   probe.linear = true;
   for (int i = 0; i < kSide * kSide; ++i) {
     const uint32_t bits = static_cast<uint32_t>(random());
-    probe.texels.push_back(glm::u8vec4(bits & 255, (bits >> 8) & 255, (bits >> 16) & 255, bits >> 24));
+    probe.texels.push_back(
+        glm::u8vec4(bits & 255, (bits >> 8) & 255, (bits >> 16) & 255, bits >> 24));
   }
   // Texel positions: half random, half on 1/256-texel steps and one float beside them.
   std::vector<glm::vec2> positions;
@@ -209,10 +223,10 @@ FilterFit measureFilter() {
   };
   uint64_t notLlvmpipe = 0, notFloat = 0;
   for (size_t i = 0; i < out.size(); ++i) {
-    const reference::vec4 llvm = reference::sampleLinear(fetch8, positions[i], {kSide, kSide},
-                                                         PrecisionProfile::kLlvmpipe);
-    const reference::vec4 ieee = reference::sampleLinear(fetch8, positions[i], {kSide, kSide},
-                                                         PrecisionProfile::kExact);
+    const reference::vec4 llvm =
+        reference::sampleLinear(fetch8, positions[i], {kSide, kSide}, PrecisionProfile::kLlvmpipe);
+    const reference::vec4 ieee =
+        reference::sampleLinear(fetch8, positions[i], {kSide, kSide}, PrecisionProfile::kExact);
     for (int c = 0; c < 4; ++c) {
       // The 8-bit filter's result is a whole number of 1/255 (how it becomes a float, k / 255
       // or k * (1 / 255), does not reach an RGBA8 target).
@@ -227,7 +241,8 @@ FilterFit measureFilter() {
   if (notLlvmpipe == 0) {
     result.arithmetic = FilterArithmetic::kLlvmpipe8Bit;
     result.fit.finding =
-        "8-bit weights and fixed-point lerps (DESIGN section 7, rule 9): every sample the same 8-bit value";
+        "8-bit weights and fixed-point lerps (DESIGN section 7, rule 9): every sample the same "
+        "8-bit value";
     return result;
   }
   if (notFloat == 0) {
@@ -279,7 +294,11 @@ ParameterFit measureColourConversion() {
   return {"color_conversion",
           other == 0 ? "always the nearest unorm8 value"
                      : describe(other, n) + " from the nearest unorm8 value: either of the two",
-          n, other, other ? 1.0 : 0.0, other == 0, false};
+          n,
+          other,
+          other ? 1.0 : 0.0,
+          other == 0,
+          false};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -326,16 +345,19 @@ RasterFits measureRasterization(bool flushesDenormals) {
   const VirtualTextureReader reader(folder.path() / "t.vt");
   const reference::ResidentTexture texture(reader);
   const Viewport viewport{160, 120};
-  RasterCounts counts[2];  // [0] llvmpipe's arithmetic, [1] IEEE
+  // The arithmetics the oracle can compute in, each drawing the same probes.
+  constexpr std::array<PrecisionProfile, 3> kCandidates = {
+      PrecisionProfile::kLlvmpipe, PrecisionProfile::kExact, PrecisionProfile::kSoftpipe};
+  std::array<RasterCounts, kCandidates.size()> counts{};
   for (const unsigned seed : {1u, 2u, 3u}) {
     const ClipSpaceMesh mesh = randomTriangles(seed, 120);
     const RasterReadback gl = drawTriangles(mesh, viewport);
-    for (int a = 0; a < 2; ++a) {
+    for (size_t a = 0; a < kCandidates.size(); ++a) {
       RenderSettings settings;
       settings.debugChannels = true;
       settings.viewport = viewport;
       settings.threads = 1;
-      settings.profile = a == 0 ? PrecisionProfile::kLlvmpipe : PrecisionProfile::kExact;
+      settings.profile = kCandidates[a];
       const Frame oracle = reference::renderFrame(mesh, texture, settings);
       RasterCounts& c = counts[a];
       for (size_t i = 0; i < oracle.triangle.size(); ++i) {
@@ -353,7 +375,8 @@ RasterFits measureRasterization(bool flushesDenormals) {
               c.attributeUlps, std::fabs(gl.uv[i][k] - oracle.uv[i][k]) /
                                    (std::max(std::fabs(oracle.uv[i][k]), 1e-30f) * kFloatUlp));
         }
-        for (int k = 0; k < 4; ++k) differs |= !sameBits(gl.derivatives[i][k], oracle.derivatives[i][k]);
+        for (int k = 0; k < 4; ++k)
+          differs |= !sameBits(gl.derivatives[i][k], oracle.derivatives[i][k]);
         c.attributes += differs;
         if (!sameBits(gl.depth[i], oracle.depth[i])) {
           ++c.depth;
@@ -364,46 +387,69 @@ RasterFits measureRasterization(bool flushesDenormals) {
     }
   }
   RasterFits fits;
-  const RasterCounts& llvm = counts[0];
-  const RasterCounts& ieee = counts[1];
-  fits.coveragePinned = llvm.coverage == 0 || ieee.coverage == 0;
-  const uint64_t coverageMismatches = std::min(llvm.coverage, ieee.coverage);
+  // The arithmetic that reproduces coverage and every attribute bit for bit, in the order of
+  // kCandidates; else the one whose coverage differs least, on a tie llvmpipe's where denormals
+  // are flushed (its arithmetic flushes them) and IEEE otherwise.
+  size_t chosenIndex = kCandidates.size();
+  for (size_t a = 0; a < kCandidates.size() && chosenIndex == kCandidates.size(); ++a)
+    if (counts[a].coverage == 0 && counts[a].attributes == 0) chosenIndex = a;
+  const bool attributesPinned = chosenIndex < kCandidates.size();
+  if (!attributesPinned) {
+    chosenIndex = flushesDenormals ? 0 : 1;
+    for (size_t a = 0; a < kCandidates.size(); ++a)
+      if (counts[a].coverage < counts[chosenIndex].coverage) chosenIndex = a;
+  }
+  fits.arithmetic = kCandidates[chosenIndex];
+  const RasterCounts& chosen = counts[chosenIndex];
+  const bool softpipe = fits.arithmetic == PrecisionProfile::kSoftpipe;
+  fits.coveragePinned = chosen.coverage == 0;
   fits.coverage = {"coverage",
-                   fits.coveragePinned
-                       ? "every pixel shows the triangle of 8-bit snapping and the oracle's tie "
-                         "rule (DESIGN section 7, rules 2 and 4)"
-                       : std::to_string(coverageMismatches) + " of " +
-                             std::to_string(llvm.pixels) + " pixels show another triangle: sub-pixel bits and fill rule not "
-                             "pinned, the gl45 values kept",
-                   llvm.pixels, coverageMismatches, 0, fits.coveragePinned, !fits.coveragePinned};
-  // The arithmetic whose planes reproduce every attribute, llvmpipe's fused first.
-  const bool llvmExact = llvm.coverage == 0 && llvm.attributes == 0;
-  const bool ieeeExact = ieee.coverage == 0 && ieee.attributes == 0;
-  fits.arithmetic = llvmExact || (!ieeeExact && flushesDenormals) ? PrecisionProfile::kLlvmpipe
-                                                                    : PrecisionProfile::kExact;
-  const RasterCounts& chosen = fits.arithmetic == PrecisionProfile::kLlvmpipe ? llvm : ieee;
-  const bool attributesPinned = llvmExact || ieeeExact;
+                   !fits.coveragePinned
+                       ? std::to_string(chosen.coverage) + " of " + std::to_string(chosen.pixels) +
+                             " pixels show another triangle: sub-pixel bits and fill rule not "
+                             "pinned, the gl45 values kept"
+                   : softpipe ? "every pixel shows the triangle of softpipe's unsnapped float "
+                                "scanline spans (reference/softpipe-arithmetic.md, 2.3)"
+                              : "every pixel shows the triangle of 8-bit snapping and the oracle's "
+                                "tie rule (DESIGN section 7, rules 2 and 4)",
+                   chosen.pixels,
+                   chosen.coverage,
+                   0,
+                   fits.coveragePinned,
+                   !fits.coveragePinned};
+  const std::string exactly = fits.arithmetic == PrecisionProfile::kLlvmpipe
+                                  ? "llvmpipe's fused planes give them (DESIGN section 7, rules 1, "
+                                    "3 and 6)"
+                              : softpipe ? "softpipe's planes, stepped per quad and divided, give "
+                                           "them (reference/softpipe-arithmetic.md, 3)"
+                                         : "IEEE planes give them";
   fits.attributeUlps = attributesPinned ? 0.0 : widened(chosen.attributeUlps, 1.0);
-  fits.attributes = {"attributes",
-                     llvmExact   ? "texture coordinates and fine derivatives as llvmpipe's fused "
-                                   "planes give them (DESIGN section 7, rules 1, 3 and 6), bit for bit"
-                     : ieeeExact ? "texture coordinates and fine derivatives as IEEE planes give "
-                                   "them, bit for bit"
-                                 : std::to_string(chosen.attributes) + " of " +
-                                       std::to_string(chosen.shared) + " pixels' coordinates or derivatives differ, largest "
-                                       "relative error " + std::to_string(chosen.attributeUlps) +
-                                       " ulps",
-                     chosen.shared, attributesPinned ? 0 : chosen.attributes,
-                     attributesPinned ? 0.0 : chosen.attributeUlps, attributesPinned, false};
+  fits.attributes = {
+      "attributes",
+      attributesPinned
+          ? "texture coordinates and fine derivatives as " + exactly + ", bit for bit"
+          : std::to_string(chosen.attributes) + " of " + std::to_string(chosen.shared) +
+                " pixels' coordinates or derivatives differ, largest relative "
+                "error " +
+                std::to_string(chosen.attributeUlps) + " ulps",
+      chosen.shared,
+      attributesPinned ? 0 : chosen.attributes,
+      attributesPinned ? 0.0 : chosen.attributeUlps,
+      attributesPinned,
+      false};
   fits.depthPinned = chosen.depth == 0 && chosen.coverage == 0;
   fits.depthUlps = fits.depthPinned ? 0.0 : widened(chosen.depthUlps, 1.0);
   fits.depth = {"depth",
-                fits.depthPinned ? "the stored 32F depth as the oracle computes it, bit for bit"
-                                 : std::to_string(chosen.depth) + " of " +
-                                       std::to_string(chosen.shared) + " pixels' depth differs, largest " +
-                                       std::to_string(chosen.depthUlps) + " ulps",
-                chosen.shared, chosen.depth, fits.depthPinned ? 0.0 : chosen.depthUlps,
-                fits.depthPinned, false};
+                fits.depthPinned
+                    ? "the stored 32F depth as the oracle computes it, bit for bit"
+                    : std::to_string(chosen.depth) + " of " + std::to_string(chosen.shared) +
+                          " pixels' depth differs, largest " + std::to_string(chosen.depthUlps) +
+                          " ulps",
+                chosen.shared,
+                chosen.depth,
+                fits.depthPinned ? 0.0 : chosen.depthUlps,
+                fits.depthPinned,
+                false};
   return fits;
 }
 
@@ -427,7 +473,7 @@ Calibration calibrate() {
   m.glVersion = c.version;
   m.arithmetic = raster.arithmetic;
   if (raster.coveragePinned) {
-    m.subpixelBits = 8;
+    m.subpixelBits = 8;  // with the fill rule pinned: the arithmetic's own coverage
     m.fillRulePinned = true;
   }
   m.depthUlps = raster.depthUlps;
@@ -436,8 +482,10 @@ Calibration calibrate() {
   m.log2 = math.log2Arithmetic;
   m.log2AbsoluteError = 0;
   m.log2Ulps = 0;
-  if (m.log2 == Log2Arithmetic::kIeee && m.arithmetic == PrecisionProfile::kLlvmpipe)
-    m.log2 = Log2Arithmetic::kBounded;  // the oracle computes llvmpipe's log2 there
+  // The oracle computes its arithmetic's own log2: another one measured bit for bit is still
+  // free under it.
+  if (m.log2 != Log2Arithmetic::kBounded && m.log2 != log2Of(m.arithmetic))
+    m.log2 = Log2Arithmetic::kBounded;
   if (m.log2 == Log2Arithmetic::kBounded) {
     m.log2AbsoluteError = widened(math.log2Absolute, 0x1p-23);
     m.log2Ulps = widened(math.log2Ulps, 1.0);
@@ -450,7 +498,7 @@ Calibration calibrate() {
   m.colorRoundsToNearest = colour.pinned;
   m.denormalsPinned = math.flushesDenormals == flushesDenormals(m.arithmetic);
 
-  c.fits = {raster.coverage, raster.attributes, raster.depth, math.log2,   math.sqrt,
+  c.fits = {raster.coverage, raster.attributes, raster.depth, math.log2,     math.sqrt,
             math.conversion, filter.fit,        colour,       math.denormals};
   if (!m.denormalsPinned) {
     c.fits.back().pinned = false;
@@ -458,9 +506,9 @@ Calibration calibrate() {
   }
   const std::string by = "measured by vt calibrate on " + c.renderer + ": ";
   const auto source = [&](const char* parameter, const ParameterFit& fit) {
-    m.sources[parameter] = fit.fromGl45 ? m.sources[parameter] + " (not pinned by " + by +
-                                              fit.finding + ")"
-                                        : by + fit.finding;
+    m.sources[parameter] = fit.fromGl45
+                               ? m.sources[parameter] + " (not pinned by " + by + fit.finding + ")"
+                               : by + fit.finding;
   };
   source("subpixel_bits", raster.coverage);
   source("fill_rule", raster.coverage);

@@ -87,7 +87,7 @@ void addEvalCommand(CLI::App& app) {
   command->add_flag("--preload-visible", o->preloadVisible,
                     "Also load the pages the first frame needs before it (4.2.1)");
   command->add_option("--profile", o->profile, "Precision profile of the oracle")
-      ->check(CLI::IsMember({"exact", "llvmpipe"}))
+      ->check(CLI::IsMember(namesOf(kPrecisionProfileNames)))
       ->capture_default_str();
   command->add_option("--jobs", o->jobs, "Runs at once (0: every core)")
       ->check(workerCount())

@@ -80,9 +80,13 @@ void addFlyCommand(CLI::App& app) {
       ->capture_default_str();
   command
       ->add_option("--profile", o->profile,
-                   "Precision profile of the oracle: auto (exact; with gl, GL_RENDERER's), exact, "
-                   "llvmpipe")
-      ->check(CLI::IsMember({"auto", "exact", "llvmpipe"}))
+                   "Precision profile of the oracle: auto (exact; with gl, GL_RENDERER's), " +
+                       joinedNames(kPrecisionProfileNames))
+      ->check(CLI::IsMember([] {
+        std::vector<std::string> names = namesOf(kPrecisionProfileNames);
+        names.insert(names.begin(), "auto");
+        return names;
+      }()))
       ->capture_default_str();
   command->add_option("--backend", o->backend, "oracle or gl")
       ->check(CLI::IsMember({"oracle", "gl"}))

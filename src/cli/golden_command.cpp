@@ -37,8 +37,10 @@ void addGoldenCommand(CLI::App& app) {
   generate->add_option("--every", g->request.every, "Record every n-th frame")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
-  generate->add_option("--profile", g->profile, "The oracle's arithmetic: exact, llvmpipe")
-      ->check(CLI::IsMember({"exact", "llvmpipe"}))
+  generate
+      ->add_option("--profile", g->profile,
+                   "The oracle's arithmetic: " + joinedNames(kPrecisionProfileNames))
+      ->check(CLI::IsMember(namesOf(kPrecisionProfileNames)))
       ->capture_default_str();
   generate->add_option("-o,--output", g->output, "Golden folder")->required();
   generate->callback([g, configuration] {
@@ -70,9 +72,10 @@ void addGoldenCommand(CLI::App& app) {
       ->check(CLI::IsMember({"oracle", "gl"}))
       ->capture_default_str();
   check
-      ->add_option("--model", c->model,
-                   "With --backend gl: the precision model (exact, llvmpipe, gl45 or a model "
-                   "file); auto follows GL_RENDERER")
+      ->add_option(
+          "--model", c->model,
+          "With --backend gl: the precision model (exact, llvmpipe, softpipe, gl45 or a model "
+          "file); auto follows GL_RENDERER")
       ->capture_default_str();
   check->add_option("-o,--output", c->output, "Folder for check.json and difference images")
       ->capture_default_str();

@@ -68,7 +68,7 @@ void addRenderCommand(CLI::App& app) {
       ->check(sizeValidator())
       ->capture_default_str();
   command->add_option("--profile", o->profile, "Precision profile")
-      ->check(CLI::IsMember({"exact", "llvmpipe"}))
+      ->check(CLI::IsMember(namesOf(kPrecisionProfileNames)))
       ->capture_default_str();
   command->add_option("--depth", o->depth, "Depth buffer format")
       ->check(CLI::IsMember({"24", "32f"}))

@@ -36,6 +36,33 @@ PrecisionModel llvmpipeModel() {
   return m;
 }
 
+Log2Arithmetic log2Of(PrecisionProfile arithmetic) {
+  switch (arithmetic) {
+    case PrecisionProfile::kLlvmpipe:
+      return Log2Arithmetic::kLlvmpipe;
+    case PrecisionProfile::kSoftpipe:
+      return Log2Arithmetic::kSoftpipe;
+    case PrecisionProfile::kExact:
+      break;
+  }
+  return Log2Arithmetic::kIeee;
+}
+
+PrecisionModel softpipeModel() {
+  PrecisionModel m;
+  m.name = "softpipe";
+  m.arithmetic = PrecisionProfile::kSoftpipe;
+  m.log2 = Log2Arithmetic::kSoftpipe;
+  m.filter = FilterArithmetic::kFloat;
+  m.sources = everyParameterFrom(
+      "Mesa 22.3 softpipe, read from its source and confirmed bit for bit by emulation: "
+      "reference/softpipe-arithmetic.md");
+  m.sources["subpixel_bits"] = m.sources["fill_rule"] =
+      "Mesa 22.3 softpipe: no snapping, coverage by float scanline spans with its own tie rule "
+      "(reference/softpipe-arithmetic.md, 2.3); the oracle rasterizes the same way";
+  return m;
+}
+
 PrecisionModel exactModel() {
   PrecisionModel m;
   m.name = "exact";
@@ -107,8 +134,21 @@ PrecisionModel gl45Model() {
   return m;
 }
 
+PrecisionModel modelOfArithmetic(PrecisionProfile arithmetic) {
+  switch (arithmetic) {
+    case PrecisionProfile::kLlvmpipe:
+      return llvmpipeModel();
+    case PrecisionProfile::kSoftpipe:
+      return softpipeModel();
+    case PrecisionProfile::kExact:
+      break;
+  }
+  return exactModel();
+}
+
 PrecisionModel namedModel(const std::string& name) {
   if (name == "llvmpipe") return llvmpipeModel();
+  if (name == "softpipe") return softpipeModel();
   if (name == "exact") return exactModel();
   if (name == "gl45") return gl45Model();
   throw std::invalid_argument("precision model '" + name + "' is not one of " + kModelNames);
@@ -117,6 +157,7 @@ PrecisionModel namedModel(const std::string& name) {
 PrecisionModel modelForRenderer(const std::string& glRenderer) {
   if (glRenderer.find("llvmpipe") != std::string::npos && __builtin_cpu_supports("fma"))
     return llvmpipeModel();
+  if (glRenderer.find("softpipe") != std::string::npos) return softpipeModel();
   return gl45Model();
 }
 

@@ -9,6 +9,8 @@
 // Shipped models:
 //   llvmpipe  Mesa 22.3 llvmpipe on x86-64 with FMA, every parameter pinned (DESIGN section 7):
 //             every set is one value, the comparison is bit for bit.
+//   softpipe  Mesa 22.3 softpipe, every parameter pinned (reference/softpipe-arithmetic.md, read
+//             from its source and confirmed by emulation): the comparison is bit for bit.
 //   exact     IEEE float in source order, every parameter pinned: the reference for golden images
 //             that no GPU is expected to match bit for bit.
 //   gl45      only what the OpenGL 4.5 core and GLSL 4.50 specifications guarantee, and where they
@@ -32,6 +34,7 @@ enum class FilterArithmetic {
 // The shader's log2 (the manual LOD).
 enum class Log2Arithmetic {
   kLlvmpipe,  // pinned: llvmpipe's polynomial (rule 8)
+  kSoftpipe,  // pinned: logf(x) * 1.442695f (reference/softpipe-arithmetic.md, 5.2)
   kIeee,      // pinned: the C library's log2f, correctly rounded on this project's machines
   kBounded,   // free within the GLSL 4.50 precision table (log2AbsoluteError, log2Ulps)
 };
@@ -84,17 +87,24 @@ struct PrecisionModel {
   bool operator==(const PrecisionModel&) const = default;
 };
 
+// The pinned log2 an arithmetic computes (the oracle always computes its arithmetic's own).
+Log2Arithmetic log2Of(PrecisionProfile arithmetic);
+
 PrecisionModel llvmpipeModel();
+PrecisionModel softpipeModel();
+// The pinned model whose arithmetic is `arithmetic`: llvmpipe, softpipe or exact.
+PrecisionModel modelOfArithmetic(PrecisionProfile arithmetic);
 PrecisionModel exactModel();
 PrecisionModel gl45Model();
 
 // The shipped names, for messages and command-line choices.
-inline constexpr const char* kModelNames = "llvmpipe, exact, gl45";
+inline constexpr const char* kModelNames = "llvmpipe, softpipe, exact, gl45";
 // A shipped model by name; throws std::invalid_argument for any other name.
 PrecisionModel namedModel(const std::string& name);
 
-// The model for an implementation's GL_RENDERER: llvmpipe on a CPU with FMA, gl45 otherwise
-// (llvmpipe without FMA computes neither rule 8's fused polynomial nor the fused planes).
+// The model for an implementation's GL_RENDERER: llvmpipe on a CPU with FMA, softpipe for
+// softpipe, gl45 otherwise (llvmpipe without FMA computes neither rule 8's fused polynomial nor
+// the fused planes).
 PrecisionModel modelForRenderer(const std::string& glRenderer);
 
 }  // namespace vt

@@ -13,8 +13,10 @@ namespace vt {
 
 // Names of the enums in model files (found by argument-dependent lookup, so in this namespace).
 NLOHMANN_JSON_SERIALIZE_ENUM(PrecisionProfile, {{PrecisionProfile::kExact, "exact"},
-                                                {PrecisionProfile::kLlvmpipe, "llvmpipe"}})
+                                                {PrecisionProfile::kLlvmpipe, "llvmpipe"},
+                                                {PrecisionProfile::kSoftpipe, "softpipe"}})
 NLOHMANN_JSON_SERIALIZE_ENUM(Log2Arithmetic, {{Log2Arithmetic::kLlvmpipe, "llvmpipe"},
+                                              {Log2Arithmetic::kSoftpipe, "softpipe"},
                                               {Log2Arithmetic::kIeee, "ieee"},
                                               {Log2Arithmetic::kBounded, "bounded"}})
 NLOHMANN_JSON_SERIALIZE_ENUM(FilterArithmetic, {{FilterArithmetic::kLlvmpipe8Bit, "llvmpipe_8bit"},
@@ -93,13 +95,14 @@ PrecisionModel readModelFile(const std::filesystem::path& file) {
   PrecisionModel m;
   m.name = f.text("name");
   m.renderer = f.text("renderer");
-  m.arithmetic = enumOf<PrecisionProfile>(f.choice("arithmetic", {"exact", "llvmpipe"}));
+  m.arithmetic =
+      enumOf<PrecisionProfile>(f.choice("arithmetic", {"exact", "llvmpipe", "softpipe"}));
   m.subpixelBits = f.whole("subpixel_bits", 1, 16);
   m.fillRulePinned = f.choice("fill_rule", {"pinned", "free"}) == "pinned";
   m.depthUlps = f.number("depth_ulps", 0, kMaxError);
   m.depthRoundsToNearest = f.choice("depth_rounding", {"nearest", "either"}) == "nearest";
   m.attributeUlps = f.number("attribute_ulps", 0, kMaxError);
-  m.log2 = enumOf<Log2Arithmetic>(f.choice("log2", {"llvmpipe", "ieee", "bounded"}));
+  m.log2 = enumOf<Log2Arithmetic>(f.choice("log2", {"llvmpipe", "softpipe", "ieee", "bounded"}));
   m.log2AbsoluteError = f.number("log2_absolute_error", 0, 1);
   m.log2Ulps = f.number("log2_ulps", 0, kMaxError);
   m.sqrtUlps = f.number("sqrt_ulps", 0, kMaxError);
@@ -125,10 +128,11 @@ PrecisionModel readModelFile(const std::filesystem::path& file) {
   }
   if (m.filter == FilterArithmetic::kBounded && m.subTexelBits == 0)
     throw InputError(file, "field sub_texel_bits is 0 for a bounded filter");
-  if (m.arithmetic == PrecisionProfile::kLlvmpipe && m.log2 == Log2Arithmetic::kIeee)
-    throw InputError(file,
-                     "field log2 is 'ieee' under llvmpipe arithmetic (the oracle computes "
-                     "llvmpipe's log2 there)");
+  if (m.log2 != Log2Arithmetic::kBounded && m.log2 != log2Of(m.arithmetic))
+    throw InputError(file, "field log2 is '" + nlohmann::json(m.log2).get<std::string>() +
+                               "' under " + toString(m.arithmetic) +
+                               " arithmetic (the oracle computes that arithmetic's log2; a "
+                               "pinned log2 must be it)");
   return m;
 }
 

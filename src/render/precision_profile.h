@@ -8,14 +8,26 @@
 //             evaluation fma(dqdy, y, fma(dqdx, x, q0)), window z with fma, log2 and exp2 as
 //             llvmpipe's polynomials, denormals flushed to zero in fragment arithmetic. Pin
 //             GALLIUM_OVERRIDE_CPU_CAPS to match a CPU without FMA (then use `exact` planes).
+//   softpipe  Mesa 22.3 softpipe, as read from its source and confirmed by emulation
+//             (reference/softpipe-arithmetic.md): vertices not snapped, coverage by float
+//             scanline spans, planes from the lowest vertex evaluated per quad by increments,
+//             attributes divided by the 1/w plane, depth neither offset nor clamped (Z24
+//             truncated), log2 as logf(x) * 1.442695f, denormals flushed, no fused multiply-add.
 //
-// The oracle computes in these arithmetics in reference/profile_arithmetic.h.
+// The oracle computes in these arithmetics in reference/profile_arithmetic.h and
+// reference/triangle_setup.h.
 
 #include <string>
 
+#include "common/enum_names.h"
+
 namespace vt {
 
-enum class PrecisionProfile { kExact, kLlvmpipe };
+enum class PrecisionProfile { kExact, kLlvmpipe, kSoftpipe };
+inline constexpr EnumNames<PrecisionProfile, 3> kPrecisionProfileNames = {
+    {{PrecisionProfile::kExact, "exact"},
+     {PrecisionProfile::kLlvmpipe, "llvmpipe"},
+     {PrecisionProfile::kSoftpipe, "softpipe"}}};
 
 PrecisionProfile parsePrecisionProfile(const std::string& name);  // throws std::invalid_argument
 std::string toString(PrecisionProfile profile);
@@ -24,5 +36,8 @@ std::string toString(PrecisionProfile profile);
 bool usesFusedPlanes(PrecisionProfile profile);
 // Whether fragment arithmetic flushes denormals to zero (DAZ and FTZ).
 bool flushesDenormals(PrecisionProfile profile);
+// Whether the profile rasterizes as softpipe does: unsnapped vertices, scanline coverage, planes
+// stepped per quad, attributes divided, depth unclamped.
+bool rasterizesLikeSoftpipe(PrecisionProfile profile);
 
 }  // namespace vt

@@ -17,11 +17,8 @@ oracle::RenderOptions publicRenderOptions(const RenderSettings& settings,
   oracle::RenderOptions options;
   options.modelFile = modelFile;
   if (modelFile.empty())
-    options.profile = settings.model
-                          ? oracle::publicProfile(*settings.model)
-                          : oracle::publicProfile(settings.profile == PrecisionProfile::kLlvmpipe
-                                                      ? llvmpipeModel()
-                                                      : exactModel());
+    options.profile = oracle::publicProfile(settings.model ? *settings.model
+                                                           : modelOfArithmetic(settings.profile));
   options.needEncoding =
       settings.need8 ? oracle::NeedEncoding::k8Bit : oracle::NeedEncoding::k32Bit;
   options.filtering =

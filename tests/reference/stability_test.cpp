@@ -275,7 +275,7 @@ TEST_F(Stability, DegenerateAndSliverTriangles) {
   mesh.indices = {0, 1, 2, 3, 4, 5, 6, 7, 8};
   SetupStatistics stats;
   const Viewport viewport{64, 64};
-  const auto triangles = setupTriangles(mesh, viewport, false, &stats);
+  const auto triangles = setupTriangles(mesh, viewport, PrecisionProfile::kExact, &stats);
   EXPECT_EQ(stats.empty, 2u);  // the collinear and the repeated-vertex triangles draw nothing
   RenderSettings settings;
   settings.debugChannels = true;

@@ -26,12 +26,13 @@ namespace vt::oracle {
 //   gl45      only what the OpenGL 4.5 and GLSL 4.50 specifications guarantee (dEQP's minimum
 //             precisions where they are silent): every pixel gets the set of all values a
 //             conforming implementation could produce, and compare() accepts exactly those
-enum class Profile { kExact, kLlvmpipe, kGl45 };
+//   softpipe  Mesa's softpipe, every parameter pinned: bit for bit
+enum class Profile { kExact, kLlvmpipe, kGl45, kSoftpipe };
 
 VT_ORACLE_API Profile parseProfile(const std::string& name);  // "exact", ...; throws Error
 VT_ORACLE_API std::string toString(Profile profile);
-// The model for a GL_RENDERER string: llvmpipe for Mesa's llvmpipe on a CPU with FMA, gl45
-// otherwise.
+// The model for a GL_RENDERER string: llvmpipe for Mesa's llvmpipe on a CPU with FMA, softpipe
+// for Mesa's softpipe, gl45 otherwise.
 VT_ORACLE_API Profile profileForRenderer(const std::string& glRenderer);
 
 // The needbuffer encodings (thesis 3.2.3.2), per pixel (r, g, b, a):
