@@ -46,9 +46,11 @@ float profileLog2(PrecisionProfile profile, float x) {
   return std::log2(x);
 }
 
-DenormalMode::DenormalMode(PrecisionProfile profile) : saved_(_mm_getcsr()) {
+DenormalMode::DenormalMode(PrecisionProfile profile) : DenormalMode(flushesDenormals(profile)) {}
+
+DenormalMode::DenormalMode(bool flush) : saved_(_mm_getcsr()) {
   constexpr unsigned kFlushToZero = 0x8000, kDenormalsAreZero = 0x0040;
-  if (flushesDenormals(profile))
+  if (flush)
     _mm_setcsr(saved_ | kFlushToZero | kDenormalsAreZero);
   else
     _mm_setcsr(saved_ & ~(kFlushToZero | kDenormalsAreZero));

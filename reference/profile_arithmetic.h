@@ -17,10 +17,12 @@ float softpipeLog2(float x);
 // The profile's log2.
 float profileLog2(PrecisionProfile profile, float x);
 
-// Sets the calling thread's denormal flushing to what `profile` does; restores on destruction.
+// Sets the calling thread's denormal flushing to what `profile` does, or as `flush` says;
+// restores on destruction.
 class DenormalMode {
  public:
   explicit DenormalMode(PrecisionProfile profile);
+  explicit DenormalMode(bool flush);
   ~DenormalMode();
   DenormalMode(const DenormalMode&) = delete;
   DenormalMode& operator=(const DenormalMode&) = delete;

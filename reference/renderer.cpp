@@ -94,6 +94,7 @@ struct FrameJob {
   const std::vector<SetupTriangle>& triangles;
   const Visibility& visibility;
   const PrecisionModel* model;  // null under a pinned model: no result sets
+  bool denormalsOnly;           // the model's one free parameter is the denormal mode
   SetShading shading;
   shader::VtParameters parameters;
   glm::uvec4 noNeed;
@@ -177,7 +178,12 @@ class TileShader {
     frame.need[index] = job_.noNeed;
     frame.depth[index] = 1.0f;
     frame.triangle[index] = -1;
-    if (job_.model) addSet(px, py, OracleFragment{});
+    if (job_.model && job_.denormalsOnly) {
+      sets_->alternatives.push_back(Alternative{});  // the clear values, in either mode
+      sets_->pixels.emplace_back(indexOf(px, py), 1u);
+    } else if (job_.model) {
+      addSet(px, py, OracleFragment{});
+    }
     if (job_.debug) {
       frame.uv[index] = vec2(0.0f);
       frame.derivatives[index] = vec4(0.0f);
@@ -213,12 +219,53 @@ class TileShader {
       frame.lod[index] = f.lod;
       frame.residentLevel[index] = static_cast<int8_t>(f.residentLevel);
     }
-    if (job_.model)
-      addSet(px, py,
-             OracleFragment{hit.triangle,
-                            glm::u8vec4(frame.color[index * 4], frame.color[index * 4 + 1],
-                                        frame.color[index * 4 + 2], frame.color[index * 4 + 3]),
-                            here.uv, f.neededLevel, f.lod});
+    const glm::u8vec4 color(frame.color[index * 4], frame.color[index * 4 + 1],
+                            frame.color[index * 4 + 2], frame.color[index * 4 + 3]);
+    if (job_.model && job_.denormalsOnly)
+      addDenormalSet(px, py, k, hit,
+                     OracleFragment{hit.triangle, color, here.uv, f.neededLevel, f.lod});
+    else if (job_.model)
+      addSet(px, py, OracleFragment{hit.triangle, color, here.uv, f.neededLevel, f.lod});
+  }
+
+  // Under a model whose one free parameter is the denormal mode, the pixel's set holds exactly two
+  // values: the oracle's own, and the one it computes with denormals treated the other way, its
+  // quad's plane evaluation and its shading both. (Triangle setup runs once: for attributes of
+  // texture-coordinate scale its values lie far above the denormal range.)
+  void addDenormalSet(int px, int py, int k, const PixelHit& hit, const OracleFragment& own) {
+    const SetupTriangle& t = job_.triangles[static_cast<size_t>(hit.triangle)];
+    const PrecisionProfile profile = job_.settings.profile;
+    const int qx = px & ~1, qy = py & ~1, column = k & 1, row = k >> 1;
+    shader::VtFragment f;
+    vec2 uv;
+    {
+      const DenormalMode other(!flushesDenormals(profile));
+      std::array<Attributes, 4> at;
+      for (int q = 0; q < 4; ++q)
+        at[static_cast<size_t>(q)] = attributesAt(t, qx + (q & 1), qy + (q >> 1), profile);
+      uv = at[static_cast<size_t>(k)].uv;
+      const vec2 dUVdx =
+          at[static_cast<size_t>(2 * row + 1)].uv - at[static_cast<size_t>(2 * row)].uv;
+      const vec2 dUVdy =
+          at[static_cast<size_t>(2 + column)].uv - at[static_cast<size_t>(column)].uv;
+      f = job_.settings.needOnly ? needOfFragment(uv, dUVdx, dUVdy)
+                                 : shader_.vtShadeFragment(uv, dUVdx, dUVdy, job_.parameters);
+    }
+    glm::u8vec4 color;
+    for (int c = 0; c < 4; ++c) color[c] = toUnorm8(f.color[c]);
+    const auto clamped = [&](vec2 v) {
+      return glm::vec2(shader_.vtClampOrZero(v.x, 1.0f), shader_.vtClampOrZero(v.y, 1.0f));
+    };
+    Alternative a;
+    a.triangle = static_cast<int32_t>(t.primitive);
+    a.levelLo = static_cast<uint8_t>(std::min(own.neededLevel, f.neededLevel));
+    a.levelHi = static_cast<uint8_t>(std::max(own.neededLevel, f.neededLevel));
+    a.uvLo = glm::min(clamped(own.uv), clamped(uv));
+    a.uvHi = glm::max(clamped(own.uv), clamped(uv));
+    a.colorLo = a.filterLo = glm::min(own.color, color);
+    a.colorHi = a.filterHi = glm::max(own.color, color);
+    sets_->alternatives.push_back(a);
+    sets_->pixels.emplace_back(indexOf(px, py), 1u);
   }
 
   // The first steps of vtShadeFragment (src/shader/virtual_texture.glsl), through the same
@@ -291,6 +338,7 @@ void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescr
                      triangles,
                      visibility,
                      model,
+                     model != nullptr && model->onlyDenormalsFree(),
                      setShading(d, settings),
                      shaderParameters(d, cacheSize, settings),
                      needClearValue(settings.need8),

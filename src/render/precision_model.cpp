@@ -25,6 +25,12 @@ bool PrecisionModel::pinned() const {
          filter != FilterArithmetic::kBounded && colorRoundsToNearest && denormalsPinned;
 }
 
+bool PrecisionModel::onlyDenormalsFree() const {
+  PrecisionModel rest = *this;
+  rest.denormalsPinned = true;
+  return !denormalsPinned && rest.pinned();
+}
+
 PrecisionModel llvmpipeModel() {
   PrecisionModel m;
   m.name = "llvmpipe";
@@ -60,6 +66,13 @@ PrecisionModel softpipeModel() {
   m.sources["subpixel_bits"] = m.sources["fill_rule"] =
       "Mesa 22.3 softpipe: no snapping, coverage by float scanline spans with its own tie rule "
       "(reference/softpipe-arithmetic.md, 2.3); the oracle rasterizes the same way";
+  // Flushed while draw_vbo shades, kept for the tail of a batch with a clipped vertex, which is
+  // shaded after it returns (vt calibrate's probe quad is such a tail).
+  m.denormalsPinned = false;
+  m.sources["denormals"] =
+      "Mesa 22.3 softpipe: flushed for batches without a clipped vertex, kept for the tail of a "
+      "batch with one (reference/softpipe-arithmetic.md, 5.3): free, each pixel's set holds its "
+      "value with denormals flushed and with them kept";
   return m;
 }
 

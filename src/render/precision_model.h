@@ -9,8 +9,10 @@
 // Shipped models:
 //   llvmpipe  Mesa 22.3 llvmpipe on x86-64 with FMA, every parameter pinned (DESIGN section 7):
 //             every set is one value, the comparison is bit for bit.
-//   softpipe  Mesa 22.3 softpipe, every parameter pinned (reference/softpipe-arithmetic.md, read
-//             from its source and confirmed by emulation): the comparison is bit for bit.
+//   softpipe  Mesa 22.3 softpipe (reference/softpipe-arithmetic.md, read from its source and
+//             confirmed by emulation): every parameter pinned but the denormal mode, which
+//             softpipe changes between batches; each set holds the value with denormals flushed
+//             and the value with them kept.
 //   exact     IEEE float in source order, every parameter pinned: the reference for golden images
 //             that no GPU is expected to match bit for bit.
 //   gl45      only what the OpenGL 4.5 core and GLSL 4.50 specifications guarantee, and where they
@@ -83,6 +85,9 @@ struct PrecisionModel {
 
   // Every parameter pinned: each pixel's set is the oracle's one value.
   bool pinned() const;
+  // Every parameter pinned but the denormal mode: each pixel's set is the oracle's value with
+  // denormals flushed and its value with them kept (reference/renderer.cpp computes both).
+  bool onlyDenormalsFree() const;
   bool coveragePinned() const { return subpixelBits == 8 && fillRulePinned; }
   bool operator==(const PrecisionModel&) const = default;
 };

@@ -14,12 +14,4 @@ std::string toString(PrecisionProfile profile) {
   return std::string(nameOf(kPrecisionProfileNames, profile));
 }
 
-// softpipe: draw_vbo sets FTZ and DAZ while it shades; only the tail of a batch with a clipped
-// vertex is shaded after it returns (reference/softpipe-arithmetic.md, 5.3), which no shader value
-// of this project's scenes reaches.
-bool flushesDenormals(PrecisionProfile profile) { return profile != PrecisionProfile::kExact; }
-bool rasterizesLikeSoftpipe(PrecisionProfile profile) {
-  return profile == PrecisionProfile::kSoftpipe;
-}
-
 }  // namespace vt

@@ -32,12 +32,22 @@ inline constexpr EnumNames<PrecisionProfile, 3> kPrecisionProfileNames = {
 PrecisionProfile parsePrecisionProfile(const std::string& name);  // throws std::invalid_argument
 std::string toString(PrecisionProfile profile);
 
-// Whether the profile evaluates planes and window z with fused multiply-adds.
-bool usesFusedPlanes(PrecisionProfile profile);
-// Whether fragment arithmetic flushes denormals to zero (DAZ and FTZ).
-bool flushesDenormals(PrecisionProfile profile);
+// Whether the profile evaluates planes and window z with fused multiply-adds. (Inline: the oracle
+// asks for every plane it evaluates.)
+constexpr bool usesFusedPlanes(PrecisionProfile profile) {
+  return profile == PrecisionProfile::kLlvmpipe;
+}
+// Whether fragment arithmetic flushes denormals to zero (DAZ and FTZ). softpipe: draw_vbo sets
+// FTZ and DAZ while it shades; only the tail of a batch with a clipped vertex is shaded after it
+// returns (reference/softpipe-arithmetic.md, 5.3), which no shader value of this project's scenes
+// reaches.
+constexpr bool flushesDenormals(PrecisionProfile profile) {
+  return profile != PrecisionProfile::kExact;
+}
 // Whether the profile rasterizes as softpipe does: unsnapped vertices, scanline coverage, planes
 // stepped per quad, attributes divided, depth unclamped.
-bool rasterizesLikeSoftpipe(PrecisionProfile profile);
+constexpr bool rasterizesLikeSoftpipe(PrecisionProfile profile) {
+  return profile == PrecisionProfile::kSoftpipe;
+}
 
 }  // namespace vt

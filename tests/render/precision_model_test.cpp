@@ -18,20 +18,25 @@ using ::testing::HasSubstr;
 TEST(PrecisionModel, ShippedModelsPinWhatTheyMeasureAndGl45LeavesTheSpecificationsSlack) {
   EXPECT_TRUE(llvmpipeModel().pinned());
   EXPECT_TRUE(exactModel().pinned());
+  // softpipe changes its denormal mode between batches: that alone is free.
+  EXPECT_FALSE(softpipeModel().pinned());
+  EXPECT_TRUE(softpipeModel().onlyDenormalsFree());
+  EXPECT_FALSE(gl45Model().onlyDenormalsFree());
   const PrecisionModel gl45 = gl45Model();
   EXPECT_FALSE(gl45.pinned());
   EXPECT_FALSE(gl45.coveragePinned());
   EXPECT_EQ(gl45.subpixelBits, 4);  // GL 4.5 table 23.53
   EXPECT_EQ(gl45.log2AbsoluteError, 0x1p-21);
   // Every parameter of every shipped model says where its value comes from.
-  for (const PrecisionModel& m : {llvmpipeModel(), exactModel(), gl45}) {
+  for (const PrecisionModel& m : {llvmpipeModel(), softpipeModel(), exactModel(), gl45}) {
     for (const char* parameter : {"subpixel_bits", "fill_rule", "depth", "attributes", "log2",
                                   "sqrt", "arithmetic", "filter", "color_conversion", "denormals"})
       EXPECT_FALSE(m.sources.at(parameter).empty()) << m.name << " " << parameter;
   }
   EXPECT_EQ(namedModel("gl45"), gl45);
   EXPECT_THROW(namedModel("nvidia"), std::invalid_argument);
-  EXPECT_EQ(modelForRenderer("softpipe").name, "gl45");
+  EXPECT_EQ(namedModel("softpipe"), softpipeModel());
+  EXPECT_EQ(modelForRenderer("softpipe").name, "softpipe");
   EXPECT_EQ(modelForRenderer("NVIDIA H100/PCIe/SSE2").name, "gl45");
 }
 
@@ -44,13 +49,14 @@ TEST(PrecisionModelFile, RoundTripsEveryParameter) {
   measured.fillRulePinned = true;
   measured.filter = FilterArithmetic::kFloat;
   measured.sources["filter"] = "probe draws";
-  for (const PrecisionModel& m : {measured, llvmpipeModel(), exactModel()}) {
+  for (const PrecisionModel& m : {measured, llvmpipeModel(), softpipeModel(), exactModel()}) {
     std::ofstream(dir / "m.json") << modelJson(m);
     EXPECT_EQ(readModelFile(dir / "m.json"), m) << m.name;
     EXPECT_EQ(resolveModel((dir / "m.json").string(), "llvmpipe"), m);
   }
   EXPECT_EQ(resolveModel("exact", "softpipe"), exactModel());
-  EXPECT_EQ(resolveModel("auto", "softpipe"), gl45Model());
+  EXPECT_EQ(resolveModel("auto", "softpipe"), softpipeModel());
+  EXPECT_EQ(resolveModel("auto", "an unknown GPU"), gl45Model());
 }
 
 TEST(PrecisionModelFile, RefusesMalformedFilesNamingTheField) {
