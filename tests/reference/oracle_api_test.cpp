@@ -11,6 +11,7 @@
 #include "build/synthetic_texture.h"
 #include "reference/api/api_internal.h"
 #include "reference/renderer.h"
+#include "scene/obj_mesh.h"
 #include "scene/test_scenes.h"
 #include "test_support.h"
 #include "vt/oracle.h"
@@ -35,6 +36,45 @@ size_t firstClearPixel(const oracle::Frame& frame) {
     if (frame.ambiguous[i] == 0 && frame.color[i * 4 + 3] != 0) return i;
   ADD_FAILURE() << "no unambiguous pixel with geometry";
   return 0;
+}
+
+// sceneFromObj: the OBJ's polygons fanned as the project's loaders fan them, each vertex through
+// the transform both renderers use (bit for bit the internal toClipSpace), OBJ's v flipped;
+// an unreadable file is an Error naming it.
+TEST(OracleApi, SceneFromObjIsTheRenderersTransformOfTheMesh) {
+  test::ScratchDirectory dir;
+  std::ofstream(dir / "quad.obj") << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                                     "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n";
+  oracle::Camera camera;
+  camera.position[2] = 3.0f;
+  camera.fovYDegrees = 50.0f;
+  const oracle::Scene scene = oracle::sceneFromObj(dir / "quad.obj", camera, {64, 48});
+  EXPECT_EQ(scene.viewport.width, 64);
+  EXPECT_EQ(scene.viewport.height, 48);
+  ASSERT_EQ(scene.vertices.size(), 4u);
+  EXPECT_EQ(scene.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+
+  Camera internal;
+  internal.position = glm::vec3(0, 0, 3);
+  internal.target = glm::vec3(0);
+  internal.fovYDegrees = 50.0f;
+  const ClipSpaceMesh expected =
+      toClipSpace(loadObjMesh(dir / "quad.obj"), internal, Viewport{64, 48});
+  for (size_t i = 0; i < 4; ++i) {
+    const oracle::ClipVertex& v = scene.vertices[i];
+    EXPECT_EQ(glm::vec4(v.x, v.y, v.z, v.w), expected.vertices[i].position) << i;
+    EXPECT_EQ(glm::vec2(v.s, v.t), expected.vertices[i].uv) << i;
+  }
+  EXPECT_EQ(glm::vec2(scene.vertices[3].s, scene.vertices[3].t), glm::vec2(0, 0));  // vt (0, 1)
+  EXPECT_GT(scene.vertices[0].w, 0.0f);
+
+  std::ofstream(dir / "broken.obj") << "v 0 0 0\nf 1 1 1\n";
+  EXPECT_THAT(
+      [&] {
+        oracle::sceneFromObj(dir / "broken.obj", camera, {64, 48});
+      },
+      ::testing::ThrowsMessage<oracle::Error>(HasSubstr("broken.obj")));
+  EXPECT_THROW(oracle::sceneFromObj(dir / "missing.obj", camera, {64, 48}), oracle::Error);
 }
 
 TEST(OracleApi, RendersTheSameFrameAsTheOracleItWraps) {
