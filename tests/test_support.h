@@ -57,4 +57,10 @@ inline void writeBytes(const std::filesystem::path& path, const std::vector<std:
             static_cast<std::streamsize>(bytes.size()));
 }
 
+// A text file whole (empty when it cannot be read).
+inline std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 }  // namespace vt::test

@@ -58,7 +58,7 @@ PrecisionModel softpipeModel() {
   PrecisionModel m;
   m.name = "softpipe";
   m.arithmetic = PrecisionProfile::kSoftpipe;
-  m.log2 = Log2Arithmetic::kSoftpipe;
+  m.log2 = log2Of(m.arithmetic);
   m.filter = FilterArithmetic::kFloat;
   m.sources = everyParameterFrom(
       "Mesa 22.3 softpipe, read from its source and confirmed bit for bit by emulation: "

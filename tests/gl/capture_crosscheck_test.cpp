@@ -24,10 +24,7 @@ nlohmann::json readJson(const std::filesystem::path& file) {
   return nlohmann::json::parse(in);
 }
 
-std::string readText(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using test::readText;
 
 test::CommandResult crosscheck(const test::ScratchDirectory& dir, const std::string& out) {
   return test::runCommand(
