@@ -181,6 +181,11 @@ Capture parseManifest(const json& root, const fs::path& manifest) {
     throw top.fail("has version " + std::to_string(version) + "; this oracle reads version " +
                    std::to_string(kCaptureVersion));
   capture.renderer = top.text("renderer");
+  if (top.has("model")) {
+    const fs::path model = top.text("model");
+    if (model.empty()) throw top.fail("\"model\" is an empty file name");
+    capture.model = model.is_absolute() ? model : folder / model;
+  }
 
   Fields texture(top.at("texture", json::value_t::object), manifest, "\"texture\"");
   const fs::path textureFile = texture.text("file");
@@ -273,6 +278,13 @@ Capture parseManifest(const json& root, const fs::path& manifest) {
   return capture;
 }
 
+// `file` named from `folder` (the manifest's), or absolute where no relative name reaches it.
+fs::path relativeTo(const fs::path& folder, const fs::path& file) {
+  const fs::path absolute = fs::absolute(file).lexically_normal();
+  const fs::path relative = absolute.lexically_relative(fs::absolute(folder).lexically_normal());
+  return relative.empty() ? absolute : relative;
+}
+
 void writeData(const fs::path& file, std::span<const std::byte> bytes) {
   writeFileAtomically(file, bytes);
 }
@@ -302,9 +314,8 @@ void writeCapture(const fs::path& manifest, const Capture& capture) {
     root["format"] = "vt-capture";
     root["version"] = kCaptureVersion;
     root["renderer"] = capture.renderer;
-    const fs::path texture = fs::absolute(capture.texture).lexically_normal();
-    const fs::path relative = texture.lexically_relative(fs::absolute(folder).lexically_normal());
-    root["texture"] = {{"file", relative.empty() ? texture.string() : relative.string()},
+    if (!capture.model.empty()) root["model"] = relativeTo(folder, capture.model).string();
+    root["texture"] = {{"file", relativeTo(folder, capture.texture).string()},
                        {"identity", identityText(capture.textureIdentity)}};
     root["viewport"] = {{"width", v.width}, {"height", v.height}};
     root["needbuffer_encoding"] = toString(capture.needEncoding);

@@ -159,6 +159,10 @@ PrecisionModel modelOfArithmetic(PrecisionProfile arithmetic) {
   return exactModel();
 }
 
+bool isModelName(const std::string& name) {
+  return name == "llvmpipe" || name == "softpipe" || name == "exact" || name == "gl45";
+}
+
 PrecisionModel namedModel(const std::string& name) {
   if (name == "llvmpipe") return llvmpipeModel();
   if (name == "softpipe") return softpipeModel();

@@ -104,6 +104,8 @@ PrecisionModel gl45Model();
 
 // The shipped names, for messages and command-line choices.
 inline constexpr const char* kModelNames = "llvmpipe, softpipe, exact, gl45";
+// Whether `name` is one of kModelNames (anything else given as a model is a model file).
+bool isModelName(const std::string& name);
 // A shipped model by name; throws std::invalid_argument for any other name.
 PrecisionModel namedModel(const std::string& name);
 

@@ -194,8 +194,7 @@ PrecisionModel resolveModel(const std::string& nameOrFile, const std::string& gl
     if (const auto file = measuredModelFile(glRenderer)) return readModelFile(*file);
     return modelForRenderer(glRenderer);
   }
-  if (nameOrFile == "llvmpipe" || nameOrFile == "exact" || nameOrFile == "gl45")
-    return namedModel(nameOrFile);
+  if (isModelName(nameOrFile)) return namedModel(nameOrFile);
   return readModelFile(nameOrFile);
 }
 

@@ -48,6 +48,27 @@ std::string pixelLine(const oracle::PixelDifference& d, int height) {
   return line.append(std::to_string(d.widenBy)).append(" ").append(oracle::widthUnit(d.reason));
 }
 
+// The model that judges one capture, and why that one.
+struct JudgingModel {
+  std::filesystem::path file;  // a model file; empty: a shipped model
+  oracle::Profile profile = oracle::Profile::kExact;
+  std::string from;  // "option", "capture", "measured" or "renderer"
+};
+
+// --model NAME or FILE judges every capture. auto: the model file the capture names, else a
+// measured model of its renderer ($VT_PRECISION_MODELS), else the shipped model for its
+// renderer's name.
+JudgingModel judgingModel(const std::string& option, const oracle::Capture& capture) {
+  if (option != "auto") {
+    if (isModelName(option)) return {{}, oracle::parseProfile(option), "option"};
+    return {option, oracle::Profile::kExact, "option"};
+  }
+  if (!capture.model.empty()) return {capture.model, oracle::Profile::kExact, "capture"};
+  if (const std::optional<std::filesystem::path> measured = measuredModelFile(capture.renderer))
+    return {*measured, oracle::Profile::kExact, "measured"};
+  return {{}, oracle::profileForRenderer(capture.renderer), "renderer"};
+}
+
 }  // namespace
 
 CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options) {
@@ -75,22 +96,18 @@ CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options) {
       std::unique_ptr<oracle::Texture>& texture = textures[capture.texture];
       if (!texture)
         texture = std::make_unique<oracle::Texture>(oracle::Texture::open(capture.texture));
-      // A shipped model by name, auto (from the capture's renderer), or a model file.
-      // auto prefers a measured model of the capture's renderer ($VT_PRECISION_MODELS).
-      const std::optional<std::filesystem::path> measured =
-          options.profile == "auto" ? measuredModelFile(capture.renderer) : std::nullopt;
-      const bool named = !measured && (options.profile == "auto" || options.profile == "exact" ||
-                                       options.profile == "llvmpipe" || options.profile == "gl45");
+      const JudgingModel judge = judgingModel(options.profile, capture);
+      if (!judge.file.empty()) {
+        const PrecisionModel model = readModelFile(judge.file);
+        if (!model.renderer.empty() && model.renderer != capture.renderer)
+          std::cerr << "vt crosscheck: " << manifest.string() << ": warning: precision model '"
+                    << model.name << "' was measured on " << model.renderer
+                    << ", the capture was drawn by " << capture.renderer << "\n";
+      }
       const oracle::CaptureCheck check =
-          named
-              ? oracle::checkCapture(capture, *texture,
-                                     options.profile == "auto"
-                                         ? oracle::profileForRenderer(capture.renderer)
-                                         : oracle::parseProfile(options.profile),
-                                     options.threads)
-              : oracle::checkCapture(capture, *texture,
-                                     measured ? *measured : std::filesystem::path(options.profile),
-                                     options.threads);
+          judge.file.empty()
+              ? oracle::checkCapture(capture, *texture, judge.profile, options.threads)
+              : oracle::checkCapture(capture, *texture, judge.file, options.threads);
       const oracle::Comparison& c = check.comparison;
       const oracle::Viewport v = capture.scene.viewport;
       writeComparisonImages(folder, name, v, c);
@@ -100,6 +117,9 @@ CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options) {
       nlohmann::json frame = {{"capture", manifest.filename().string()},
                               {"renderer", capture.renderer},
                               {"model", c.model},
+                              {"model_file", judge.file.empty() ? nlohmann::json(nullptr)
+                                                                : nlohmann::json(judge.file.string())},
+                              {"model_from", judge.from},
                               {"needbuffer_encoding", oracle::toString(capture.needEncoding)},
                               {"filtering", oracle::toString(capture.filtering)},
                               {"sampling", oracle::toString(capture.sampling)}};

@@ -15,8 +15,10 @@ struct CapturesCheckOptions {
   // Receives summary.json, junit.xml and per capture the colour difference and the pixel classes,
   // complete or not at all: written into a temporary folder that replaces `output` at the end.
   std::filesystem::path output;
-  // exact, llvmpipe, gl45, a model file (.json), or auto: per capture, a measured model of its
-  // renderer ($VT_PRECISION_MODELS), else the shipped model for its renderer's name.
+  // exact, llvmpipe, softpipe, gl45 or a model file (.json) for every capture; or auto: per
+  // capture, the model file it names, else a measured model of its renderer
+  // ($VT_PRECISION_MODELS), else the shipped model for its renderer's name. The summary records
+  // per capture the model, its file and which of these chose it ("model_from").
   std::string profile = "auto";
   unsigned threads = 0;  // the oracle's; 0: every core
 };

@@ -11,6 +11,8 @@
 #include "build/synthetic_texture.h"
 #include "reference/api/api_internal.h"
 #include "reference/renderer.h"
+#include "render/precision_model.h"
+#include "render/precision_model_file.h"
 #include "scene/obj_mesh.h"
 #include "scene/test_scenes.h"
 #include "test_support.h"
@@ -241,10 +243,30 @@ TEST(OracleApi, CapturesRoundTripThroughTheirFiles) {
     EXPECT_EQ(read.cache.pages[2].frameX, 2u);
     EXPECT_EQ(read.color, f.capture.color);
     EXPECT_EQ(read.need, f.capture.need);
+    EXPECT_TRUE(read.model.empty()) << "a capture that names no model file";
+    EXPECT_FALSE(f.manifestJson().contains("model"));
     const oracle::CaptureCheck check =
         oracle::checkCapture(read, oracle::Texture::open(read.texture), oracle::Profile::kExact);
     EXPECT_EQ(check.comparison.identical, 72u * 40u);
   }
+}
+
+// A capture may name the model file that judges it: written relative to the manifest's folder,
+// read back resolved against it, and usable as the model of checkCapture.
+TEST(OracleApi, ACapturesModelFileRoundTripsAndJudgesIt) {
+  CaptureFixture f(oracle::NeedEncoding::k32Bit);
+  std::filesystem::create_directories(f.dir / "models");
+  std::ofstream(f.dir / "models" / "exact.json") << modelJson(exactModel());
+  f.capture.model = f.dir / "models" / "exact.json";
+  oracle::writeCapture(f.manifest, f.capture);
+  EXPECT_EQ(f.manifestJson()["model"], "../models/exact.json");
+  const oracle::Capture read = oracle::readCapture(f.manifest);
+  EXPECT_EQ(std::filesystem::canonical(read.model),
+            std::filesystem::canonical(f.dir / "models" / "exact.json"));
+  const oracle::CaptureCheck check =
+      oracle::checkCapture(read, oracle::Texture::open(read.texture), read.model);
+  EXPECT_EQ(check.comparison.model, "exact");
+  EXPECT_EQ(check.comparison.identical, 72u * 40u);
 }
 
 TEST(OracleApi, MalformedOrInconsistentCapturesAreRefusedWithTheFileNamed) {
@@ -281,6 +303,8 @@ TEST(OracleApi, MalformedOrInconsistentCapturesAreRefusedWithTheFileNamed) {
   edited([](J& j, F) { j.erase("filtering"); }, "manifest has no \"filtering\"");
   edited([](J& j, F) { j["sampling"] = 3; }, "\"sampling\" is not a string");
   edited([](J& j, F) { j["colour"] = "x.png"; }, "unknown field \"colour\"");
+  edited([](J& j, F) { j["model"] = 7; }, "\"model\" is not a string");
+  edited([](J& j, F) { j["model"] = ""; }, "\"model\" is an empty file name");
   edited([](J& j, F) { j["texture"]["identity"] = "xyz"; }, "not 16 hexadecimal digits");
   edited([](J& j, F) { j["geometry"]["vertices"] = "../../etc/passwd"; }, "without \"..\"");
   edited([](J& j, F) { j["geometry"]["index_count"] = 7; }, "holds");

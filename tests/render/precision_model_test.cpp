@@ -55,6 +55,10 @@ TEST(PrecisionModelFile, RoundTripsEveryParameter) {
     EXPECT_EQ(resolveModel((dir / "m.json").string(), "llvmpipe"), m);
   }
   EXPECT_EQ(resolveModel("exact", "softpipe"), exactModel());
+  // Every shipped name is a model, never a file of that name.
+  EXPECT_EQ(resolveModel("softpipe", "llvmpipe"), softpipeModel());
+  EXPECT_EQ(resolveModel("llvmpipe", "softpipe"), llvmpipeModel());
+  EXPECT_EQ(resolveModel("gl45", "llvmpipe"), gl45Model());
   EXPECT_EQ(resolveModel("auto", "softpipe"), softpipeModel());
   EXPECT_EQ(resolveModel("auto", "an unknown GPU"), gl45Model());
 }

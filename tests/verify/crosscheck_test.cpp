@@ -10,6 +10,8 @@
 #include "build/synthetic_texture.h"
 #include "format/virtual_texture_reader.h"
 #include "render/cache_state.h"
+#include "render/precision_model.h"
+#include "render/precision_model_file.h"
 #include "scene/clip_space_mesh.h"
 #include "test_support.h"
 #include "verify/crosscheck_captures.h"
@@ -148,6 +150,54 @@ TEST_F(CapturesCrosscheck, OneWrongPixelAndOneUnreadableManifestFailTheCheck) {
   EXPECT_EQ(summary["frames"][0]["unexplained_pixels"][0]["y"], kViewport.height / 2);
   EXPECT_TRUE(summary["frames"][2].contains("error"));
   EXPECT_NE(readText(dir_ / "out" / "junit.xml").find("tests=\"3\" failures=\"1\" errors=\"1\""),
+            std::string::npos);
+}
+
+// A capture may name its own model file: under --model auto that file judges it (and the summary
+// says so), a model given as an option judges every capture, and a capture without one is judged
+// by its renderer's shipped model. The model decides the verdict: a frame in llvmpipe's
+// arithmetic (8-bit filter weights, its log2) is bit-exact under the llvmpipe model its capture
+// names, and fails under exact.
+TEST_F(CapturesCrosscheck, ACapturesOwnModelFileJudgesItUnderAuto) {
+  std::filesystem::create_directories(dir_ / "models");
+  std::ofstream(dir_ / "models" / "llvmpipe.json") << modelJson(llvmpipeModel());
+  oracle::Capture capture = captures_[1];  // grazing, the first capture by name
+  const oracle::Frame frame =
+      oracle::render(oracle::Texture::open(dir_ / "t.vt"), capture.scene, capture.cache,
+                     oracle::renderOptions(capture, oracle::Profile::kLlvmpipe));
+  capture.color = frame.color;
+  capture.need = frame.need;
+  capture.model = dir_ / "models" / "llvmpipe.json";
+  oracle::writeCapture(dir_ / "captures" / "grazing.json", capture);
+
+  const CapturesCheck automatic = check();
+  EXPECT_TRUE(automatic.passed());
+  nlohmann::json summary = readJson(dir_ / "out" / "summary.json");
+  const nlohmann::json& own = summary["frames"][0];
+  EXPECT_EQ(own["capture"], "grazing.json");
+  EXPECT_EQ(own["model"], "llvmpipe");
+  EXPECT_EQ(own["model_from"], "capture");
+  EXPECT_EQ(own["identical"], kViewport.width * kViewport.height);
+  EXPECT_EQ(std::filesystem::canonical(own["model_file"].get<std::string>()),
+            std::filesystem::canonical(dir_ / "models" / "llvmpipe.json"));
+  const nlohmann::json& other = summary["frames"][1];
+  EXPECT_EQ(other["model"], "gl45");
+  EXPECT_EQ(other["model_from"], "renderer");
+  EXPECT_TRUE(other["model_file"].is_null());
+
+  const CapturesCheck option = crosscheckCaptures({dir_ / "captures", dir_ / "out", "exact"});
+  EXPECT_FALSE(option.passed());
+  EXPECT_GT(option.totals.unexplained, 0u) << "llvmpipe's arithmetic is not exact";
+  summary = readJson(dir_ / "out" / "summary.json");
+  EXPECT_EQ(summary["frames"][0]["model"], "exact");
+  EXPECT_EQ(summary["frames"][0]["model_from"], "option");
+
+  // A model file the capture names but that is not there: that capture is unreadable.
+  std::filesystem::remove(dir_ / "models" / "llvmpipe.json");
+  const CapturesCheck missing = check();
+  EXPECT_EQ(missing.unreadable, 1u);
+  summary = readJson(dir_ / "out" / "summary.json");
+  EXPECT_NE(summary["frames"][0]["error"].get<std::string>().find("llvmpipe.json"),
             std::string::npos);
 }
 

@@ -5,7 +5,8 @@
 // the format:
 //
 //   frame0007.json             the manifest: texture and its identity, viewport, renderer, cache
-//                              state, needbuffer encoding, filtering, and the files below
+//                              state, needbuffer encoding, filtering, the files below, and
+//                              optionally the precision model file that judges the frame
 //   frame0007.vertices.f32     clip-space vertices (x, y, z, w, s, t), float32 little-endian
 //   frame0007.indices.u32      three per triangle, uint32 little-endian (optional)
 //   frame0007.color.png        RGBA8, rows top to bottom
@@ -34,6 +35,10 @@ inline constexpr int kCaptureVersion = 1;
 struct Capture {
   std::string renderer;           // GL_RENDERER or the engine's name, for reports
   std::filesystem::path texture;  // the .vt file (resolved against the manifest's folder)
+  // The precision model file (`vt calibrate`'s output) the frame is to be judged under, resolved
+  // against the manifest's folder; empty when the capture names none. `vt crosscheck --captures
+  // --model auto` uses it; checkCapture(capture, texture, capture.model) does the same here.
+  std::filesystem::path model;
   uint64_t textureIdentity = 0;   // Texture::identity() of the file the frame was drawn from
   Scene scene;
   CacheState cache;
