@@ -8,6 +8,12 @@ target_compile_options(vt_compile_options INTERFACE -Wall -Wextra -Wpedantic -ff
 if(VT_WARNINGS_AS_ERRORS)
   target_compile_options(vt_compile_options INTERFACE -Werror)
 endif()
+# Unity builds (CMAKE_UNITY_BUILD, scripts/test.sh) compile each .cpp as an included file, and GCC
+# then takes a class that holds a type from the file's anonymous namespace (a pimpl's state) for
+# one that a header could define twice. One .cpp file defines it once, as in the normal build.
+if(CMAKE_UNITY_BUILD AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+  target_compile_options(vt_compile_options INTERFACE -Wno-subobject-linkage)
+endif()
 option(VT_SANITIZE_THREAD "Build with ThreadSanitizer" OFF)
 if(VT_SANITIZE_THREAD)
   target_compile_options(vt_compile_options INTERFACE -fsanitize=thread -fno-omit-frame-pointer)

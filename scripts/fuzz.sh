@@ -24,8 +24,10 @@ openarena=${VT_OPENARENA_DIR:-$(bash scripts/fetch-openarena.sh)}
 start=$SECONDS
 echo "== configure and build $folder (clang, libFuzzer, ASan, UBSan)"
 mkdir -p "$folder"
+# A unity build, as scripts/test.sh's (which says why).
 cmake -S . -B "$folder" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ \
-  -DVT_FUZZ=ON -DVT_BUILD_TESTS=OFF -DVT_BUILD_BENCHMARKS=OFF >"$folder/configure.log" 2>&1 ||
+  -DVT_FUZZ=ON -DVT_BUILD_TESTS=OFF -DVT_BUILD_BENCHMARKS=OFF -DCMAKE_UNITY_BUILD=ON \
+  -DCMAKE_UNITY_BUILD_BATCH_SIZE=8 >"$folder/configure.log" 2>&1 ||
   { cat "$folder/configure.log"; exit 1; }
 cmake --build "$folder" --parallel "$(nproc)" --target "${targets[@]/#/fuzz_}"
 built=$SECONDS

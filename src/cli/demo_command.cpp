@@ -15,6 +15,7 @@
 #include "build/texture_builder.h"
 #include "cli/commands.h"
 #include "cli/texture_report.h"
+#include "common/elapsed_time.h"
 #include "common/image_file.h"
 #include "common/output_path.h"
 #include "common/posix_file.h"
@@ -26,10 +27,6 @@
 
 namespace vt {
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Renders the box room from a cache state holding every page, with the oracle and with GL, and
 // compares colour and needbuffer.

@@ -6,6 +6,7 @@
 #include <memory>
 #include <thread>
 
+#include "common/elapsed_time.h"
 #include "eval/flight_run.h"
 #include "eval/image_metrics.h"
 #include "reference/parallel_for.h"
@@ -17,10 +18,6 @@ namespace vt {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // The needbuffers an evaluation draws besides each view's own: a camera (the view, or a LookAhead
 // camera) at a needbuffer scale. The view at full scale is the shared frame itself.

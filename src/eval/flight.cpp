@@ -4,6 +4,7 @@
 #include <chrono>
 #include <memory>
 
+#include "common/elapsed_time.h"
 #include "eval/flight_run.h"
 #include "reference/renderer.h"
 #include "runtime/needbuffer_scale.h"
@@ -13,10 +14,6 @@ namespace vt {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // Draws camera views from the runtime's current cache state, at the screen's resolution or at a
 // reduced needbuffer's (jittered per frame), with delayed readback as an option: then the main

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "common/elapsed_time.h"
 #include "runtime/needbuffer_scale.h"
 #include "shader/needbuffer.h"
 
@@ -10,10 +11,6 @@ namespace vt {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 RuntimeOptions runtimeOptions(const VirtualTextureReader& reader,
                               const FlightConfiguration& configuration) {

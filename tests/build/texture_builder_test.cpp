@@ -85,7 +85,8 @@ std::vector<std::byte> naivePage(const TextureDescription& d, const Level& level
 }
 
 // A deterministic image with detail at every scale.
-std::vector<uint8_t> pattern(uint32_t width, uint32_t height, uint32_t channels, uint32_t seed) {
+std::vector<uint8_t> detailedPattern(uint32_t width, uint32_t height, uint32_t channels,
+                                     uint32_t seed) {
   std::vector<uint8_t> texels(size_t{width} * height * channels);
   uint32_t state = seed * 2654435761u + 1;
   for (uint32_t y = 0; y < height; ++y)
@@ -110,7 +111,7 @@ class TextureBuilder : public ::testing::Test {
     images_.clear();
     for (size_t i = 0; i < placements.size(); ++i) {
       const auto [x, y, w, h] = placements[i];
-      images_.push_back(pattern(w, h, channels, static_cast<uint32_t>(i)));
+      images_.push_back(detailedPattern(w, h, channels, static_cast<uint32_t>(i)));
       const std::string name = "image" + std::to_string(i) + ".png";
       writeImage8(dir_ / name, w, h, channels,
                   std::as_bytes(std::span(images_.back().data(), images_.back().size())));

@@ -18,9 +18,9 @@ namespace {
 
 using ::testing::HasSubstr;
 
-struct Fixture {
+struct EvalCommandFixture {
   test::ScratchDirectory dir;
-  Fixture() {
+  EvalCommandFixture() {
     writeSyntheticTexture(
         dir / "t.vt",
         {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
@@ -32,7 +32,7 @@ struct Fixture {
 };
 
 TEST(EvalCommand, FliesTheProductOfTheListsAndWritesTablesAndPlots) {
-  Fixture f;
+  EvalCommandFixture f;
   const auto result = f.eval({"--heuristic", "pixelsum,random", "--budget", "2,4", "--jobs", "2",
                               "-o", (f.dir / "out").string()});
   ASSERT_EQ(result.exitCode, 0) << result.err;
@@ -52,7 +52,7 @@ TEST(EvalCommand, FliesTheProductOfTheListsAndWritesTablesAndPlots) {
 }
 
 TEST(EvalCommand, DrawsTheFiguresOfAConfigurationsFile) {
-  Fixture f;
+  EvalCommandFixture f;
   std::ofstream(f.dir / "c.json") << R"({"defaults": {"budget": 2},
     "configurations": [{"name": "A", "heuristic": "pixelsum"}, {"name": "B", "heuristic": "hotspot",
                         "lookahead": "stopfix"}],
@@ -73,7 +73,7 @@ TEST(EvalCommand, DrawsTheFiguresOfAConfigurationsFile) {
 // evaluation then fails with one line naming the problem and the folder asked for, exit 1, and
 // leaves no output folder.
 TEST(EvalCommand, FailsWithOneLineAndNoFolderWhenThePlotsCannotBeDrawn) {
-  Fixture f;
+  EvalCommandFixture f;
   ::setenv("VT_PYTHON", (f.dir / "no-python").c_str(), 1);
   const auto result = f.eval({"--budget", "2", "-o", (f.dir / "out").string()});
   ::unsetenv("VT_PYTHON");
@@ -85,7 +85,7 @@ TEST(EvalCommand, FailsWithOneLineAndNoFolderWhenThePlotsCannotBeDrawn) {
 }
 
 TEST(EvalCommand, RefusesBadConfigurationFilesBeforeFlying) {
-  Fixture f;
+  EvalCommandFixture f;
   const auto refuse = [&](const std::string& text, const std::string& message) {
     std::ofstream(f.dir / "bad.json") << text;
     const auto result =

@@ -17,7 +17,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-std::string errorOf(const std::string& text) {
+std::string configurationsError(const std::string& text) {
   try {
     parseConfigurationsFile(nlohmann::json::parse(text));
   } catch (const std::invalid_argument& e) {
@@ -54,34 +54,38 @@ TEST(ConfigurationsFile, APlainListIsAFileWithoutDefaultsOrFigures) {
 }
 
 TEST(ConfigurationsFile, RefusesEachMistakeWithItsMessage) {
-  EXPECT_EQ(errorOf(R"({"configurations": [{"budgt": 3}]})"),
+  EXPECT_EQ(configurationsError(R"({"configurations": [{"budgt": 3}]})"),
             "configuration 1: unknown configuration key 'budgt'");
-  EXPECT_EQ(errorOf(R"({"configurations": [{"name": "A"}, {"name": "A", "budget": 3}]})"),
-            "configuration 2: the name 'A' is taken");
-  EXPECT_EQ(errorOf(R"([{"budget": 3}, {"budget": 3}])"),
+  EXPECT_EQ(
+      configurationsError(R"({"configurations": [{"name": "A"}, {"name": "A", "budget": 3}]})"),
+      "configuration 2: the name 'A' is taken");
+  EXPECT_EQ(configurationsError(R"([{"budget": 3}, {"budget": 3}])"),
             "configuration 2: the name 'pixelsum 3/frame' is taken");
-  EXPECT_EQ(errorOf(R"({"configurations": [{"heuristic": "pixelsum*luck"}]})"),
+  EXPECT_EQ(configurationsError(R"({"configurations": [{"heuristic": "pixelsum*luck"}]})"),
             "configuration 1: heuristic: 'luck' is not one of random, pixelsum, distance, "
             "weightedpixel, hotspot, noisevalue, mipgap");
-  EXPECT_EQ(errorOf(R"({"configurations": [{"ancestors": "sideways"}]})"),
+  EXPECT_EQ(configurationsError(R"({"configurations": [{"ancestors": "sideways"}]})"),
             "configuration 1: ancestor strategy 'sideways' is not one of none, intern, extern");
-  EXPECT_EQ(errorOf(R"({"configurations": []})"), "expected a non-empty list of configurations");
-  EXPECT_EQ(errorOf(R"({"configurations": {}})"), "expected a non-empty list of configurations");
+  EXPECT_EQ(configurationsError(R"({"configurations": []})"),
+            "expected a non-empty list of configurations");
+  EXPECT_EQ(configurationsError(R"({"configurations": {}})"),
+            "expected a non-empty list of configurations");
   EXPECT_EQ(
-      errorOf(
+      configurationsError(
           R"({"configurations": [{"name": "A"}], "figures": [{"file": "x.png", "runs": ["B"]}]})"),
       "figure 'x.png': no configuration named 'B'");
   EXPECT_EQ(
-      errorOf(
+      configurationsError(
           R"({"configurations": [{"name": "A"}], "figures": [{"file": "a/x.png", "runs": []}]})"),
       "figure 'a/x.png': the file must be a plain name.png");
   EXPECT_EQ(
-      errorOf(
+      configurationsError(
           R"({"configurations": [{"name": "A"}], "figures": [{"file": "x.png", "measure": "psnr", "runs": []}]})"),
       "figure 'x.png': measure 'psnr' is not ssim, wssim or rmse");
-  EXPECT_THAT(errorOf(R"({"defaults": {"budget": -1}, "configurations": [{}]})"),
+  EXPECT_THAT(configurationsError(R"({"defaults": {"budget": -1}, "configurations": [{}]})"),
               HasSubstr("'budget' must be a whole number from 0 to 1048576"));
-  EXPECT_THAT(errorOf(R"({"defaults": {}})"), HasSubstr("json: "));  // no configurations key
+  // No configurations key.
+  EXPECT_THAT(configurationsError(R"({"defaults": {}})"), HasSubstr("json: "));
 }
 
 TEST(ConfigurationsFile, NamesTheFileInItsErrors) {

@@ -22,10 +22,10 @@ namespace {
 
 using ::testing::HasSubstr;
 
-struct Fixture {
+struct EvaluationFixture {
   test::ScratchDirectory dir;
   std::filesystem::path texture = dir / "t.vt";
-  Fixture() {
+  EvaluationFixture() {
     writeSyntheticTexture(
         texture, {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
   }
@@ -43,7 +43,7 @@ EvaluationOptions smallScreen(const VirtualTextureReader& reader, unsigned jobs)
 // texture, whose frame coordinates round differently in float, so even with every page resident a
 // few texels differ by one step: that floor stays below RMSE 0.05 and 1 - SSIM 1e-4.
 TEST(Evaluation, EveryPageResidentDrawsTheReferenceImageAndNoBudgetStreamsNothing) {
-  Fixture f;
+  EvaluationFixture f;
   const VirtualTextureReader reader(f.texture);
   FlightConfiguration everything;
   everything.name = "every page";
@@ -77,7 +77,7 @@ TEST(Evaluation, EveryPageResidentDrawsTheReferenceImageAndNoBudgetStreamsNothin
 // above); without the parents it is not. In a cache too small for the turn, keeping the parents
 // in use resident wins over the whole flight.
 TEST(Evaluation, TrilinearParentsCompleteTheFirstFrameAndHelpASmallCache) {
-  Fixture f;
+  EvaluationFixture f;
   const VirtualTextureReader reader(f.texture);
   FlightConfiguration plain;
   plain.preloadVisible = true;
@@ -107,7 +107,7 @@ TEST(Evaluation, TrilinearParentsCompleteTheFirstFrameAndHelpASmallCache) {
 }
 
 TEST(Evaluation, PerFrameResultsAreTheSameForOneJobOrSeveral) {
-  Fixture f;
+  EvaluationFixture f;
   const VirtualTextureReader reader(f.texture);
   std::vector<FlightConfiguration> configurations(3);
   configurations[0].heuristic = Heuristic::parse("pixelsum");
@@ -133,7 +133,7 @@ TEST(Evaluation, PerFrameResultsAreTheSameForOneJobOrSeveral) {
 // statistics, RMSE, SSIM and WSSIM, for every kind of needbuffer a configuration reads (depth,
 // a LookAhead camera, a reduced needbuffer, the previous frame's under asynchronous readback).
 TEST(Evaluation, RunsEqualFlightsThatDrawEveryFrameThemselves) {
-  Fixture f;
+  EvaluationFixture f;
   const VirtualTextureReader reader(f.texture);
   std::vector<FlightConfiguration> configurations(6);
   configurations[0].heuristic = Heuristic::parse("pixelsum");
@@ -169,7 +169,7 @@ TEST(Evaluation, RunsEqualFlightsThatDrawEveryFrameThemselves) {
 
 // Random with another seed is another draw: its streamed pages differ; the same seed repeats.
 TEST(Evaluation, RandomRunsWithDifferentSeedsDrawDifferentPages) {
-  Fixture f;
+  EvaluationFixture f;
   const VirtualTextureReader reader(f.texture);
   std::vector<FlightConfiguration> configurations(3);
   for (FlightConfiguration& c : configurations) {
@@ -185,7 +185,7 @@ TEST(Evaluation, RandomRunsWithDifferentSeedsDrawDifferentPages) {
 }
 
 TEST(Evaluation, WritesTheSummaryTablePerMotionMeansAndPlots) {
-  Fixture f;
+  EvaluationFixture f;
   const VirtualTextureReader reader(f.texture);
   const CameraPath base = boxRoomPath();
   std::vector<Keyframe> keys = base.keyframes();
@@ -229,7 +229,7 @@ TEST(Evaluation, WritesTheSummaryTablePerMotionMeansAndPlots) {
 // The plots need python3 with matplotlib: without them the evaluation fails with one line naming
 // the problem and leaves no output folder ($VT_PYTHON stands in for a broken installation).
 TEST(Evaluation, PlotsThatCannotBeDrawnFailTheEvaluationAndLeaveNoFolder) {
-  Fixture f;
+  EvaluationFixture f;
   const VirtualTextureReader reader(f.texture);
   FlightConfiguration a;
   a.budget = 2;

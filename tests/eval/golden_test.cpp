@@ -19,10 +19,10 @@ namespace {
 
 using ::testing::HasSubstr;
 
-struct Fixture {
+struct GoldenFixture {
   test::ScratchDirectory dir;
   GoldenRequest request;
-  Fixture() {
+  GoldenFixture() {
     writeSyntheticTexture(
         dir / "t.vt",
         {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
@@ -41,7 +41,7 @@ struct Fixture {
 };
 
 TEST(Golden, ASetChecksAgainstTheFlightItCameFrom) {
-  Fixture f;
+  GoldenFixture f;
   generateGolden(f.request, f.dir / "golden");
   const nlohmann::json golden =
       nlohmann::json::parse(std::ifstream(f.dir / "golden" / "golden.json"));
@@ -57,7 +57,7 @@ TEST(Golden, ASetChecksAgainstTheFlightItCameFrom) {
 }
 
 TEST(Golden, AChangedFrameFailsAndGetsADifferenceImage) {
-  Fixture f;
+  GoldenFixture f;
   generateGolden(f.request, f.dir / "golden");
   nlohmann::json golden = nlohmann::json::parse(std::ifstream(f.dir / "golden" / "golden.json"));
   golden["frames"][2]["color"] = "0123456789abcdef";
@@ -72,7 +72,7 @@ TEST(Golden, AChangedFrameFailsAndGetsADifferenceImage) {
 }
 
 TEST(Golden, AnotherTextureOrPathIsRefusedWithTheReason) {
-  Fixture f;
+  GoldenFixture f;
   generateGolden(f.request, f.dir / "golden");
   writeSyntheticTexture(
       f.dir / "other.vt",

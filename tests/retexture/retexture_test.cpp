@@ -671,14 +671,14 @@ TEST(LayoutQuality, CountsEveryLevelForTheTopLeftPage) {
 // ---------------------------------------------------------------------------------------------
 // RetextureOutputs: `vt retexture` then `vt build`, texel by texel
 
-struct Image {
+struct RgbImage {
   uint32_t width = 0, height = 0;
   std::vector<uint8_t> texels;  // RGB
 };
 
 // Texels that differ from their neighbours in every channel, so a shifted copy cannot pass.
-Image pattern(uint32_t width, uint32_t height, uint32_t seed) {
-  Image image{width, height, std::vector<uint8_t>(size_t{width} * height * 3)};
+RgbImage rgbPattern(uint32_t width, uint32_t height, uint32_t seed) {
+  RgbImage image{width, height, std::vector<uint8_t>(size_t{width} * height * 3)};
   for (uint32_t y = 0; y < height; ++y)
     for (uint32_t x = 0; x < width; ++x)
       for (uint32_t c = 0; c < 3; ++c)
@@ -688,8 +688,8 @@ Image pattern(uint32_t width, uint32_t height, uint32_t seed) {
 }
 
 // missing_texture.h's checker: magenta and black squares of 8 texels.
-Image checker() {
-  Image image{kMissingTextureSide, kMissingTextureSide, {}};
+RgbImage checker() {
+  RgbImage image{kMissingTextureSide, kMissingTextureSide, {}};
   for (uint32_t y = 0; y < image.height; ++y)
     for (uint32_t x = 0; x < image.width; ++x) {
       const bool magenta = (x / 8 + y / 8) % 2 == 0;
@@ -713,8 +713,8 @@ class RetextureOutputs : public ::testing::Test {
     std::ostringstream mtl, obj;
     for (uint32_t t = 0; t < 3; ++t) {
       const std::string name = std::string("tex").append(std::to_string(t));
-      images_[name + ".png"] = pattern(sizes[t].first, sizes[t].second, t + 1);
-      const Image& image = images_[name + ".png"];
+      images_[name + ".png"] = rgbPattern(sizes[t].first, sizes[t].second, t + 1);
+      const RgbImage& image = images_[name + ".png"];
       writeImage8(dir_ / (name + ".png"), image.width, image.height, 3,
                   std::as_bytes(std::span(image.texels)));
       mtl << "newmtl m" << t << "\nmap_Kd " << name << ".png\n";
@@ -794,7 +794,7 @@ class RetextureOutputs : public ::testing::Test {
     for (size_t f = 0; f < scene.faces.size(); ++f) {
       const TexturedFace& face = scene.faces[f];
       const SourceTexture& texture = scene.textures[face.texture];
-      const Image& image = images_.at(texture.file.filename().string());
+      const RgbImage& image = images_.at(texture.file.filename().string());
       ASSERT_EQ(image.width, texture.width);
       for (uint32_t t = face.firstIndex; t < face.firstIndex + face.indexCount; t += 3)
         for (int k = 0; k < 8; ++k) {
@@ -828,7 +828,7 @@ class RetextureOutputs : public ::testing::Test {
   }
 
   test::ScratchDirectory dir_;
-  std::map<std::string, Image> images_;
+  std::map<std::string, RgbImage> images_;
 };
 
 TEST_F(RetextureOutputs, ChartsBuildToTheSourceTexels) { expectTexelsFollowTheFaces("charts"); }

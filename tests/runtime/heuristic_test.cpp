@@ -11,7 +11,7 @@
 namespace vt {
 namespace {
 
-std::string errorOf(const std::string& text) {
+std::string heuristicError(const std::string& text) {
   try {
     Heuristic::parse(text);
   } catch (const std::invalid_argument& e) {
@@ -39,12 +39,13 @@ TEST(Heuristic, WritesEveryFactorBackAsRead) {
 }
 
 TEST(Heuristic, RefusesUnknownAndEmptyFactorsWithTheirMessage) {
-  EXPECT_EQ(errorOf(""), "heuristic: empty");
-  EXPECT_EQ(errorOf("pixelsum*speed"),
+  EXPECT_EQ(heuristicError(""), "heuristic: empty");
+  EXPECT_EQ(heuristicError("pixelsum*speed"),
             "heuristic: 'speed' is not one of random, pixelsum, distance, weightedpixel, hotspot, "
             "noisevalue, mipgap");
-  EXPECT_THAT(errorOf("pixelsum**distance"), testing::HasSubstr("heuristic: '' is not one of"));
-  EXPECT_THAT(errorOf("Pixelsum"), testing::HasSubstr("'Pixelsum' is not one of"));
+  EXPECT_THAT(heuristicError("pixelsum**distance"),
+              testing::HasSubstr("heuristic: '' is not one of"));
+  EXPECT_THAT(heuristicError("Pixelsum"), testing::HasSubstr("'Pixelsum' is not one of"));
 }
 
 }  // namespace

@@ -26,6 +26,7 @@ using ::testing::ThrowsMessage;
 
 using test::appendI32;
 using test::BspBuilder;
+using test::bspVertex;
 using test::kIndicesLump;
 using test::kLumps;
 using test::kShadersLump;
@@ -35,8 +36,6 @@ using test::lumpLengthAt;
 using test::lumpOffsetAt;
 using test::putI32;
 
-BspVertex vertex(glm::vec3 position, glm::vec2 st) { return {position, st, {0.0f, 0.0f, 1.0f}}; }
-
 // A map with one surface of each kind: a quad polygon, a 3x3 patch, a two-triangle mesh, a flare
 // and a surface of an unknown type.
 BspBuilder validMap() {
@@ -45,15 +44,15 @@ BspBuilder validMap() {
   map.shaders = {{"textures/base_wall/concrete", 0, 1},
                  {"textures/skies/blue", kSurfaceSky | kSurfaceNoDraw, 0},
                  {std::string(64, 'x'), 0, kContentsFog}};  // a name filling all 64 bytes
-  map.vertices = {vertex({0, 0, 0}, {0, 0}), vertex({64, 0, 0}, {1, 0}),
-                  vertex({64, 64, 0}, {1, 1}), vertex({0, 64, 0}, {0, 1})};
+  map.vertices = {bspVertex({0, 0, 0}, {0, 0}), bspVertex({64, 0, 0}, {1, 0}),
+                  bspVertex({64, 64, 0}, {1, 1}), bspVertex({0, 64, 0}, {0, 1})};
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i)
       map.vertices.push_back(
-          vertex({32.0f * i, 32.0f * j, i == 1 && j == 1 ? 16.0f : 0.0f}, {0.5f * i, 0.5f * j}));
-  map.vertices.push_back(vertex({1.5f, -2.25f, 1e6f}, {-3.0f, 7.5f}));
-  map.vertices.push_back(vertex({2, 0, 0}, {0, 0}));
-  map.vertices.push_back(vertex({2, 1, 0}, {0, 0}));
+          bspVertex({32.0f * i, 32.0f * j, i == 1 && j == 1 ? 16.0f : 0.0f}, {0.5f * i, 0.5f * j}));
+  map.vertices.push_back(bspVertex({1.5f, -2.25f, 1e6f}, {-3.0f, 7.5f}));
+  map.vertices.push_back(bspVertex({2, 0, 0}, {0, 0}));
+  map.vertices.push_back(bspVertex({2, 1, 0}, {0, 0}));
   map.indices = {0, 1, 2, 0, 2, 3, 0, 1, 2, 2, 1, 0};
   BspSurface polygon;
   polygon.shader = 0;

@@ -23,7 +23,7 @@ json storyboard(json motions) {
           {"storyboard", std::move(motions)}};
 }
 
-std::string errorOf(const json& document) {
+std::string storyboardError(const json& document) {
   try {
     expandStoryboard(document);
   } catch (const std::invalid_argument& e) {
@@ -87,30 +87,30 @@ TEST(CameraStoryboard, AngleKeyframesTurnAtConstantSpeedTargetKeyframesInterpola
 
 TEST(CameraStoryboard, RejectsMotionsThatDoNotMatchTheirNames) {
   EXPECT_THAT(
-      errorOf(storyboard(
+      storyboardError(storyboard(
           json::array({{{"name", "9"}, {"kind", "slow rotation"}, {"yaw", 90}, {"frames", 10}}}))),
       HasSubstr("motion 1 ('9'): turns 9.000000 degrees per frame, a slow rotation at most"));
-  EXPECT_THAT(
-      errorOf(storyboard(json::array({{{"kind", "fast rotation"}, {"yaw", 10}, {"frames", 10}}}))),
-      HasSubstr("a fast rotation more than"));
-  EXPECT_THAT(errorOf(storyboard(
+  EXPECT_THAT(storyboardError(storyboard(
+                  json::array({{{"kind", "fast rotation"}, {"yaw", 10}, {"frames", 10}}}))),
+              HasSubstr("a fast rotation more than"));
+  EXPECT_THAT(storyboardError(storyboard(
                   json::array({{{"kind", "fast rotation that stops"}, {"yaw", 45}, {"frames", 1}},
                                {{"kind", "slow rotation"}, {"yaw", 10}, {"frames", 10}}}))),
               HasSubstr("must be followed by a hold"));
-  EXPECT_THAT(errorOf(storyboard(json::array({{{"kind", "spin"}, {"frames", 3}}}))),
+  EXPECT_THAT(storyboardError(storyboard(json::array({{{"kind", "spin"}, {"frames", 3}}}))),
               HasSubstr("unknown kind 'spin'"));
-  EXPECT_THAT(errorOf(storyboard(json::array({{{"kind", "hold"}, {"frames", 0}}}))),
+  EXPECT_THAT(storyboardError(storyboard(json::array({{{"kind", "hold"}, {"frames", 0}}}))),
               HasSubstr("'frames' must be a whole number"));
-  EXPECT_THAT(errorOf(storyboard(json::array({{{"kind", "hold"}, {"frames", 2.5}}}))),
+  EXPECT_THAT(storyboardError(storyboard(json::array({{{"kind", "hold"}, {"frames", 2.5}}}))),
               HasSubstr("'frames' must be a whole number"));
-  EXPECT_THAT(errorOf(storyboard(json::array(
+  EXPECT_THAT(storyboardError(storyboard(json::array(
                   {{{"kind", "translation"}, {"move", {0, 0, 1}}, {"speed", 2}, {"frames", 2}}}))),
               HasSubstr("unknown key 'speed'"));
-  EXPECT_THAT(errorOf(storyboard(
+  EXPECT_THAT(storyboardError(storyboard(
                   json::array({{{"kind", "slow rotation"}, {"pitch", 95}, {"frames", 60}}}))),
               HasSubstr("the pitch leaves (-90, 90) degrees"));
-  EXPECT_THAT(errorOf(storyboard(json::array())), HasSubstr("has no motions"));
-  EXPECT_THAT(errorOf(storyboard(
+  EXPECT_THAT(storyboardError(storyboard(json::array())), HasSubstr("has no motions"));
+  EXPECT_THAT(storyboardError(storyboard(
                   json::array({{{"kind", "translation"}, {"move", {0, 0, 1e39}}, {"frames", 2}}}))),
               HasSubstr("not finite"));
 }

@@ -38,6 +38,11 @@ inline void putI32(std::vector<uint8_t>& bytes, size_t at, int32_t v) {
 inline size_t lumpOffsetAt(int lump) { return 8 + 8 * static_cast<size_t>(lump); }
 inline size_t lumpLengthAt(int lump) { return lumpOffsetAt(lump) + 4; }
 
+// A map vertex; the normal faces +z unless given.
+inline BspVertex bspVertex(glm::vec3 position, glm::vec2 st, glm::vec3 normal = {0, 0, 1}) {
+  return {position, st, normal};
+}
+
 struct BspBuilder {
   std::string entities;
   std::vector<BspShader> shaders;

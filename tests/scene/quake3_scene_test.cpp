@@ -18,12 +18,9 @@
 namespace vt {
 namespace {
 
+using test::bspVertex;
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
-
-BspVertex vertex(glm::vec3 position, glm::vec2 st, glm::vec3 normal = {0, 0, 1}) {
-  return {position, st, normal};
-}
 
 BspSurface surface(int32_t shader, BspSurfaceType type, int32_t firstVertex, int32_t vertexCount,
                    int32_t firstIndex = 0, int32_t indexCount = 0) {
@@ -59,23 +56,23 @@ class Quake3Scene : public ::testing::Test {
                    {"textures/sfx/glow", 0, 1},
                    {"textures/base/gone", 0, 1}};
     // 0-3: a quad in the z = 0 plane, wound clockwise seen from +z (its normals' side).
-    map.vertices = {vertex({0, 0, 0}, {0, 0}), vertex({0, 64, 0}, {0, 1}),
-                    vertex({64, 64, 0}, {1, 1}), vertex({64, 0, 0}, {1, 0})};
+    map.vertices = {bspVertex({0, 0, 0}, {0, 0}), bspVertex({0, 64, 0}, {0, 1}),
+                    bspVertex({64, 64, 0}, {1, 1}), bspVertex({64, 0, 0}, {1, 0})};
     map.indices = {0, 1, 2, 0, 2, 3};
     // 4-9: a mesh of two triangles that share no vertex.
     for (const float x : {200.0f, 300.0f})
       for (const glm::vec3 p : {glm::vec3(0, 0, 0), glm::vec3(16, 0, 0), glm::vec3(0, 16, 0)})
-        map.vertices.push_back(vertex(p + glm::vec3(x, 0, 0), glm::vec2(p) / 16.0f));
+        map.vertices.push_back(bspVertex(p + glm::vec3(x, 0, 0), glm::vec2(p) / 16.0f));
     map.indices.insert(map.indices.end(), {0, 1, 2, 3, 4, 5});
     // 10-18: a 3x3 patch.
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 3; ++i)
         map.vertices.push_back(
-            vertex({32.0f * i, 32.0f * j, 100.0f}, {0.5f * i, 0.5f * j}, {0, 0, 1}));
+            bspVertex({32.0f * i, 32.0f * j, 100.0f}, {0.5f * i, 0.5f * j}, {0, 0, 1}));
     // 19-21: a triangle with a NaN coordinate.
-    map.vertices.push_back(vertex({0, 0, NAN}, {0, 0}));
-    map.vertices.push_back(vertex({1, 0, 0}, {0, 0}));
-    map.vertices.push_back(vertex({0, 1, 0}, {0, 0}));
+    map.vertices.push_back(bspVertex({0, 0, NAN}, {0, 0}));
+    map.vertices.push_back(bspVertex({1, 0, 0}, {0, 0}));
+    map.vertices.push_back(bspVertex({0, 1, 0}, {0, 0}));
     map.indices.insert(map.indices.end(), {0, 1, 2});
     BspSurface patch = surface(0, BspSurfaceType::kPatch, 10, 9);
     patch.patchWidth = patch.patchHeight = 3;
