@@ -11,6 +11,7 @@
 #include "build/synthetic_texture.h"
 #include "cli/run_command.h"
 #include "openarena_data.h"
+#include "test_json.h"
 #include "test_support.h"
 #include "vt/oracle.h"
 
@@ -19,11 +20,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-nlohmann::json readJson(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  return nlohmann::json::parse(in);
-}
-
+using test::readJson;
 using test::readText;
 
 test::CommandResult crosscheck(const test::ScratchDirectory& dir, const std::string& out) {

@@ -13,6 +13,7 @@
 #include "render/precision_model.h"
 #include "render/precision_model_file.h"
 #include "scene/clip_space_mesh.h"
+#include "test_json.h"
 #include "test_support.h"
 #include "verify/crosscheck_captures.h"
 #include "verify/crosscheck_scenes.h"
@@ -24,11 +25,7 @@ namespace {
 
 constexpr Viewport kViewport{96, 64};
 
-nlohmann::json readJson(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  return nlohmann::json::parse(in);
-}
-
+using test::readJson;
 using test::readText;
 
 void writeTexture(const std::filesystem::path& path) {
