@@ -385,6 +385,34 @@ def configuration_table(results):
     return lines
 
 
+def motion_speeds(results):
+    """Per motion kind, how fast the storyboard of the results' map moves the camera (metres or
+    degrees a frame, from data/paths/MAP.storyboard.json); None when there is no such file."""
+    import json
+    map_name = os.path.basename(os.path.dirname(os.path.abspath(results.folder)))
+    path = os.path.join(HERE, "..", "data", "paths", map_name + ".storyboard.json")
+    if not os.path.exists(path):
+        return None
+    speeds = {}
+    for entry in json.load(open(path))["storyboard"]:
+        kind, frames = entry["kind"], entry["frames"]
+        if kind == "hold":
+            continue
+        if kind in ("translation", "corridor walk"):
+            metres = entry.get("distance") or float(np.linalg.norm(entry.get("move", [0, 0, 0])))
+            speeds.setdefault(kind, []).append((metres / frames, "m"))
+        else:
+            degrees = max(abs(entry.get("yaw", 0.0)), abs(entry.get("pitch", 0.0)))
+            speeds.setdefault(kind, []).append((degrees / frames, "°"))
+    def text(values):
+        low, high = min(v for v, _ in values), max(v for v, _ in values)
+        unit = values[0][1]
+        span = f"{low:.2f}" if abs(high - low) < 5e-3 else f"{low:.2f} to {high:.2f}"
+        return span + (" m" if unit == "m" else "°") + " a frame"
+    return (f"Motion speeds (data/paths/{map_name}.storyboard.json): " +
+            "; ".join(f"{kind} {text(values)}" for kind, values in sorted(speeds.items())) + ".")
+
+
 def regime_lines(results, title):
     """The regime of one experiment: the budget check, pages needed and new per frame, budgets,
     cache size against the working set."""
@@ -428,6 +456,9 @@ def regime_lines(results, title):
     for motion in results.summary.get("motions", []):
         frames = range(motion["first"] + 1, min(results.frames, motion["last"] + 1))
         kinds.setdefault(motion["kind"], []).extend(frames)
+    speeds = motion_speeds(results) if kinds else None
+    if speeds:
+        out.append(speeds)
     if kinds:
         out.append(f"New pages per frame, defined as the needed pages not resident when the "
                    f"frame is drawn (misses of {reference}), by motion kind: " + "; ".join(

@@ -82,7 +82,7 @@ TEST(GoldenBackend, TheGlPathPassesQ3dm6ishsGoldens) {
       test::runCommand(VT_EXECUTABLE,
                        {"golden", "check", (kData / "golden" / "q3dm6ish").string(), "--texture",
                         (dir / "q3.vt").string(), "--mesh", (dir / "q3" / "q3dm6ish.obj").string(),
-                        "--path", (kData / "paths" / "q3dm6ish.storyboard.json").string(),
+                        "--path", (kData / "golden" / "q3dm6ish.storyboard.json").string(),
                         "--backend", "gl", "-o", (dir / "check").string()},
                        dir.path());
   if (exactOnThisMachine(checked.out)) {
