@@ -78,7 +78,9 @@ void addEvalCommand(CLI::App& app) {
   command->add_option("--hotspot", o->hotSpot, "HotSpot centre: " + joinedNames(kHotSpotModeNames))
       ->capture_default_str();
   command->add_flag("--noise-skipping", o->noiseSkipping, "NoiseValueSkipping (with extern)");
-  command->add_option("--cache-frames", o->cacheFrames, "The cache holds N x N frames")
+  command
+      ->add_option("--cache-frames", o->cacheFrames,
+                   "The cache holds N x N frames (with --configs: every configuration's cache)")
       ->check(wholeNumbersIn(1, 256))
       ->capture_default_str();
   command->add_option("--initial-levels", o->initialLevels, "Levels 0..K-1 loaded first")
@@ -102,13 +104,20 @@ void addEvalCommand(CLI::App& app) {
     std::vector<FlightConfiguration> configurations;
     std::vector<EvaluationFigure> figures;
     if (!o->configs.empty()) {
-      for (const char* list : {"--heuristic", "--budget", "--ancestors", "--locked-levels",
-                               "--need-scale", "--lookahead", "--trilinear-parents"})
-        if (command->count(list) > 0)
-          throw std::invalid_argument(std::string("give either --configs or ") + list);
+      // A configurations file says every setting of its runs; only the cache size, a property
+      // of the regime rather than of a strategy, may be set for all of them at once (one file
+      // flown on maps whose working sets differ).
+      for (const char* option :
+           {"--heuristic", "--budget", "--ancestors", "--locked-levels", "--need-scale",
+            "--lookahead", "--trilinear-parents", "--hotspot", "--noise-skipping",
+            "--initial-levels", "--preload-visible"})
+        if (command->count(option) > 0)
+          throw std::invalid_argument(std::string("give either --configs or ") + option);
       ConfigurationsFile loaded = loadConfigurationsFile(o->configs);
       configurations = std::move(loaded.configurations);
       figures = std::move(loaded.figures);
+      if (command->count("--cache-frames") > 0)
+        for (FlightConfiguration& c : configurations) c.cacheFrames = o->cacheFrames;
     } else {
       FlightConfiguration base;
       base.hotSpot = parseHotSpotMode(o->hotSpot);

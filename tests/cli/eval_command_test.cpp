@@ -101,9 +101,36 @@ TEST(EvalCommand, RefusesBadConfigurationFilesBeforeFlying) {
          "figure 'x.png': no configuration named 'B'");
   refuse(R"({"configurations": []})", "expected a non-empty list of configurations");
   refuse(R"({"configurations": [{"budget": 3}])", "not a configurations file");
-  const auto both = f.eval({"--configs", (f.dir / "bad.json").string(), "--budget", "3"});
-  EXPECT_EQ(both.exitCode, 1);
-  EXPECT_THAT(both.err, HasSubstr("give either --configs or --budget"));
+  for (const std::vector<std::string>& option :
+       {std::vector<std::string>{"--budget", "3"}, {"--hotspot", "fixed"}, {"--preload-visible"},
+        {"--initial-levels", "2"}, {"--noise-skipping"}}) {
+    std::vector<std::string> args = {"--configs", (f.dir / "bad.json").string()};
+    args.insert(args.end(), option.begin(), option.end());
+    const auto both = f.eval(args);
+    EXPECT_EQ(both.exitCode, 1) << option[0];
+    EXPECT_THAT(both.err, HasSubstr("give either --configs or " + option[0]));
+  }
+}
+
+// --cache-frames with a configurations file sets every configuration's cache, the ones that name
+// their own included; without it the file's sizes stand.
+TEST(EvalCommand, CacheFramesSetsTheCacheOfEveryConfigurationOfAFile) {
+  EvalCommandFixture f;
+  std::ofstream(f.dir / "c.json") << R"({"defaults": {"budget": 2, "cache_frames": 5},
+    "configurations": [{"name": "A"}, {"name": "B", "cache_frames": 7}]})";
+  const auto cacheSides = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = {"--configs", (f.dir / "c.json").string(), "-o",
+                                     (f.dir / "out").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto result = f.eval(args);
+    EXPECT_EQ(result.exitCode, 0) << result.err;
+    const nlohmann::json summary =
+        nlohmann::json::parse(std::ifstream(f.dir / "out" / "summary.json"));
+    return std::vector<int>{summary["runs"][0]["configuration"]["cache_frames"].get<int>(),
+                            summary["runs"][1]["configuration"]["cache_frames"].get<int>()};
+  };
+  EXPECT_EQ(cacheSides({}), (std::vector<int>{5, 7}));
+  EXPECT_EQ(cacheSides({"--cache-frames", "3"}), (std::vector<int>{3, 3}));
 }
 
 }  // namespace

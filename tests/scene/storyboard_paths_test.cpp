@@ -284,9 +284,9 @@ const std::set<std::string> kAllKinds = {"hold",          "translation",
                                          "corridor walk", "fast rotation that stops"};
 
 // Lengths: the walks and translations move at a Quake 3 player's run speed at 30 frames a
-// second and the slow turns at 2 degrees a frame (data/paths/README.md), so that 5 pages a frame
-// fall behind in ordinary motion (the regime of issue 19); am_thornish's fifteen motions then take
-// about 360 frames, q3dm6ish's twelve about 230.
+// second and the slow turns at 2 degrees a frame (data/README.md), so that 5 pages a frame fall
+// behind in ordinary motion (the regime of issue 19); am_thornish's fifteen motions then take
+// about 360 frames, q3dm6ish's sixteen about 310.
 std::vector<MapPlan> plans() {
   return {{"am_thornish",
            300,
