@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "build/synthetic_texture.h"
+#include "calibrate/coverage_fit.h"
 #include "calibrate/probe_draws.h"
 #include "format/virtual_texture_reader.h"
 #include "reference/linear_filter.h"
@@ -49,7 +50,7 @@ std::string describe(uint64_t mismatches, uint64_t probes) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Shader arithmetic: log2, sqrt, denormals, the unorm8 conversion.
+// Shader arithmetic: log2, sqrt, denormals, the unorm8 conversion, the lerps.
 
 struct ShaderMath {
   ParameterFit log2, sqrt, denormals, conversion;
@@ -151,13 +152,42 @@ ShaderMath measureShaderMath() {
       m.conversionUlps = std::max(m.conversionUlps, ulpsFrom(got, expected[c]));
     }
   }
-  m.conversion = {
-      "arithmetic",      "",   1024, notConverted, notConverted ? m.conversionUlps : 0.0,
-      notConverted == 0, false};
-  m.conversion.finding = notConverted == 0
-                             ? "texelFetch of unorm8 k gives k * (1 / 255), bit for bit"
-                             : describe(notConverted, 1024) + " from k * (1 / 255), largest " +
-                                   std::to_string(m.conversionUlps) + " ulps";
+
+  // The shader's lerps (the exact bilinear filter's rows and columns, the trilinear blend):
+  // a + (b - a) * w under `precise`, colours of unorm8 values or any in [0, 1], weights in [0, 1).
+  ShaderProbe blend;
+  blend.body = "result = vec4(x.x + (x.y - x.x) * x.z, 0.0, 0.0, 0.0);";
+  std::mt19937 random(20261124);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const auto colour = [&]() {
+    return random() % 2 ? static_cast<float>(random() % 256) * (1.0f / 255.0f) : unit(random);
+  };
+  for (int i = 0; i < 16384; ++i) {
+    const float a = colour(), b = colour();
+    blend.inputs.push_back(glm::vec4(a, b, unit(random), 0.0f));
+  }
+  const std::vector<glm::vec4> blended = runShaderProbe(blend);
+  uint64_t notBlended = 0;
+  double blendUlps = 0;
+  for (size_t i = 0; i < blended.size(); ++i) {
+    const glm::vec4 in = blend.inputs[i];
+    const float expected = in.x + (in.y - in.x) * in.z;  // no contraction (-ffp-contract=off)
+    notBlended += !sameBits(blended[i].x, expected);
+    blendUlps = std::max(blendUlps, ulpsFrom(blended[i].x, expected));
+  }
+  const uint64_t values = 1024 + blended.size();
+  const uint64_t mismatched = notConverted + notBlended;
+  m.conversionUlps = std::max(m.conversionUlps, blendUlps);
+  m.conversion = {"arithmetic", "",    values, mismatched, mismatched ? m.conversionUlps : 0.0,
+                  mismatched == 0, false};
+  m.conversion.finding =
+      (notConverted == 0 ? std::string("texelFetch of unorm8 k gives k * (1 / 255), bit for bit")
+                         : describe(notConverted, 1024) + " from k * (1 / 255)") +
+      "; " +
+      (notBlended == 0 ? std::string("the lerp a + (b - a) * w rounds each operation, bit for bit")
+                       : describe(notBlended, blended.size()) +
+                             " lerps a + (b - a) * w differ from rounding each operation") +
+      (mismatched ? ", largest " + std::to_string(m.conversionUlps) + " ulps" : std::string());
   return m;
 }
 
@@ -453,6 +483,53 @@ RasterFits measureRasterization(bool flushesDenormals) {
   return fits;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Sub-pixel grid and fill rule from coverage alone (coverage_fit.h): evidence on every
+// implementation, and where no arithmetic of the oracle reproduces coverage, the grid that bounds
+// how far vertices move.
+
+struct GridFit {
+  ParameterFit fit;
+  int subpixelBits = 0;  // the coarsest consistent grid; 0: none fits
+};
+
+GridFit measureSubpixelGrid() {
+  const Viewport viewport{1024, 512};
+  const std::vector<CoverageProbe> probes = coverageProbes(12, viewport);
+  const RasterReadback drawn = drawTriangles(coverageMesh(probes, viewport), viewport);
+  const CoverageFit fit = fitCoverage(probes, viewport, drawn.triangle);
+  GridFit result;
+  result.subpixelBits = fit.coarsestBits();
+  const std::string over = std::to_string(fit.pixels) + " pixels of " +
+                           std::to_string(probes.size()) +
+                           " probe triangles at 2^-12 offsets around pixel centres";
+  std::string finding;
+  if (fit.consistent.empty()) {
+    finding = "no snapping grid of 1 to 14 bits nor unsnapped vertices with a fixed tie rule "
+              "covers the " + over + " as drawn; closest: " + describe(fit.closest) + " (" +
+              std::to_string(fit.closestMismatches) + " pixels differ)";
+  } else {
+    finding = "the " + over + " are covered as drawn by " +
+              (fit.consistent.size() == 1
+                   ? std::string("exactly one rasterizer of the grid family")
+                   : std::to_string(fit.consistent.size()) +
+                         " rasterizers of the grid family, the coarsest " +
+                         std::to_string(result.subpixelBits) + " sub-pixel bits") +
+              ":";
+    for (size_t i = 0; i < fit.consistent.size() && i < 6; ++i)
+      finding += (i ? "; " : " ") + describe(fit.consistent[i]);
+    if (fit.consistent.size() > 6) finding += "; ...";
+  }
+  result.fit = {"subpixel_bits",
+                finding,
+                fit.pixels,
+                fit.consistent.empty() ? fit.closestMismatches : 0,
+                0,
+                !fit.consistent.empty(),
+                fit.consistent.empty()};
+  return result;
+}
+
 }  // namespace
 
 Calibration calibrate() {
@@ -464,6 +541,7 @@ Calibration calibrate() {
   const FilterFit filter = measureFilter();
   const ParameterFit colour = measureColourConversion();
   const RasterFits raster = measureRasterization(math.flushesDenormals);
+  const GridFit grid = measureSubpixelGrid();
 
   // Start from gl45: what no probe pins keeps the specification's slack.
   PrecisionModel& m = c.model;
@@ -475,6 +553,10 @@ Calibration calibrate() {
   if (raster.coveragePinned) {
     m.subpixelBits = 8;  // with the fill rule pinned: the arithmetic's own coverage
     m.fillRulePinned = true;
+  } else if (grid.subpixelBits > 0) {
+    // Coverage is not the oracle's, but vertices move at most 2^-bits pixel: the result sets'
+    // corner boxes shrink from gl45's 2^-4 to that; ties stay free.
+    m.subpixelBits = grid.subpixelBits;
   }
   m.depthUlps = raster.depthUlps;
   m.depthRoundsToNearest = raster.depthPinned;
@@ -498,8 +580,9 @@ Calibration calibrate() {
   m.colorRoundsToNearest = colour.pinned;
   m.denormalsPinned = math.flushesDenormals == flushesDenormals(m.arithmetic);
 
-  c.fits = {raster.coverage, raster.attributes, raster.depth, math.log2,     math.sqrt,
-            math.conversion, filter.fit,        colour,       math.denormals};
+  c.fits = {raster.coverage, grid.fit,       raster.attributes, raster.depth,
+            math.log2,       math.sqrt,      math.conversion,   filter.fit,
+            colour,          math.denormals};
   if (!m.denormalsPinned) {
     c.fits.back().pinned = false;
     c.fits.back().finding += ", unlike the arithmetic chosen: free";
@@ -510,7 +593,11 @@ Calibration calibrate() {
                                ? m.sources[parameter] + " (not pinned by " + by + fit.finding + ")"
                                : by + fit.finding;
   };
-  source("subpixel_bits", raster.coverage);
+  if (raster.coveragePinned) {
+    m.sources["subpixel_bits"] = by + raster.coverage.finding + "; " + grid.fit.finding;
+  } else {
+    source("subpixel_bits", grid.fit);
+  }
   source("fill_rule", raster.coverage);
   source("attributes", raster.attributes);
   source("depth", raster.depth);

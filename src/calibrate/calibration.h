@@ -9,14 +9,19 @@
 //                            for bit as the oracle computes them with llvmpipe's fused planes,
 //                            else with IEEE planes, else the largest relative error seen (ulps)
 //   subpixel bits, fill rule the same triangles: every pixel's triangle as the oracle's 8-bit
-//                            snapping and tie rule give it; else unpinned (the gl45 values)
+//                            snapping and tie rule give it; else the fill rule is free and the
+//                            sub-pixel bits are the coarsest grid that the coverage probes of
+//                            coverage_fit.h (3,570 triangles at 2^-12 offsets around pixel
+//                            centres) leave consistent, or gl45's where none is
 //   depth                    the same triangles: the stored 32F depth bit for bit, else the
 //                            largest error seen (ulps) with either rounding
 //   log2, sqrt               65,536 positive floats of every exponent through log2() and sqrt():
 //                            llvmpipe's polynomial or the C library's log2f bit for bit, else the
 //                            largest errors seen (absolute inside [0.5, 2], ulps outside)
 //   arithmetic ulps          texelFetch of the 256 unorm8 values: k * (1 / 255) as the oracle
-//                            converts, else the largest difference in ulps
+//                            converts, and 16,384 of the shader's `precise` lerps a + (b - a) * w
+//                            (bilinear rows, the trilinear blend) rounded per operation; else the
+//                            largest difference in ulps
 //   denormals                a denormal times a 1 read from the inputs: flushed or kept as the
 //                            arithmetic does, else free
 //   filter                   GL_LINEAR samples of a 16 x 16 RGBA8 texture of random texels at

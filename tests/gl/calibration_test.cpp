@@ -73,8 +73,18 @@ void expectSameParameters(const PrecisionModel& got, const PrecisionModel& want,
 TEST(Calibration, LlvmpipeRediscoversTheHandWrittenModelParameterByParameter) {
   const HeadlessContext context;
   if (!onLlvmpipeWithFma(context)) GTEST_SKIP() << "not llvmpipe with FMA: " << context.renderer();
-  expectSameParameters(calibrate::calibrate().model, llvmpipeModel(), context);
+  const calibrate::Calibration calibration = calibrate::calibrate();
+  expectSameParameters(calibration.model, llvmpipeModel(), context);
   EXPECT_TRUE(llvmpipeModel().pinned());
+  // Coverage alone (calibrate/coverage_fit.h) finds rule 2's grid and rule 4's ties too.
+  const auto grid = std::find_if(calibration.fits.begin(), calibration.fits.end(),
+                                 [](const auto& fit) { return fit.parameter == "subpixel_bits"; });
+  ASSERT_NE(grid, calibration.fits.end());
+  EXPECT_TRUE(grid->pinned);
+  EXPECT_THAT(grid->finding, HasSubstr("exactly one rasterizer of the grid family"));
+  EXPECT_THAT(grid->finding,
+              HasSubstr("8 sub-pixel bits, round half to even, centres on left and bottom edges "
+                        "inside"));
 }
 
 // softpipe's model was written from its source (reference/softpipe-arithmetic.md); the probes
@@ -95,7 +105,7 @@ TEST(Calibration, IsDeterministicAndItsFileReadsBackAsTheModel) {
   test::ScratchDirectory dir;
   std::ofstream(dir / "model.json") << json;
   EXPECT_EQ(readModelFile(dir / "model.json"), first.model);
-  EXPECT_EQ(first.fits.size(), 9u);
+  EXPECT_EQ(first.fits.size(), 10u);
   for (const calibrate::ParameterFit& fit : first.fits) EXPECT_GT(fit.probes, 0u) << fit.parameter;
 }
 
