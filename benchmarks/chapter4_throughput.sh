@@ -34,17 +34,17 @@ fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# The storyboard cut to its first `frames` frames (its motions as they come).
+# The storyboard cut to the motions that start within its first `frames` frames, each whole (a
+# motion cut short would keep its angle and turn faster than its kind allows).
 python3 - data/paths/q3dm6ish.storyboard.json "$frames" "$work/path.json" <<'PY'
 import json, sys
 story = json.load(open(sys.argv[1]))
-left, kept = int(sys.argv[2]), []
+limit, kept, frames = int(sys.argv[2]), [], 0
 for step in story["storyboard"]:
-    if left <= 0:
+    if frames >= limit:
         break
-    step = dict(step, frames=min(step["frames"], left))
-    left -= step["frames"]
     kept.append(step)
+    frames += step["frames"]
 json.dump({"start": story["start"], "storyboard": kept}, open(sys.argv[3], "w"))
 PY
 

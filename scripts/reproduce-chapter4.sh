@@ -169,7 +169,7 @@ evaluate() {  # texture mesh path configs title output [vt eval options]
 
 # The cache of the motion experiments, per map (N x N frames of 128 x 128 texels): a real
 # constraint for the larger budget, and as large as the regime check needs. The largest frame
-# needs 641 pages on am_thornish and 226 on q3dm6ish, but what fills a cache is the pages a whole
+# needs 641 pages on am_thornish and 264 on q3dm6ish, but what fills a cache is the pages a whole
 # storyboard streams (PixelSum 10: about 2240 on am_thornish, 1840 to 1880 on q3dm6ish). With smaller
 # caches the larger budget evicts pages the camera comes back to and loses on those motions:
 # am_thornish at 40 x 40 (its turn to the ramp), q3dm6ish at 36 x 36 (its walk back east); the
