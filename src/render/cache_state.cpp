@@ -40,7 +40,7 @@ CacheState placePages(const VirtualTextureReader& reader, std::span<const Placed
   state.framesY = framesY;
   state.widthTexels = framesX * side;
   state.heightTexels = framesY * side;
-  state.texels.assign(size_t{state.widthTexels} * state.heightTexels * 4, 0);
+  state.texels = ZeroedBytes(size_t{state.widthTexels} * state.heightTexels * 4);
 
   // Frames: the page's own entry; everything else inherits its parent's, level by level.
   std::vector<std::vector<glm::ivec2>> frameOf(d.levelCount);
@@ -140,7 +140,7 @@ CacheState rootOnlyCache(const TextureDescription& description) {
   cache.framesX = cache.framesY = 1;
   cache.widthTexels = cache.heightTexels = description.storedPageSide();
   cache.residentPages = {0};
-  cache.texels.assign(uint64_t{cache.widthTexels} * cache.heightTexels * 4, 0);
+  cache.texels = ZeroedBytes(uint64_t{cache.widthTexels} * cache.heightTexels * 4);
   cache.indirection = IndirectionTable(description.levelCount);
   return cache;
 }

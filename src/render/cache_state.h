@@ -13,6 +13,7 @@
 #include <span>
 #include <vector>
 
+#include "common/zeroed_buffer.h"
 #include "format/virtual_texture_reader.h"
 #include "render/indirection_table.h"
 
@@ -23,7 +24,7 @@ struct CacheState {
   uint32_t framesX = 0, framesY = 0;
   uint32_t widthTexels = 0, heightTexels = 0;
   std::vector<uint64_t> residentPages;  // absolute indices, frame by frame
-  std::vector<uint8_t> texels;          // RGBA8, widthTexels x heightTexels
+  ZeroedBytes texels;  // RGBA8, widthTexels x heightTexels; frames no page filled cost no memory
   IndirectionTable indirection;
 };
 

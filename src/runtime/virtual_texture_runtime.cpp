@@ -38,7 +38,7 @@ VirtualTextureRuntime::VirtualTextureRuntime(const VirtualTextureReader& reader,
   cache_.framesY = options.framesY;
   cache_.widthTexels = options.framesX * d.storedPageSide();
   cache_.heightTexels = options.framesY * d.storedPageSide();
-  cache_.texels.assign(size_t{cache_.widthTexels} * cache_.heightTexels * 4, 0);
+  cache_.texels = ZeroedBytes(size_t{cache_.widthTexels} * cache_.heightTexels * 4);
   cache_.indirection = IndirectionTable(d.levelCount);
   for (uint32_t m = 0; m < d.levelCount; ++m)
     std::ranges::copy(table_.level(m), cache_.indirection.level(m).begin());
