@@ -68,9 +68,11 @@ inline constexpr int64_t kMaxCameraPathFrames = 1'000'000;
 
 // Bytes `vt eval` holds for its runs at once: they fly in lockstep, each with its page cache
 // (cache_frames^2 frames of (P + 2B)^2 RGBA8 texels) and a colour buffer of the screen: 8 GiB, the
-// reproduction's memory target. (Chapter 4's 31 indoor configurations at 1024 x 768 with caches of
-// 32 x 32 frames of 136^2 texels hold 2.4 GB; a configurations file of 1,000 caches of 256 x 256
-// frames would ask for 4.8 TB.)
+// reproduction's memory target. A cache texture is reserved whole but written only where pages
+// land (common/zeroed_buffer.h), so this bounds what the runs could come to hold, not what a short
+// flight touches. (Chapter 4's 31 indoor configurations at 1024 x 768 with caches of 48 x 48
+// frames of 136^2 texels count 5.4 GB; a configurations file of 1,000 caches of 256 x 256 frames
+// would ask for 4.8 TB.)
 inline constexpr uint64_t kMaxEvaluationStateBytes = uint64_t{8} << 30;
 
 // Pixels a command may draw along a camera path: its frames x the viewport's pixels x the passes
