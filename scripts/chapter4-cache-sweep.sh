@@ -4,7 +4,9 @@
 # 48^2 frames (data/chapter4/cache-sweep.json), and for each cache the regime check of
 # scripts/chapter4-report.py: PixelSum 10 - PixelSum 5 on mean SSIM, its 95% block-bootstrap
 # interval, whether the lower bound exceeds the half-width, and the fraction of resamples at or
-# below zero. About 18 minutes on the project's 2-core machine once the textures are built.
+# below zero, and the pages each of the two evicted. The reproduction's per-map caches
+# (scripts/reproduce-chapter4.sh) were chosen from its output. About 5 minutes on the project's
+# 2-core machine once the textures are built.
 #   usage: scripts/chapter4-cache-sweep.sh [--vt path/to/vt]
 # The textures are those of scripts/reproduce-chapter4.sh in $VT_DATA_CACHE/chapter4 (run it, or
 # its --maps part, first); the `vt eval` folders go to $VT_DATA_CACHE/chapter4/cache-sweep.
@@ -55,5 +57,6 @@ for map in ("q3dm6ish", "am_thornish"):
         half = (high - low) / 2
         print(f"{map:12s} {names[five + 1]} - {names[five]}: {mean:+.2e} "
               f"[{low:+.2e}, {high:+.2e}], half-width {half:.2e}, wide margin "
-              f"{'yes' if low > half else 'no'}, resamples <= 0: {at_most_zero:.4f}")
+              f"{'yes' if low > half else 'no'}, resamples <= 0: {at_most_zero:.4f}, "
+              f"evicted {summary['runs'][five]['evicted']} and {summary['runs'][five + 1]['evicted']}")
 PY

@@ -172,7 +172,9 @@ evaluate() {  # texture mesh path configs title output [vt eval options]
 # needs 641 pages on am_thornish and 264 on q3dm6ish, but what fills a cache is the pages a whole
 # storyboard streams (PixelSum 10: about 2240 on am_thornish, 1840 to 1880 on q3dm6ish). With smaller
 # caches the larger budget evicts pages the camera comes back to and loses on those motions:
-# am_thornish at 40 x 40 (its turn to the ramp), q3dm6ish at 36 x 36 (its walk back east); the
+# am_thornish at 40 x 40 (its turn to the ramp), q3dm6ish at 36 x 36 (its walk back east). Each is
+# the smallest cache of scripts/chapter4-cache-sweep.sh where the regime check holds and only the
+# larger budget evicts (that script prints the check and the evictions at seven sizes); the
 # report states the cache against the working set and how many runs evicted.
 declare -A cache_frames=([am_thornish]=48 [q3dm6ish]=40)
 cache_of() {  # map
