@@ -9,12 +9,16 @@
 #include <cstdint>
 #include <cstdlib>
 #include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace vt {
 
 template <class T>
 struct ZeroedAllocator {
+  // Default-initialising such an element writes nothing, so calloc's zeros stay what it reads.
+  static_assert(std::is_trivially_default_constructible_v<T>);
   using value_type = T;
 
   ZeroedAllocator() = default;
@@ -37,7 +41,7 @@ struct ZeroedAllocator {
   }
   template <class U, class... Args>
   void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(static_cast<Args&&>(args)...);
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
 
   template <class U>
@@ -46,8 +50,7 @@ struct ZeroedAllocator {
   }
 };
 
-// Bytes that read as zero until written (only for trivially constructible elements, whose
-// default-initialisation writes nothing).
+// Bytes that read as zero until written.
 using ZeroedBytes = std::vector<uint8_t, ZeroedAllocator<uint8_t>>;
 
 }  // namespace vt
