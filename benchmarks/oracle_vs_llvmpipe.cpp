@@ -18,6 +18,7 @@
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
 #include "reference/renderer.h"
+#include "render/arithmetic_points.h"
 #include "scene/camera.h"
 
 namespace {
@@ -74,7 +75,7 @@ int main(int argc, char** argv) {
   camera.target = {0, 0, 0};
   vt::RenderSettings settings;
   settings.viewport = {1280, 720};
-  settings.profile = vt::PrecisionProfile::kLlvmpipe;
+  settings.arithmetic = vt::arithmeticPoint("llvmpipe");
   const vt::ClipSpaceMesh mesh = vt::toClipSpace(terrain(), camera, settings.viewport);
 
   const vt::HeadlessContext context;

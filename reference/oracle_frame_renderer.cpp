@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "reference/renderer.h"
+#include "render/arithmetic_points.h"
 
 namespace vt::reference {
 
@@ -28,7 +29,7 @@ Frame OracleFrameRenderer::renderDelayed(const ClipSpaceMesh& mesh, const Render
 }
 
 std::string OracleFrameRenderer::describe(const RenderSettings& settings) const {
-  return "oracle, profile " + toString(settings.profile);
+  return "oracle, profile " + arithmeticLabel(settings.arithmetic);
 }
 
 }  // namespace vt::reference

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "reference/parallel_for.h"
-#include "reference/profile_arithmetic.h"
 #include "reference/shader_backends.h"
+#include "reference/shader_math.h"
 
 namespace vt::reference {
 namespace {
@@ -23,8 +23,7 @@ struct Lookups {
   shader::vec2 uv;  // clamped to [0, 1], as the shader clamps it
 };
 
-Lookups lookupsOf(Shader& shader, glm::vec2 uvIn, glm::vec4 d,
-                  const shader::VtParameters& p) {
+Lookups lookupsOf(Shader& shader, glm::vec2 uvIn, glm::vec4 d, const shader::VtParameters& p) {
   const shader::vec2 uv(shader.vtClampOrZero(uvIn.x, 1.0f), shader.vtClampOrZero(uvIn.y, 1.0f));
   const float lod = shader.vtLevelOfDetail(shader::vec2(d.x, d.y), shader::vec2(d.z, d.w), p);
   int first = shader.vtNeededLevel(lod), second = first;
@@ -60,8 +59,7 @@ void addFilterInputs(ColourKey& key, size_t at, Shader& shader, shader::vec2 uv,
                      glm::u16vec4 entry, const shader::VtParameters& p) {
   const shader::uvec4 e(entry.x, entry.y, entry.z, entry.w);
   const shader::ivec2 address(static_cast<int>(page.x), static_cast<int>(page.y));
-  const shader::vec2 texel =
-      shader.vtCacheTexel(uv, address, static_cast<int>(page.level), e, p);
+  const shader::vec2 texel = shader.vtCacheTexel(uv, address, static_cast<int>(page.level), e, p);
   const shader::vec2 t = texel - shader::vec2(0.5f, 0.5f);
   const shader::vec2 base = glm::floor(t);
   const shader::vec2 f = t - base;
@@ -171,10 +169,10 @@ void recolor(const Frame& drawn, std::span<const CacheState* const> caches,
   constexpr int kRows = 16;  // rows per task: enough work to outweigh the scheduling
   const int tasks = (v.height + kRows - 1) / kRows;
   parallelFor(static_cast<size_t>(tasks), settings.threads, [&](size_t task) {
-    const DenormalMode denormals(settings.profile);
+    const DenormalMode denormals(settings.arithmetic.flushDenormals);
     std::vector<Shader> shaders;
     shaders.reserve(caches.size());
-    for (const CacheState* cache : caches) shaders.emplace_back(cache, settings.profile);
+    for (const CacheState* cache : caches) shaders.emplace_back(cache, settings.arithmetic);
     EntryGroups groups(caches);
     std::vector<Shaded> shaded;  // the states that shaded this pixel themselves
     const int first = static_cast<int>(task) * kRows, last = std::min(v.height, first + kRows);

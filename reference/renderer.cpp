@@ -8,9 +8,9 @@
 
 #include "reference/linear_filter.h"
 #include "reference/parallel_for.h"
-#include "reference/profile_arithmetic.h"
 #include "reference/result_set_builder.h"
 #include "reference/shader_backends.h"
+#include "reference/shader_math.h"
 #include "reference/visibility.h"
 #include "render/cache_state.h"
 #include "shader/needbuffer.h"
@@ -89,7 +89,7 @@ void sizeFrame(Frame& frame, Viewport viewport, bool debug) {
 struct FrameJob {
   const RenderSettings& settings;
   Viewport viewport;
-  PrecisionProfile profile;
+  const Arithmetic& arithmetic;
   bool debug;
   const std::vector<SetupTriangle>& triangles;
   const Visibility& visibility;
@@ -115,8 +115,8 @@ class TileShader {
 
   TileShader(const FrameJob& job, const Source& texture)
       : job_(job),
-        denormals_(job.settings.profile),
-        shader_(&texture, job.settings.profile),
+        denormals_(job.arithmetic.flushDenormals),
+        shader_(&texture, job.arithmetic),
         texels_(shader_) {}
 
   // Shades the tile at (x0, y0); under a model with free parameters, appends each pixel's result
@@ -159,7 +159,7 @@ class TileShader {
       quadTriangle_[static_cast<size_t>(slot)] = triangle;
       const SetupTriangle& t = job_.triangles[static_cast<size_t>(triangle)];
       for (int q = 0; q < 4; ++q)
-        at[static_cast<size_t>(q)] = attributesAt(t, qx + (q & 1), qy + (q >> 1), job_.profile);
+        at[static_cast<size_t>(q)] = attributesAt(t, qx + (q & 1), qy + (q >> 1), job_.arithmetic);
       ++slots_;
     }
     return at;
@@ -234,15 +234,15 @@ class TileShader {
   // texture-coordinate scale its values lie far above the denormal range.)
   void addDenormalSet(int px, int py, int k, const PixelHit& hit, const OracleFragment& own) {
     const SetupTriangle& t = job_.triangles[static_cast<size_t>(hit.triangle)];
-    const PrecisionProfile profile = job_.settings.profile;
+    const Arithmetic& arithmetic = job_.arithmetic;
     const int qx = px & ~1, qy = py & ~1, column = k & 1, row = k >> 1;
     shader::VtFragment f;
     vec2 uv;
     {
-      const DenormalMode other(!flushesDenormals(profile));
+      const DenormalMode other(!arithmetic.flushDenormals);
       std::array<Attributes, 4> at;
       for (int q = 0; q < 4; ++q)
-        at[static_cast<size_t>(q)] = attributesAt(t, qx + (q & 1), qy + (q >> 1), profile);
+        at[static_cast<size_t>(q)] = attributesAt(t, qx + (q & 1), qy + (q >> 1), arithmetic);
       uv = at[static_cast<size_t>(k)].uv;
       const vec2 dUVdx =
           at[static_cast<size_t>(2 * row + 1)].uv - at[static_cast<size_t>(2 * row)].uv;
@@ -323,17 +323,17 @@ void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescr
   const Viewport viewport = settings.viewport;
   // The thread limit covers everything: setup, Embree's scene build and the tiles.
   const ThreadLimit parallelism(settings.threads);
-  const std::vector<SetupTriangle> triangles = setupTriangles(mesh, viewport, settings.profile);
+  const std::vector<SetupTriangle> triangles = setupTriangles(mesh, viewport, settings.arithmetic);
   // Under a model with free parameters, a coarser sub-pixel grid may cover centres one pixel
   // beyond those the 8-bit grid covers.
   const PrecisionModel* model =
       settings.model && !settings.model->pinned() ? settings.model.get() : nullptr;
-  const Visibility visibility(triangles, viewport, settings.depthFormat, settings.profile,
+  const Visibility visibility(triangles, viewport, settings.depthFormat, settings.arithmetic,
                               model ? 1 : 0);
   sizeFrame(frame, viewport, settings.debugChannels);
   const FrameJob job{settings,
                      viewport,
-                     settings.profile,
+                     settings.arithmetic,
                      settings.debugChannels,
                      triangles,
                      visibility,

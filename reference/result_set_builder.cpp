@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "reference/interval.h"
-#include "reference/profile_arithmetic.h"
 #include "shader/shader_cpp.h"
 
 namespace vt::reference {
@@ -19,21 +18,8 @@ constexpr double kRounding = 0x1p-24;
 // log2 a model allows lies within it, the emulated ones (llvmpipe's polynomial, exact) included.
 constexpr double kGlslLog2AbsoluteError = 0x1p-21;
 constexpr double kGlslLog2Ulps = 3;
-// llvmpipe's GL_LINEAR: texel positions on a grid of 2^-8 texel (DESIGN section 7).
-constexpr int kLlvmpipeSubTexelBits = 8;
-
-// The shader logic with only what the LOD needs: the arithmetic's log2.
-class LodBackend {
- public:
-  explicit LodBackend(PrecisionProfile profile) : profile_(profile) {}
-  float log2(float x) { return profileLog2(profile_, x); }
-  shader::uvec4 vtFetchIndirection(shader::ivec2, int) { return shader::uvec4(0u); }
-  shader::vec4 vtFetchCacheTexel(shader::ivec2) { return shader::vec4(0.0f); }
-  shader::vec4 vtSampleCacheLinear(shader::vec2) { return shader::vec4(0.0f); }
-
- private:
-  PrecisionProfile profile_;
-};
+// GL_LINEAR with 8-bit weights: texel positions on a grid of 2^-8 texel (DESIGN section 7).
+constexpr int kFixedPointSubTexelBits = 8;
 
 using Colour = std::array<Interval, 4>;  // per channel, in units of 1/255
 
@@ -177,7 +163,9 @@ class Builder {
     Interval z = Interval::everything();
     if (!l.degenerate) {
       z = interpolate(l, t.corners[0].z, t.corners[1].z, t.corners[2].z).value;
-      z = widen(z, model_.depthUlps * kFloatUlp, kFloatUlp);
+      // depthUlps counts units of 2^-23 of the depth range [0, 1] (precision_model.h): the error
+      // of a plane evaluation scales with its terms, not with the value they sum to.
+      z = widen(z, 0, (model_.depthUlps + 1) * kFloatUlp);
     }
     z = hull(z, Interval::point(own));
     if (format == DepthFormat::kDepth24)
@@ -383,17 +371,12 @@ class Builder {
       // The sampler: the position is divided by the cache size and multiplied back (two more
       // roundings), then quantised to its sub-texel grid; the lerps round as the model says.
       positionError *= 2;
-      switch (model_.filter) {
-        case FilterArithmetic::kLlvmpipe8Bit:
-          positionError += std::ldexp(1.0, -kLlvmpipeSubTexelBits);
-          valueError = 1.0;  // three lerps, each rounded to nearest: 0.5 + 0.5
-          break;
-        case FilterArithmetic::kFloat:
-          break;
-        case FilterArithmetic::kBounded:
-          positionError += std::ldexp(1.0, -model_.subTexelBits);
-          valueError = model_.filterErrorUnits;
-          break;
+      if (!model_.filterPinned) {
+        positionError += std::ldexp(1.0, -model_.subTexelBits);
+        valueError = model_.filterErrorUnits;
+      } else if (model_.arithmetic.filter.weights == FilterWeights::kFixedPoint8) {
+        positionError += std::ldexp(1.0, -kFixedPointSubTexelBits);
+        valueError = 1.0;  // three lerps, each rounded to nearest: 0.5 + 0.5
       }
     } else {
       valueError += model_.arithmeticUlps * kFloatUlp * 255 * 4;

@@ -11,8 +11,8 @@
 #include <glm/glm.hpp>
 
 #include "reference/linear_filter.h"
-#include "reference/profile_arithmetic.h"
 #include "reference/renderer.h"
+#include "reference/shader_math.h"
 #include "reference/texture_source.h"
 #include "render/cache_state.h"
 #include "shader/shader_cpp.h"
@@ -24,10 +24,10 @@ namespace vt::reference {
 // page. The shader fetches texels only of the page it just looked up.
 class ResidentBackend {
  public:
-  ResidentBackend(const ResidentTexture* texture, PrecisionProfile profile)
-      : texture_(texture), profile_(profile) {}
+  ResidentBackend(const ResidentTexture* texture, const Arithmetic& arithmetic)
+      : texture_(texture), arithmetic_(arithmetic) {}
 
-  float log2(float x) { return profileLog2(profile_, x); }
+  float log2(float x) { return log2Of(arithmetic_.log2, x); }
 
   // Neighbouring fragments mostly look up pages a recent lookup named (trilinear filtering
   // alternates between two levels; a quad may straddle a page edge): those are remembered, so the
@@ -58,16 +58,19 @@ class ResidentBackend {
                         d.channels);
   }
 
-  shader::vec4 vtFetchCacheTexel(shader::ivec2 texel) { return unorm8ToFloat(fetch8(texel)); }
+  shader::vec4 vtFetchCacheTexel(shader::ivec2 texel) {
+    return unorm8ToFloat(fetch8(texel), arithmetic_.texelConversion);
+  }
 
   shader::vec4 vtSampleCacheLinear(shader::vec2 texel) {
     const int side = static_cast<int>(texture_->description().storedPageSide());
-    return sampleLinear([this](shader::ivec2 t) { return fetch8(t); }, texel, shader::ivec2(side), profile_);
+    return sampleLinear([this](shader::ivec2 t) { return fetch8(t); }, texel, shader::ivec2(side),
+                        arithmetic_.filter, arithmetic_.texelConversion);
   }
 
  private:
   const ResidentTexture* texture_;
-  PrecisionProfile profile_;
+  Arithmetic arithmetic_;
   struct Lookup {
     PageId wanted, resident;
     const std::vector<std::byte>* texels;
@@ -81,10 +84,10 @@ class ResidentBackend {
 // The shader's view of a CacheState: the indirection table and the cache texture as uploaded.
 class CacheBackend {
  public:
-  CacheBackend(const CacheState* state, PrecisionProfile profile)
-      : state_(state), profile_(profile) {}
+  CacheBackend(const CacheState* state, const Arithmetic& arithmetic)
+      : state_(state), arithmetic_(arithmetic) {}
 
-  float log2(float x) { return profileLog2(profile_, x); }
+  float log2(float x) { return log2Of(arithmetic_.log2, x); }
 
   shader::uvec4 vtFetchIndirection(shader::ivec2 page, int level) {
     const glm::u16vec4 e = state_->indirection.entry(PageId{static_cast<uint32_t>(page.x),
@@ -105,18 +108,22 @@ class CacheBackend {
     return {t[0], t[1], t[2], t[3]};
   }
 
-  shader::vec4 vtFetchCacheTexel(shader::ivec2 texel) { return unorm8ToFloat(texelAt(texel)); }
+  shader::vec4 vtFetchCacheTexel(shader::ivec2 texel) {
+    return arithmetic_.texelConversion == UnormConversion::kTimesReciprocal
+               ? unorm8ToFloat(texelAt(texel))
+               : unorm8ToFloat(fetch8(texel), arithmetic_.texelConversion);
+  }
 
   shader::vec4 vtSampleCacheLinear(shader::vec2 texel) {
-    return sampleLinear(
-        [this](shader::ivec2 t) { return fetch8(t); }, texel,
-        shader::ivec2(static_cast<int>(state_->widthTexels), static_cast<int>(state_->heightTexels)),
-        profile_);
+    return sampleLinear([this](shader::ivec2 t) { return fetch8(t); }, texel,
+                        shader::ivec2(static_cast<int>(state_->widthTexels),
+                                      static_cast<int>(state_->heightTexels)),
+                        arithmetic_.filter, arithmetic_.texelConversion);
   }
 
  private:
   const CacheState* state_;
-  PrecisionProfile profile_;
+  Arithmetic arithmetic_;
 };
 
 // The framebuffer's conversion: clamp, then round to nearest even. NaN becomes 0.
@@ -127,7 +134,7 @@ inline uint8_t toUnorm8(float c) {
 
 // The shader's uniforms for texture `d`, a cache texture of `cacheSize` texels, and `settings`.
 inline shader::VtParameters shaderParameters(const TextureDescription& d, glm::vec2 cacheSize,
-                                      const RenderSettings& settings) {
+                                             const RenderSettings& settings) {
   shader::VtParameters parameters{};
   parameters.pageSize = static_cast<int>(d.pageSize);
   parameters.border = static_cast<int>(d.border);

@@ -84,25 +84,41 @@ bool clipPolygon(std::vector<ClipPoint>& polygon, unsigned mask) {
 
 struct WindowVertex {
   float x, y, z, oow;  // window coordinates and 1/w
-  int64_t xf, yf;      // snapped: round-half-even((X - 0.5) * 256)
+  int64_t xf, yf;      // snapped: round((X - 0.5) * 2^bits) as the coverage member says
   glm::vec2 uv;
 };
 
-WindowVertex toWindow(const ClipPoint& p, Viewport viewport, bool fused) {
+// (X - 0.5) * 2^bits in float (exact for a power of two unless it overflows), rounded.
+int64_t snap(float x, const Coverage& coverage) {
+  const float scaled = (x - 0.5f) * std::ldexp(1.0f, coverage.subpixelBits);
+  switch (coverage.rounding) {
+    case SnapRounding::kHalfUp:
+      return static_cast<int64_t>(std::floor(static_cast<double>(scaled) + 0.5));
+    case SnapRounding::kFloor:
+      return static_cast<int64_t>(std::floor(scaled));
+    case SnapRounding::kCeil:
+      return static_cast<int64_t>(std::ceil(scaled));
+    case SnapRounding::kHalfEven:
+      break;
+  }
+  return static_cast<int64_t>(std::nearbyint(scaled));
+}
+
+WindowVertex toWindow(const ClipPoint& p, Viewport viewport, const Arithmetic& arithmetic) {
   WindowVertex v;
   v.oow = 1.0f / p.position.w;
   const float halfWidth = static_cast<float>(viewport.width) * 0.5f;
   const float halfHeight = static_cast<float>(viewport.height) * 0.5f;
   // llvmpipe's vertex pipeline applies the viewport with fused multiply-adds on an FMA CPU (the
   // measured rule 1 with rule 10); vertices its C clipper makes use a multiply and an add.
-  const bool fma = fused && !p.generated;
+  const bool fma = arithmetic.fusedViewport && !p.generated;
   const float xNdc = p.position.x * v.oow, yNdc = p.position.y * v.oow;
   v.x = fma ? std::fma(xNdc, halfWidth, halfWidth) : xNdc * halfWidth + halfWidth;
   v.y = fma ? std::fma(yNdc, halfHeight, halfHeight) : yNdc * halfHeight + halfHeight;
   const float zNdc = p.position.z * v.oow;
   v.z = fma ? std::fma(zNdc, 0.5f, 0.5f) : zNdc * 0.5f + 0.5f;
-  v.xf = static_cast<int64_t>(std::nearbyint((v.x - 0.5f) * 256.0f));
-  v.yf = static_cast<int64_t>(std::nearbyint((v.y - 0.5f) * 256.0f));
+  v.xf = snap(v.x, arithmetic.coverage);
+  v.yf = snap(v.y, arithmetic.coverage);
   v.uv = p.uv;
   return v;
 }
@@ -118,27 +134,24 @@ Plane planeOf(float a0, float a1, float a2, float dx01, float dy01, float dx20, 
   return plane;
 }
 
-// Rule 4: the edge from i to j with the tie rule.
-Edge edgeOf(const WindowVertex& i, const WindowVertex& j) {
+// Rule 4: the edge from i to j with the tie rule. Of the oriented triangle's edges, a < 0 runs
+// along its left side, a > 0 along its right, and a = 0 is its bottom (b > 0) or top (b < 0); the
+// +1 gives a centre on the edge to the triangle.
+Edge edgeOf(const WindowVertex& i, const WindowVertex& j, const Coverage& coverage) {
   Edge edge;
   edge.a = i.yf - j.yf;
   edge.b = i.xf - j.xf;
   edge.c = edge.a * i.xf - edge.b * i.yf;
-  if (edge.a < 0 || (edge.a == 0 && edge.b >= 0)) edge.c += 1;
+  edge.bits = coverage.subpixelBits;
+  const bool owned =
+      edge.a != 0 ? (edge.a < 0) == coverage.leftEdgesIn : (edge.b >= 0) == coverage.bottomEdgesIn;
+  if (owned) edge.c += 1;
   return edge;
 }
 
-// Sets up one (fan) triangle; returns false when its snapped area is zero.
-bool setupOne(WindowVertex v0, WindowVertex v1, WindowVertex v2, Viewport viewport,
-              SetupTriangle& out) {
-  int64_t area = (v0.xf - v1.xf) * (v2.yf - v0.yf) - (v2.xf - v0.xf) * (v0.yf - v1.yf);
-  if (area == 0) return false;
-  if (area < 0) {
-    std::swap(v0, v1);
-    const uint8_t e = out.outerEdges;
-    out.outerEdges = static_cast<uint8_t>((e & 4u) | ((e & 1u) << 1) | ((e & 2u) >> 1));
-  }
-
+// The plane setup from the first vertex of the oriented triangle (rule 3).
+void firstVertexPlanes(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
+                       SetupTriangle& out) {
   const float dx01 = v0.x - v1.x, dy01 = v0.y - v1.y;
   const float dx20 = v2.x - v0.x, dy20 = v2.y - v0.y;
   const float ooa = 1.0f / (dx01 * dy20 - dy01 * dx20);
@@ -151,15 +164,38 @@ bool setupOne(WindowVertex v0, WindowVertex v1, WindowVertex v2, Viewport viewpo
   out.s = plane(v0.uv.x * v0.oow, v1.uv.x * v1.oow, v2.uv.x * v2.oow);
   out.t = plane(v0.uv.y * v0.oow, v1.uv.y * v1.oow, v2.uv.y * v2.oow);
   out.z = plane(v0.z, v1.z, v2.z);
-  out.edges = {edgeOf(v0, v1), edgeOf(v1, v2), edgeOf(v2, v0)};
-  const auto corner = [](const WindowVertex& v) {
-    return WindowCorner{v.x, v.y, v.z, v.oow, v.uv.x * v.oow, v.uv.y * v.oow};
-  };
-  out.corners = {corner(v0), corner(v1), corner(v2)};
+}
 
-  // Pixels whose centres (multiples of 256 in snapped units) lie within the snapped bounds.
-  const auto ceilDiv = [](int64_t a) { return a >= 0 ? (a + 255) / 256 : -((-a) / 256); };
-  const auto floorDiv = [](int64_t a) { return a >= 0 ? a / 256 : -((-a + 255) / 256); };
+WindowCorner cornerOf(const WindowVertex& v) {
+  return WindowCorner{v.x, v.y, v.z, v.oow, v.uv.x * v.oow, v.uv.y * v.oow};
+}
+
+// The planes as `setup` says, from the triangle in draw order (v0, v1, v2) or oriented.
+void setupPlanes(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
+                 PlaneSetup setup, SetupTriangle& out);
+
+// Coverage by snapped edge functions, and the planes; returns false when the snapped area is zero
+// or no pixel centre of the viewport lies in the snapped bounds.
+bool setupEdges(WindowVertex v0, WindowVertex v1, WindowVertex v2, Viewport viewport,
+                const Arithmetic& arithmetic, SetupTriangle& out) {
+  int64_t area = (v0.xf - v1.xf) * (v2.yf - v0.yf) - (v2.xf - v0.xf) * (v0.yf - v1.yf);
+  if (area == 0) return false;
+  if (area < 0) {
+    std::swap(v0, v1);
+    const uint8_t e = out.outerEdges;
+    out.outerEdges = static_cast<uint8_t>((e & 4u) | ((e & 1u) << 1) | ((e & 2u) >> 1));
+  }
+  setupPlanes(v0, v1, v2, arithmetic.planeSetup, out);
+  const Coverage& coverage = arithmetic.coverage;
+  out.edges = {edgeOf(v0, v1, coverage), edgeOf(v1, v2, coverage), edgeOf(v2, v0, coverage)};
+  out.corners = {cornerOf(v0), cornerOf(v1), cornerOf(v2)};
+
+  // Pixels whose centres (multiples of 2^bits in snapped units) lie within the snapped bounds.
+  const int64_t unit = int64_t{1} << coverage.subpixelBits;
+  const auto ceilDiv = [unit](int64_t a) {
+    return a >= 0 ? (a + unit - 1) / unit : -((-a) / unit);
+  };
+  const auto floorDiv = [unit](int64_t a) { return a >= 0 ? a / unit : -((-a + unit - 1) / unit); };
   const int64_t minXf = std::min({v0.xf, v1.xf, v2.xf}), maxXf = std::max({v0.xf, v1.xf, v2.xf});
   const int64_t minYf = std::min({v0.yf, v1.yf, v2.yf}), maxYf = std::max({v0.yf, v1.yf, v2.yf});
   out.minX = static_cast<int>(std::max<int64_t>(ceilDiv(minXf), 0));
@@ -206,39 +242,77 @@ Plane softpipePlane(float aMin, float aMid, float aMax, const SpanEdge& ebot, co
   return plane;
 }
 
-// Sets up one (fan) triangle as softpipe does (reference/softpipe-arithmetic.md, 2.2 to 3.1), in
-// draw order v0, v1, v2; returns false when 1 / area is not finite or no pixel centre of the
-// viewport is covered.
-bool setupSoftpipe(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
-                   Viewport viewport, SetupTriangle& out) {
-  // Sorted by window y, ties by <= (setup_sort_vertices).
+// A triangle's vertices sorted by window y, ties by <= (softpipe's setup_sort_vertices), and its
+// three edges from the pixel centres at or above their start (softpipe-arithmetic.md, 2.2).
+struct SortedTriangle {
   const WindowVertex *vmin, *vmid, *vmax;
+  SpanEdge emaj, ebot, etop;
+  float ooa;  // 1 / area; not finite for a degenerate triangle
+};
+
+SortedTriangle sortedTriangle(const WindowVertex& v0, const WindowVertex& v1,
+                              const WindowVertex& v2) {
+  SortedTriangle s;
   if (v0.y <= v1.y) {
     if (v1.y <= v2.y) {
-      vmin = &v0, vmid = &v1, vmax = &v2;
+      s.vmin = &v0, s.vmid = &v1, s.vmax = &v2;
     } else if (v2.y <= v0.y) {
-      vmin = &v2, vmid = &v0, vmax = &v1;
+      s.vmin = &v2, s.vmid = &v0, s.vmax = &v1;
     } else {
-      vmin = &v0, vmid = &v2, vmax = &v1;
+      s.vmin = &v0, s.vmid = &v2, s.vmax = &v1;
     }
   } else {
     if (v0.y <= v2.y) {
-      vmin = &v1, vmid = &v0, vmax = &v2;
+      s.vmin = &v1, s.vmid = &v0, s.vmax = &v2;
     } else if (v2.y <= v1.y) {
-      vmin = &v2, vmid = &v1, vmax = &v0;
+      s.vmin = &v2, s.vmid = &v1, s.vmax = &v0;
     } else {
-      vmin = &v1, vmid = &v2, vmax = &v0;
+      s.vmin = &v1, s.vmid = &v2, s.vmax = &v0;
     }
   }
   // Pixel centres: + 0.5 on x, - 0.5 on y (sp_setup.c's pixel_offset).
-  const float xMin = vmin->x + 0.5f, xMid = vmid->x + 0.5f;
-  const float yMin = vmin->y - 0.5f, yMid = vmid->y - 0.5f, yMax = vmax->y - 0.5f;
-  SpanEdge emaj = spanEdge(*vmin, *vmax, xMin, yMin);
-  SpanEdge ebot = spanEdge(*vmin, *vmid, xMin, yMin);
-  const SpanEdge etop = spanEdge(*vmid, *vmax, xMid, yMid);
-  const float area = emaj.dx * ebot.dy - ebot.dx * emaj.dy;
-  const float ooa = 1.0f / area;
-  if (!std::isfinite(ooa)) return false;
+  const float xMin = s.vmin->x + 0.5f, xMid = s.vmid->x + 0.5f;
+  const float yMin = s.vmin->y - 0.5f, yMid = s.vmid->y - 0.5f;
+  s.emaj = spanEdge(*s.vmin, *s.vmax, xMin, yMin);
+  s.ebot = spanEdge(*s.vmin, *s.vmid, xMin, yMin);
+  s.etop = spanEdge(*s.vmid, *s.vmax, xMid, yMid);
+  const float area = s.emaj.dx * s.ebot.dy - s.ebot.dx * s.emaj.dy;
+  s.ooa = 1.0f / area;
+  return s;
+}
+
+// The planes from the lowest vertex over the sorted edges (softpipe-arithmetic.md, 3.1).
+void lowestVertexPlanes(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
+                        SetupTriangle& out) {
+  const SortedTriangle s = sortedTriangle(v0, v1, v2);
+  const WindowVertex &vmin = *s.vmin, &vmid = *s.vmid, &vmax = *s.vmax;
+  const auto plane = [&](float aMin, float aMid, float aMax) {
+    return softpipePlane(aMin, aMid, aMax, s.ebot, s.emaj, s.ooa, vmin);
+  };
+  out.z = plane(vmin.z, vmid.z, vmax.z);
+  out.oneOverW = plane(vmin.oow, vmid.oow, vmax.oow);
+  out.s = plane(vmin.uv.x * vmin.oow, vmid.uv.x * vmid.oow, vmax.uv.x * vmax.oow);
+  out.t = plane(vmin.uv.y * vmin.oow, vmid.uv.y * vmid.oow, vmax.uv.y * vmax.oow);
+}
+
+void setupPlanes(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
+                 PlaneSetup setup, SetupTriangle& out) {
+  if (setup == PlaneSetup::kLowestVertex)
+    lowestVertexPlanes(v0, v1, v2, out);
+  else
+    firstVertexPlanes(v0, v1, v2, out);
+}
+
+// Coverage by float scanline spans over the unsnapped vertices (softpipe-arithmetic.md, 2.2 to
+// 2.3), in draw order v0, v1, v2, and the planes; returns false when 1 / area is not finite or no
+// pixel centre of the viewport is covered.
+bool setupSpans(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
+                Viewport viewport, const Arithmetic& arithmetic, SetupTriangle& out) {
+  SortedTriangle sorted = sortedTriangle(v0, v1, v2);
+  if (!std::isfinite(sorted.ooa)) return false;
+  SpanEdge& emaj = sorted.emaj;
+  const SpanEdge &ebot = sorted.ebot, &etop = sorted.etop;
+  const float yMid = sorted.vmid->y - 0.5f, yMax = sorted.vmax->y - 0.5f;
   const int bottomRows = truncateToInt(std::ceil(yMid - ebot.sy));
   const int topRows = truncateToInt(std::ceil(yMax - etop.sy));
 
@@ -253,7 +327,7 @@ bool setupSoftpipe(const WindowVertex& v0, const WindowVertex& v1, const WindowV
     h.right = {right.sx, right.dxdy};
     return h;
   };
-  const bool majorLeft = ooa < 0.0f;
+  const bool majorLeft = sorted.ooa < 0.0f;
   out.halves[0] = majorLeft ? half(emaj, ebot, bottomRows) : half(ebot, emaj, bottomRows);
   emaj.sx = emaj.sx + static_cast<float>(bottomRows) * emaj.dxdy;
   emaj.sy = emaj.sy + static_cast<float>(bottomRows);
@@ -261,18 +335,10 @@ bool setupSoftpipe(const WindowVertex& v0, const WindowVertex& v1, const WindowV
   out.scanline = true;
   out.width = viewport.width;
 
-  const auto plane = [&](float aMin, float aMid, float aMax) {
-    return softpipePlane(aMin, aMid, aMax, ebot, emaj, ooa, *vmin);
-  };
-  // softpipe's planes read emaj's dx and dy only, which the advance above leaves as they were.
-  out.z = plane(vmin->z, vmid->z, vmax->z);
-  out.oneOverW = plane(vmin->oow, vmid->oow, vmax->oow);
-  out.s = plane(vmin->uv.x * vmin->oow, vmid->uv.x * vmid->oow, vmax->uv.x * vmax->oow);
-  out.t = plane(vmin->uv.y * vmin->oow, vmid->uv.y * vmid->oow, vmax->uv.y * vmax->oow);
-  const auto corner = [](const WindowVertex& v) {
-    return WindowCorner{v.x, v.y, v.z, v.oow, v.uv.x * v.oow, v.uv.y * v.oow};
-  };
-  out.corners = {corner(v0), corner(v1), corner(v2)};
+  // The lowest-vertex planes read emaj's dx and dy only, which the advance above leaves as they
+  // were.
+  setupPlanes(v0, v1, v2, arithmetic.planeSetup, out);
+  out.corners = {cornerOf(v0), cornerOf(v1), cornerOf(v2)};
 
   // The pixels the spans cover inside the viewport bound the candidates exactly.
   out.minX = viewport.width, out.maxX = -1, out.minY = viewport.height, out.maxY = -1;
@@ -307,9 +373,8 @@ namespace {
 
 // Sets up mesh triangle k: culls, clips, and appends its (fan) triangles to `out`.
 void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport,
-                    PrecisionProfile profile, std::vector<SetupTriangle>& out,
+                    const Arithmetic& arithmetic, std::vector<SetupTriangle>& out,
                     SetupStatistics& stats) {
-  const bool fused = usesFusedPlanes(profile);
   ++stats.triangles;
   std::vector<ClipPoint> polygon;
   polygon.reserve(9);
@@ -350,11 +415,12 @@ void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport,
     if (fan)
       triangle.outerEdges =
           static_cast<uint8_t>(4u | (i + 1 == polygon.size() ? 1u : 0u) | (i == 2 ? 2u : 0u));
-    const WindowVertex a = toWindow(polygon[fan ? i - 1 : 0], viewport, fused);
-    const WindowVertex b = toWindow(polygon[fan ? i : 1], viewport, fused);
-    const WindowVertex c = toWindow(polygon[fan ? 0 : 2], viewport, fused);
-    if (rasterizesLikeSoftpipe(profile) ? setupSoftpipe(a, b, c, viewport, triangle)
-                                        : setupOne(a, b, c, viewport, triangle))
+    const WindowVertex a = toWindow(polygon[fan ? i - 1 : 0], viewport, arithmetic);
+    const WindowVertex b = toWindow(polygon[fan ? i : 1], viewport, arithmetic);
+    const WindowVertex c = toWindow(polygon[fan ? 0 : 2], viewport, arithmetic);
+    if (arithmetic.coverage.rule == CoverageRule::kScanlineSpans
+            ? setupSpans(a, b, c, viewport, arithmetic, triangle)
+            : setupEdges(a, b, c, viewport, arithmetic, triangle))
       out.push_back(triangle);
     else
       ++stats.empty;
@@ -364,7 +430,8 @@ void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport,
 }  // namespace
 
 std::vector<SetupTriangle> setupTriangles(const ClipSpaceMesh& mesh, Viewport viewport,
-                                          PrecisionProfile profile, SetupStatistics* statistics) {
+                                          const Arithmetic& arithmetic,
+                                          SetupStatistics* statistics) {
   // Blocks of triangles in parallel, concatenated in draw order: the result does not depend on
   // the thread count (the caller's ThreadLimit; on std::threads, every core).
   constexpr size_t kBlock = 2048;
@@ -373,7 +440,7 @@ std::vector<SetupTriangle> setupTriangles(const ClipSpaceMesh& mesh, Viewport vi
   std::vector<SetupStatistics> partStats(blocks);
   parallelFor(blocks, 0, [&](size_t block) {
     for (size_t k = block * kBlock; k < std::min(triangles, (block + 1) * kBlock); ++k)
-      setupPrimitive(mesh, k, viewport, profile, parts[block], partStats[block]);
+      setupPrimitive(mesh, k, viewport, arithmetic, parts[block], partStats[block]);
   });
   std::vector<SetupTriangle> result;
   SetupStatistics stats;

@@ -1,10 +1,10 @@
 #pragma once
-// Triangle setup as a GL rasterizer does it, following what Mesa's llvmpipe computes (DESIGN
-// section 7, rules 1 to 5): clipping against the frustum, the window transform, snapping to 1/256
-// pixel, the orientation fix, the attribute planes and the integer edge functions. Under the
-// softpipe profile, what Mesa's softpipe computes instead (reference/softpipe-arithmetic.md,
-// sections 2 and 3): the same clipping, no snapping, planes from the lowest vertex and coverage by
-// float scanline spans.
+// Triangle setup as a GL rasterizer does it, in the members of the arithmetic's families that
+// concern it (render/arithmetic.h): clipping against the frustum (DESIGN section 7, rule 5), the
+// window transform (fused or not), coverage (snapped integer edge functions with a sub-pixel grid,
+// rounding and tie rule, or float scanline spans over unsnapped vertices:
+// reference/softpipe-arithmetic.md, 2.3), and the attribute planes (from the first vertex of the
+// oriented triangle, rule 3, or from the lowest vertex, softpipe-arithmetic.md 3.1).
 //
 // Window conventions (GL, framebuffer object):
 //
@@ -16,9 +16,10 @@
 //        |   +-----+-----+
 //        +---------------> x
 //
-// Snapped coordinates are (X - 0.5) * 256 rounded half to even, so pixel centres lie on multiples
-// of 256. A centre exactly on an edge belongs to the triangle when the edge is a left or bottom
-// edge (the tie rule of rule 4), so a mesh that shares edges covers every pixel once.
+// Snapped coordinates are (X - 0.5) * 2^bits rounded as the coverage member says (8 bits, half to
+// even in rule 2), so pixel centres lie on multiples of 2^bits. A centre exactly on an edge
+// belongs to the triangle when the edge is of the kinds the tie rule names (left and bottom in
+// rule 4), so a mesh that shares edges covers every pixel once.
 
 #include <array>
 #include <cmath>
@@ -26,7 +27,7 @@
 #include <glm/vec2.hpp>
 #include <vector>
 
-#include "render/precision_profile.h"
+#include "render/arithmetic.h"
 #include "scene/clip_space_mesh.h"
 
 namespace vt::reference {
@@ -36,11 +37,11 @@ struct Plane {
   float dadx = 0.0f, dady = 0.0f, a0 = 0.0f;
 };
 
-// Rule 6: a plane at integer pixel coordinates, fused (llvmpipe on an FMA CPU) or not; softpipe
-// evaluates it at its quad's origin (x0, y0), both even, and steps to the other three pixels:
-// (a0 + dadx * x0) + dady * y0, then + dadx for the right column, + dady for the upper row.
-inline float evaluatePlane(const Plane& plane, int px, int py, PrecisionProfile profile) {
-  if (rasterizesLikeSoftpipe(profile)) {
+// A plane at integer pixel coordinates (rule 6), fused or not; or evaluated at its quad's origin
+// (x0, y0), both even, and stepped to the other three pixels: (a0 + dadx * x0) + dady * y0, then
+// + dadx for the right column, + dady for the upper row (softpipe-arithmetic.md, 3.2).
+inline float evaluatePlane(const Plane& plane, int px, int py, PlaneEvaluation evaluation) {
+  if (evaluation == PlaneEvaluation::kQuadStepped) {
     float value = (plane.a0 + plane.dadx * static_cast<float>(px & ~1)) +
                   plane.dady * static_cast<float>(py & ~1);
     if (px & 1) value = value + plane.dadx;
@@ -48,14 +49,17 @@ inline float evaluatePlane(const Plane& plane, int px, int py, PrecisionProfile 
     return value;
   }
   const float x = static_cast<float>(px), y = static_cast<float>(py);
-  return usesFusedPlanes(profile) ? std::fma(plane.dady, y, std::fma(plane.dadx, x, plane.a0))
-                                  : plane.dady * y + (plane.dadx * x + plane.a0);
+  return evaluation == PlaneEvaluation::kFused
+             ? std::fma(plane.dady, y, std::fma(plane.dadx, x, plane.a0))
+             : plane.dady * y + (plane.dadx * x + plane.a0);
 }
 
-// Edge function of rule 4: covered when c + 256 * (b * py - a * px) > 0 for all three edges.
+// Edge function of rule 4 on a grid of 2^bits per pixel: covered when
+// c + 2^bits * (b * py - a * px) > 0 for all three edges.
 struct Edge {
   int64_t a = 0, b = 0, c = 0;
-  int64_t at(int64_t px, int64_t py) const { return c + 256 * (b * py - a * px); }
+  int bits = 8;
+  int64_t at(int64_t px, int64_t py) const { return c + (b * py - a * px) * (int64_t{1} << bits); }
 };
 
 // A corner of a set-up triangle before snapping: window position, window z, 1/w and the
@@ -92,8 +96,8 @@ struct SetupTriangle {
   // Bit i: the edge opposite corner i lies on the mesh triangle's boundary. Edges between two
   // triangles of a clipped fan are not: the shared-edge rule gives their pixels to one of the two.
   uint8_t outerEdges = 7;
-  // softpipe: coverage by spans instead of `edges`; a row of both halves takes the top half's
-  // span unless it is empty (the order softpipe writes them).
+  // Scanline coverage instead of `edges`; a row of both halves takes the top half's span unless it
+  // is empty (the order softpipe writes them).
   bool scanline = false;
   int width = 0;                       // the viewport's, the spans' clip
   std::array<ScanlineHalf, 2> halves;  // bottom, top
@@ -111,17 +115,19 @@ struct SetupTriangle {
 };
 
 // The texture coordinates (s/w and t/w over 1/w) of a set-up triangle at pixel (px, py), and 1/w:
-// multiplied by the reciprocal of the 1/w plane (llvmpipe, exact) or divided by it (softpipe).
+// multiplied by the reciprocal of the 1/w plane or divided by it (the perspective family).
 struct PixelAttributes {
   glm::vec2 uv;
   float w;
 };
 inline PixelAttributes attributesAt(const SetupTriangle& t, int px, int py,
-                                    PrecisionProfile profile) {
-  const float q = evaluatePlane(t.oneOverW, px, py, profile);
+                                    const Arithmetic& arithmetic) {
+  const PlaneEvaluation evaluation = arithmetic.planeEvaluation;
+  const float q = evaluatePlane(t.oneOverW, px, py, evaluation);
   const float recip = 1.0f / q;
-  const float s = evaluatePlane(t.s, px, py, profile), tt = evaluatePlane(t.t, px, py, profile);
-  if (rasterizesLikeSoftpipe(profile)) return {glm::vec2(s / q, tt / q), recip};
+  const float s = evaluatePlane(t.s, px, py, evaluation),
+              tt = evaluatePlane(t.t, px, py, evaluation);
+  if (arithmetic.perspective == Perspective::kDivided) return {glm::vec2(s / q, tt / q), recip};
   return {glm::vec2(s * recip, tt * recip), recip};
 }
 
@@ -134,12 +140,11 @@ struct SetupStatistics {
                            // the viewport: they draw nothing
 };
 
-// Sets up every triangle of `mesh` for `viewport` in the profile's rasterization. Under a profile
-// with fused planes the viewport transform of the mesh's vertices (x, y and z) uses fma
-// (llvmpipe on an FMA CPU); vertices made by clipping, and the plane setup itself (rule 3), never
-// fuse.
+// Sets up every triangle of `mesh` for `viewport` in the arithmetic's members. With a fused
+// viewport the window transform of the mesh's vertices (x, y and z) uses fma; vertices made by
+// clipping, and the plane setup itself (rule 3), never fuse.
 std::vector<SetupTriangle> setupTriangles(const ClipSpaceMesh& mesh, Viewport viewport,
-                                          PrecisionProfile profile,
+                                          const Arithmetic& arithmetic,
                                           SetupStatistics* statistics = nullptr);
 
 }  // namespace vt::reference

@@ -25,34 +25,34 @@ struct BlockQuery {
   const std::vector<SetupTriangle>* triangles;
   int x0, y0;
   DepthFormat format;
-  PrecisionProfile profile;
+  const Arithmetic* arithmetic;
   std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> hits;
   std::array<uint32_t, Visibility::kBlock * Visibility::kBlock> keys;
   std::vector<int32_t>* collect = nullptr;  // Visibility::candidates: every box crossed
 };
 
-// The stored depth as an ordered key (smaller is nearer). Z24 is round-half-even(z * 16777215)
-// of the clamped z; 32F is the float, whose bits order like its values on [0, 1]. softpipe
-// (reference/softpipe-arithmetic.md, 7.1) stores Z24 as the C cast (unsigned)(z * 16777215.0f),
-// which on x86-64 truncates through a 64-bit integer (NaN gives 0), and compares 32F as floats
-// over its unclamped z: negative depths order below 0, and a NaN never passes (kNever).
+// The stored depth as an ordered key (smaller is nearer), in the depth member
+// (render/arithmetic.h). Z24 is round-half-even(z * 16777215) (rule 7) or the C cast (unsigned)(z *
+// 16777215.0f) (softpipe-arithmetic.md, 7.1), which on x86-64 truncates through a 64-bit integer
+// (NaN gives 0); 32F is the float, whose bits order like its values on [0, 1]. Where z is not
+// clamped, 32F is compared as floats: negative depths order below 0, and a NaN never passes
+// (kNever).
 constexpr uint32_t kNever = 0xffffffffu;
-uint32_t depthKey(float z, DepthFormat format, PrecisionProfile profile) {
-  if (rasterizesLikeSoftpipe(profile)) {
-    if (format == DepthFormat::kDepth24) {
-      const float scaled = z * 16777215.0f;
-      const int64_t whole = scaled >= -9223372036854775808.0f && scaled < 9223372036854775808.0f
-                                ? static_cast<int64_t>(scaled)
+uint32_t depthKey(float z, DepthFormat format, const Depth& depth) {
+  if (format == DepthFormat::kDepth24) {
+    const float scaled = z * 16777215.0f;
+    if (depth.z24 == Z24Conversion::kNearestEven && depth.offsetAndClamp)
+      return static_cast<uint32_t>(std::nearbyint(scaled));
+    const float whole = depth.z24 == Z24Conversion::kNearestEven ? std::nearbyint(scaled) : scaled;
+    const int64_t integer = whole >= -9223372036854775808.0f && whole < 9223372036854775808.0f
+                                ? static_cast<int64_t>(whole)
                                 : INT64_MIN;
-      return static_cast<uint32_t>(static_cast<uint64_t>(whole));
-    }
-    if (std::isnan(z)) return kNever;
-    const uint32_t bits = std::bit_cast<uint32_t>(z == 0.0f ? 0.0f : z);
-    return bits & 0x80000000u ? ~bits : bits | 0x80000000u;
+    return static_cast<uint32_t>(static_cast<uint64_t>(integer));
   }
-  if (format == DepthFormat::kDepth24)
-    return static_cast<uint32_t>(std::nearbyint(z * 16777215.0f));
-  return std::bit_cast<uint32_t>(z);
+  if (depth.offsetAndClamp) return std::bit_cast<uint32_t>(z);
+  if (std::isnan(z)) return kNever;
+  const uint32_t bits = std::bit_cast<uint32_t>(z == 0.0f ? 0.0f : z);
+  return bits & 0x80000000u ? ~bits : bits | 0x80000000u;
 }
 
 void boundsOf(const RTCBoundsFunctionArguments* args) {
@@ -87,10 +87,11 @@ void testCandidate(const RTCIntersectFunctionNArguments* args) {
     if (!t.covers(px, py)) continue;
     const size_t slot =
         static_cast<size_t>((px - query->x0) + Visibility::kBlock * (py - query->y0));
-    const float z = windowDepth(t, px, py, query->profile);
-    const uint32_t key = depthKey(z, query->format, query->profile);
+    const float z = windowDepth(t, px, py, *query->arithmetic);
+    const Depth& depth = query->arithmetic->depth;
+    const uint32_t key = depthKey(z, query->format, depth);
     // GL_LESS against the cleared 1.0
-    if (key == kNever || key >= depthKey(1.0f, query->format, query->profile)) continue;
+    if (key == kNever || key >= depthKey(1.0f, query->format, depth)) continue;
     const float stored =
         query->format == DepthFormat::kDepth24 ? static_cast<float>(key) / 16777215.0f : z;
     PixelHit& hit = query->hits[slot];
@@ -110,21 +111,21 @@ void testCandidateOccluded(const RTCOccludedFunctionNArguments*) {}
 
 }  // namespace
 
-float windowDepth(const SetupTriangle& t, int px, int py, PrecisionProfile profile) {
-  const float z = evaluatePlane(t.z, px, py, profile);
-  // softpipe: no offset term (its polygon offset is a draw stage, off) and no clamp (depth clamp
-  // is off); reference/softpipe-arithmetic.md, 7.1.
-  if (rasterizesLikeSoftpipe(profile)) return z;
+float windowDepth(const SetupTriangle& t, int px, int py, const Arithmetic& arithmetic) {
+  const float z = evaluatePlane(t.z, px, py, arithmetic.planeEvaluation);
+  // No offset term (a polygon offset done as a draw stage, off) and no clamp (depth clamp off):
+  // reference/softpipe-arithmetic.md, 7.1.
+  if (!arithmetic.depth.offsetAndClamp) return z;
   const float offset = z + 0.0f;  // polygon offset, added even when zero (rule 7)
   return std::clamp(offset, 0.0f, 1.0f);
 }
 
 Visibility::Visibility(const std::vector<SetupTriangle>& triangles, Viewport viewport,
-                       DepthFormat format, PrecisionProfile profile, int margin)
+                       DepthFormat format, const Arithmetic& arithmetic, int margin)
     : triangles_(triangles),
       viewport_(viewport),
       format_(format),
-      profile_(profile),
+      arithmetic_(arithmetic),
       margin_(margin) {
   boxData_ = std::make_unique<BoxData>(BoxData{&triangles, margin});
 #ifdef VT_STD_THREAD_WORKERS
@@ -164,7 +165,7 @@ std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> Visibility::block(
   query.x0 = x0;
   query.y0 = y0;
   query.format = format_;
-  query.profile = profile_;
+  query.arithmetic = &arithmetic_;
   query.hits.fill(PixelHit{});
   query.keys.fill(0);
   alignas(64) RTCRayHit16 rays{};
@@ -196,7 +197,7 @@ void Visibility::candidates(int px, int py, std::vector<int32_t>& out) const {
   query.x0 = px;
   query.y0 = py;
   query.format = format_;
-  query.profile = profile_;
+  query.arithmetic = &arithmetic_;
   query.collect = &out;
   RTCRayHit ray{};
   ray.ray.org_x = static_cast<float>(px) + 0.5f;

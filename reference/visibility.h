@@ -40,7 +40,7 @@ class Visibility {
   // `margin`: pixels by which each triangle's box of candidate centres grows, for a model under
   // which snapping to a coarser grid may cover centres beside those of the oracle's 8-bit grid.
   Visibility(const std::vector<SetupTriangle>& triangles, Viewport viewport, DepthFormat format,
-             PrecisionProfile profile, int margin = 0);
+             const Arithmetic& arithmetic, int margin = 0);
   ~Visibility();
   Visibility(const Visibility&) = delete;
   Visibility& operator=(const Visibility&) = delete;
@@ -58,15 +58,15 @@ class Visibility {
   const std::vector<SetupTriangle>& triangles_;
   Viewport viewport_;
   DepthFormat format_;
-  PrecisionProfile profile_;
+  Arithmetic arithmetic_;
   int margin_;
   std::unique_ptr<BoxData> boxData_;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
 };
 
-// Window z of a set-up triangle at a pixel centre, clamped to [0, 1] (rule 7); under softpipe
-// neither offset nor clamped.
-float windowDepth(const SetupTriangle& triangle, int px, int py, PrecisionProfile profile);
+// Window z of a set-up triangle at a pixel centre: offset by + 0.0 and clamped to [0, 1] (rule 7),
+// or as interpolated, as the depth member says.
+float windowDepth(const SetupTriangle& triangle, int px, int py, const Arithmetic& arithmetic);
 
 }  // namespace vt::reference

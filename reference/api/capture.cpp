@@ -14,6 +14,7 @@
 #include "common/posix_file.h"
 #include "common/resource_limits.h"
 #include "reference/api/api_internal.h"
+#include "render/arithmetic_points.h"
 
 static_assert(sizeof(vt::oracle::ClipVertex) == 24, "six float32 per vertex, as in the file");
 static_assert(std::endian::native == std::endian::little,
@@ -186,6 +187,12 @@ Capture parseManifest(const json& root, const fs::path& manifest) {
     if (model.empty()) throw top.fail("\"model\" is an empty file name");
     capture.model = model.is_absolute() ? model : folder / model;
   }
+  if (top.has("fingerprint")) {
+    capture.fingerprint = top.text("fingerprint");
+    if (!vt::findArithmeticPoint(capture.fingerprint))
+      throw top.fail("\"fingerprint\" is not a shipped pinned model (" +
+                     vt::joinedArithmeticPointNames() + ")");
+  }
 
   Fields texture(top.at("texture", json::value_t::object), manifest, "\"texture\"");
   const fs::path textureFile = texture.text("file");
@@ -315,6 +322,7 @@ void writeCapture(const fs::path& manifest, const Capture& capture) {
     root["version"] = kCaptureVersion;
     root["renderer"] = capture.renderer;
     if (!capture.model.empty()) root["model"] = relativeTo(folder, capture.model).string();
+    if (!capture.fingerprint.empty()) root["fingerprint"] = capture.fingerprint;
     root["texture"] = {{"file", relativeTo(folder, capture.texture).string()},
                        {"identity", identityText(capture.textureIdentity)}};
     root["viewport"] = {{"width", v.width}, {"height", v.height}};

@@ -1,35 +1,39 @@
 #include "vt/oracle/render.h"
 
+#include <utility>
+
 #include "common/resource_limits.h"
 #include "reference/api/api_internal.h"
+#include "render/arithmetic_points.h"
 #include "render/precision_model.h"
 #include "render/precision_model_file.h"
 #include "shader/needbuffer.h"
 
 namespace vt::oracle {
 
-vt::PrecisionModel internalModel(Profile profile) {
-  switch (profile) {
-    case Profile::kLlvmpipe:
-      return vt::llvmpipeModel();
-    case Profile::kGl45:
-      return vt::gl45Model();
-    case Profile::kSoftpipe:
-      return vt::softpipeModel();
-    default:
-      return vt::exactModel();
-  }
+namespace {
+
+// The public names of the shipped models; the models themselves are render/precision_model.h's.
+constexpr std::pair<Profile, const char*> kProfileNames[] = {{Profile::kExact, "exact"},
+                                                             {Profile::kLlvmpipe, "llvmpipe"},
+                                                             {Profile::kGl45, "gl45"},
+                                                             {Profile::kSoftpipe, "softpipe"}};
+
+}  // namespace
+
+std::string toString(Profile profile) {
+  for (const auto& [value, name] : kProfileNames)
+    if (value == profile) return name;
+  return "exact";
 }
+
+vt::PrecisionModel internalModel(Profile profile) { return vt::namedModel(toString(profile)); }
 
 Profile parseProfile(const std::string& name) {
-  if (name == "exact") return Profile::kExact;
-  if (name == "llvmpipe") return Profile::kLlvmpipe;
-  if (name == "gl45") return Profile::kGl45;
-  if (name == "softpipe") return Profile::kSoftpipe;
+  for (const auto& [value, text] : kProfileNames)
+    if (name == text) return value;
   throw Error("unknown precision model '" + name + "' (exact, llvmpipe, softpipe or gl45)");
 }
-
-std::string toString(Profile profile) { return internalModel(profile).name; }
 
 Profile publicProfile(const vt::PrecisionModel& model) { return parseProfile(model.name); }
 
@@ -105,7 +109,7 @@ std::vector<uint32_t> flatNeed(std::span<const glm::uvec4> need) {
 Frame publicFrame(vt::Frame&& frame, const vt::RenderSettings& settings) {
   Frame result;
   result.needEncoding = settings.need8 ? NeedEncoding::k8Bit : NeedEncoding::k32Bit;
-  result.model = settings.model ? settings.model->name : vt::toString(settings.profile);
+  result.model = settings.model ? settings.model->name : vt::arithmeticLabel(settings.arithmetic);
   const size_t pixels = frame.need.size();
   result.ambiguous.resize(pixels);
   for (size_t i = 0; i < pixels; ++i) result.ambiguous[i] = vt::ambiguous(frame.sets, i) ? 1 : 0;

@@ -15,11 +15,16 @@ constexpr int kCell = 12;
 
 double rounded(double v, SnapRounding rounding) {
   switch (rounding) {
-    case SnapRounding::kHalfEven: return std::nearbyint(v);  // the default mode: to nearest even
-    case SnapRounding::kHalfUp: return std::floor(v + 0.5);
-    case SnapRounding::kFloor: return std::floor(v);
-    case SnapRounding::kCeil: return std::ceil(v);
-    case SnapRounding::kNone: return v;
+    case SnapRounding::kHalfEven:
+      return std::nearbyint(v);  // the default mode: to nearest even
+    case SnapRounding::kHalfUp:
+      return std::floor(v + 0.5);
+    case SnapRounding::kFloor:
+      return std::floor(v);
+    case SnapRounding::kCeil:
+      return std::ceil(v);
+    case SnapRounding::kNone:
+      return v;
   }
   return v;
 }
@@ -32,11 +37,16 @@ double snapped(double x, const CoverageHypothesis& h) {
 
 const char* roundingName(SnapRounding rounding) {
   switch (rounding) {
-    case SnapRounding::kHalfEven: return "round half to even";
-    case SnapRounding::kHalfUp: return "round half up";
-    case SnapRounding::kFloor: return "rounded down";
-    case SnapRounding::kCeil: return "rounded up";
-    case SnapRounding::kNone: return "not snapped";
+    case SnapRounding::kHalfEven:
+      return "round half to even";
+    case SnapRounding::kHalfUp:
+      return "round half up";
+    case SnapRounding::kFloor:
+      return "rounded down";
+    case SnapRounding::kCeil:
+      return "rounded up";
+    case SnapRounding::kNone:
+      return "not snapped";
   }
   return "";
 }
@@ -44,10 +54,10 @@ const char* roundingName(SnapRounding rounding) {
 }  // namespace
 
 std::string describe(const CoverageHypothesis& h) {
-  std::string text = h.rounding == SnapRounding::kNone
-                         ? std::string("vertices not snapped")
-                         : std::to_string(h.subpixelBits) + " sub-pixel bits, " +
-                               roundingName(h.rounding);
+  std::string text =
+      h.rounding == SnapRounding::kNone
+          ? std::string("vertices not snapped")
+          : std::to_string(h.subpixelBits) + " sub-pixel bits, " + roundingName(h.rounding);
   text += std::string(", centres on ") + (h.leftEdgesIn ? "left" : "right") + " and " +
           (h.bottomEdgesIn ? "bottom" : "top") + " edges inside";
   return text;
@@ -82,8 +92,7 @@ std::optional<std::array<glm::dvec2, 3>> setUp(const CoverageHypothesis& h,
   return v;
 }
 
-bool coversSetUp(const CoverageHypothesis& h, const std::array<glm::dvec2, 3>& v, int px,
-                 int py) {
+bool coversSetUp(const CoverageHypothesis& h, const std::array<glm::dvec2, 3>& v, int px, int py) {
   const glm::dvec2 p(px + 0.5, py + 0.5);
   for (int i = 0; i < 3; ++i) {
     const glm::dvec2 a = v[i], b = v[(i + 1) % 3];
@@ -191,9 +200,11 @@ int CoverageFit::coarsestBits() const {
 CoverageFit fitCoverage(const std::vector<CoverageProbe>& probes, Viewport viewport,
                         const std::vector<int32_t>& drawn) {
   const auto expect = [&](bool condition) {
-    if (!condition) throw std::invalid_argument("coverage fit: the readback does not fit the probes");
+    if (!condition)
+      throw std::invalid_argument("coverage fit: the readback does not fit the probes");
   };
-  expect(drawn.size() == static_cast<size_t>(viewport.width) * static_cast<size_t>(viewport.height));
+  expect(drawn.size() ==
+         static_cast<size_t>(viewport.width) * static_cast<size_t>(viewport.height));
   for (const CoverageProbe& probe : probes)
     expect(probe.cellMin.x >= 0 && probe.cellMin.y >= 0 && probe.cellMax.x <= viewport.width &&
            probe.cellMax.y <= viewport.height);

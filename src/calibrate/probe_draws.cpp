@@ -42,7 +42,7 @@ void requireNoError(const char* what) {
                              std::to_string(error));
 }
 
-// A triangle covering the viewport, from gl_VertexID alone.
+// A triangle covering the viewport, from gl_VertexID alone (the clipper cuts it).
 const char* kFullScreenVertex = R"(#version 450 core
 void main() {
   vec2 p = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1));
@@ -50,14 +50,26 @@ void main() {
 }
 )";
 
+// Two triangles that cover the viewport exactly: corners on the clip planes, none outside.
+const char* kFullScreenQuadVertex = R"(#version 450 core
+void main() {
+  const vec2 corners[6] = vec2[](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1), vec2(1, 1),
+                                 vec2(-1, 1));
+  gl_Position = vec4(corners[gl_VertexID], 0.0, 1.0);
+}
+)";
+
 std::string fragmentSource(const ShaderProbe& probe, const char* outputType) {
   return std::string("#version 450 core\n") +
          "layout(binding = 0) uniform sampler2D uInputs;\n"
          "layout(binding = 1) uniform sampler2D uTexture;\n"
-         "layout(location = 0) out " + outputType + " outResult;\n"
+         "layout(location = 0) out " +
+         outputType +
+         " outResult;\n"
          "void main() {\n"
          "  vec4 x = texelFetch(uInputs, ivec2(gl_FragCoord.xy), 0);\n"
-         "  precise vec4 result;\n  " + probe.body + "\n  outResult = result;\n}\n";
+         "  precise vec4 result;\n  " +
+         probe.body + "\n  outResult = result;\n}\n";
 }
 
 // Draws the probe into a `format` target and reads it back as `readFormat`/`readType`.
@@ -67,7 +79,8 @@ std::vector<Texel> drawProbe(const ShaderProbe& probe, GLenum format, GLenum rea
   if (probe.width < 1 || probe.inputs.empty() || probe.inputs.size() % probe.width != 0)
     throw std::invalid_argument("calibration probe: inputs are not whole rows");
   const int width = probe.width, height = static_cast<int>(probe.inputs.size()) / probe.width;
-  const GlProgram program(kFullScreenVertex, fragmentSource(probe, outputType));
+  const GlProgram program(probe.clipped ? kFullScreenVertex : kFullScreenQuadVertex,
+                          fragmentSource(probe, outputType));
   Names names;
   const GLuint inputs = names.texture(GL_RGBA32F, width, height);
   glTextureSubImage2D(inputs, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, probe.inputs.data());
@@ -95,7 +108,7 @@ std::vector<Texel> drawProbe(const ShaderProbe& probe, GLenum format, GLenum rea
   glDisable(GL_DITHER);
   glUseProgram(program.id());
   glBindVertexArray(array);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDrawArrays(GL_TRIANGLES, 0, probe.clipped ? 3 : 6);
   std::vector<Texel> result(probe.inputs.size());
   glGetTextureImage(target, 0, readFormat, readType,
                     static_cast<GLsizei>(result.size() * sizeof(Texel)), result.data());
@@ -141,7 +154,7 @@ ClipSpaceMesh randomTriangles(unsigned seed, int triangles) {
   return mesh;
 }
 
-RasterReadback drawTriangles(const ClipSpaceMesh& mesh, Viewport viewport) {
+RasterReadback drawTriangles(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format) {
   static const char* kVertex = R"(#version 450 core
 layout(location = 0) in vec4 aClipPosition;
 layout(location = 1) in vec2 aUV;
@@ -174,7 +187,9 @@ void main() {
   const GLuint triangles = names.texture(GL_RGBA32F, width, height);
   const GLuint uvs = names.texture(GL_RGBA32F, width, height);
   const GLuint derivatives = names.texture(GL_RGBA32F, width, height);
-  const GLuint depth = names.texture(GL_DEPTH_COMPONENT32F, width, height);
+  const bool z24 = format == DepthFormat::kDepth24;
+  const GLuint depth =
+      names.texture(z24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F, width, height);
   const GLuint framebuffer = names.framebuffer();
   glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, triangles, 0);
   glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT1, uvs, 0);
@@ -218,13 +233,24 @@ void main() {
   const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
   std::vector<glm::vec4> triangle(pixels);
   std::vector<glm::vec4> uv(pixels);
-  RasterReadback result{{}, std::vector<glm::vec2>(pixels), std::vector<glm::vec4>(pixels),
+  RasterReadback result{{},
+                        std::vector<glm::vec2>(pixels),
+                        std::vector<glm::vec4>(pixels),
                         std::vector<float>(pixels)};
   const auto bytes = [&](size_t element) { return static_cast<GLsizei>(pixels * element); };
   glGetTextureImage(triangles, 0, GL_RGBA, GL_FLOAT, bytes(16), triangle.data());
   glGetTextureImage(uvs, 0, GL_RGBA, GL_FLOAT, bytes(16), uv.data());
   glGetTextureImage(derivatives, 0, GL_RGBA, GL_FLOAT, bytes(16), result.derivatives.data());
-  glGetTextureImage(depth, 0, GL_DEPTH_COMPONENT, GL_FLOAT, bytes(4), result.depth.data());
+  if (z24) {
+    // The stored integer d in the top 24 bits of a 32-bit unorm, returned as the oracle keeps
+    // it: d / (2^24 - 1) in float (reference/visibility.h, PixelHit::depth).
+    std::vector<uint32_t> stored(pixels);
+    glGetTextureImage(depth, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, bytes(4), stored.data());
+    for (size_t i = 0; i < pixels; ++i)
+      result.depth[i] = static_cast<float>(stored[i] >> 8) / 16777215.0f;
+  } else {
+    glGetTextureImage(depth, 0, GL_DEPTH_COMPONENT, GL_FLOAT, bytes(4), result.depth.data());
+  }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glUseProgram(0);
   requireNoError("triangles");

@@ -7,7 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "reference/renderer.h"
+#include "render/render_settings.h"
+#include "scene/clip_space_mesh.h"
 
 namespace vt::calibrate {
 
@@ -22,6 +23,10 @@ struct ShaderProbe {
   std::vector<glm::u8vec4> texels;  // empty: no texture bound
   glm::ivec2 textureSize{0, 0};
   bool linear = false;
+  // The viewport covered by one triangle larger than it (the clipper cuts it), or by two that
+  // fit it exactly (nothing is clipped): implementations may shade the two kinds of batch with
+  // different arithmetic (softpipe's denormal mode: reference/softpipe-arithmetic.md, 5.3).
+  bool clipped = true;
 };
 std::vector<glm::vec4> runShaderProbe(const ShaderProbe& probe);
 
@@ -30,9 +35,9 @@ std::vector<glm::vec4> runShaderProbe(const ShaderProbe& probe);
 std::vector<glm::u8vec4> runColourProbe(const ShaderProbe& probe);
 
 // What a draw of `mesh` leaves per pixel (bottom row first): the triangle that passed GL_LESS
-// against a 32F depth buffer cleared to 1 (-1 for none; each triangle must have its own three
-// vertices, in order, as randomTriangles in calibration.cpp makes them), its texture coordinates, their
-// fine derivatives (ds/dx, dt/dx, ds/dy, dt/dy) and the depth stored.
+// against a depth buffer (32F or Z24) cleared to 1 (-1 for none; each triangle must have its own
+// three vertices, in order, as randomTriangles in calibration.cpp makes them), its texture
+// coordinates, their fine derivatives (ds/dx, dt/dx, ds/dy, dt/dy) and the depth stored.
 struct RasterReadback {
   std::vector<int32_t> triangle;
   std::vector<glm::vec2> uv;
@@ -44,6 +49,7 @@ struct RasterReadback {
 // the first: each with its own three vertices.
 ClipSpaceMesh randomTriangles(unsigned seed, int triangles);
 
-RasterReadback drawTriangles(const ClipSpaceMesh& mesh, Viewport viewport);
+RasterReadback drawTriangles(const ClipSpaceMesh& mesh, Viewport viewport,
+                             DepthFormat format = DepthFormat::kDepth32F);
 
 }  // namespace vt::calibrate

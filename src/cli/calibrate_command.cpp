@@ -5,6 +5,7 @@
 #include <iostream>
 #include <memory>
 #include <span>
+#include <stdexcept>
 
 #include "calibrate/calibration.h"
 #include "cli/commands.h"
@@ -23,23 +24,36 @@ void addCalibrateCommand(CLI::App& app) {
       "calibrate",
       "Measure this OpenGL implementation's precision model by probe draws and write it as a "
       "model file");
-  command->add_option("-o,--output", options->output,
-                      "Model file to write (default: print it)");
+  command->add_option("-o,--output", options->output, "Model file to write (default: print it)");
   command->callback([options] {
     if (!options->output.empty()) requireOutputFile(options->output, {});
     const HeadlessContext context;
     const calibrate::Calibration calibration = calibrate::calibrate();
+    const auto evidence = [&](std::ostream& out) {
+      for (const calibrate::ParameterFit& fit : calibration.fits)
+        out << "  " << fit.parameter << (fit.pinned ? " [pinned]" : " [bounded]") << ": "
+            << fit.finding << " (" << fit.probes << " values)\n";
+    };
+    if (!calibration.conformant()) {
+      std::cerr << "vt calibrate: " << calibration.renderer << " (" << calibration.version
+                << "), what the probes found:\n";
+      evidence(std::cerr);
+      // No model: a bound wide enough to pass this implementation would pass its bug too.
+      for (const std::string& line : calibration.conformance)
+        std::cerr << "vt calibrate: " << calibration.renderer << " breaks a rule: " << line << "\n";
+      throw std::runtime_error(calibration.renderer + " is not conformant (" +
+                               std::to_string(calibration.conformance.size()) +
+                               " rules broken, above): no model written");
+    }
     const std::string json = calibrate::calibrationJson(calibration);
     if (options->output.empty()) {
       std::cout << json;
       return;
     }
     writeFileAtomically(options->output, std::as_bytes(std::span(json.data(), json.size())));
-    std::cout << "calibrated " << calibration.renderer << " (" << calibration.version
-              << "): wrote " << options->output << "\n";
-    for (const calibrate::ParameterFit& fit : calibration.fits)
-      std::cout << "  " << fit.parameter << ": " << fit.finding << " (" << fit.probes
-                << " values)\n";
+    std::cout << "calibrated " << calibration.renderer << " (" << calibration.version << "): wrote "
+              << options->output << "\n";
+    evidence(std::cout);
   });
 }
 

@@ -13,6 +13,7 @@
 
 #include "build/demo_scene.h"
 #include "build/texture_builder.h"
+#include "calibrate/fingerprint.h"
 #include "cli/commands.h"
 #include "cli/texture_report.h"
 #include "common/elapsed_time.h"
@@ -21,6 +22,7 @@
 #include "common/posix_file.h"
 #include "format/level_image.h"
 #include "gl/headless_context.h"
+#include "render/arithmetic_points.h"
 #include "render/backend.h"
 #include "render/frame_images.h"
 #include "scene/box_room.h"
@@ -49,8 +51,13 @@ void renderAndCrossCheck(const VirtualTextureReader& reader, const std::filesyst
   } catch (const std::exception& e) {
     std::cout << "no OpenGL (" << e.what() << "): the oracle renders alone\n";
   }
-  // The oracle follows the GL implementation at hand: llvmpipe's arithmetic on llvmpipe.
-  if (context) settings.profile = modelForRenderer(context->renderer()).arithmetic;
+  // The oracle follows the GL implementation at hand where a fingerprint confirms a named point
+  // (calibrate/fingerprint.h): llvmpipe's arithmetic on llvmpipe.
+  if (context) {
+    std::string note;
+    settings.arithmetic = calibrate::autoModel(context->renderer(), &note).arithmetic;
+    if (!note.empty()) std::cout << note << "\n";
+  }
   auto start = std::chrono::steady_clock::now();
   const Frame oracle = makeFrameRenderer(Backend::kOracle, cache)->render(mesh, settings);
   const double oracleSeconds = secondsSince(start);
@@ -59,9 +66,10 @@ void renderAndCrossCheck(const VirtualTextureReader& reader, const std::filesyst
   const std::vector<uint8_t> color = colorImage(oracle), need = needImage(oracle, false);
   writeImage8(folder / "frame.png", width, height, 4, std::as_bytes(std::span(color)));
   writeImage8(folder / "needbuffer.png", width, height, 4, std::as_bytes(std::span(need)));
-  std::cout << "oracle (profile " << toString(settings.profile) << "): " << width << " x " << height
-            << " in " << oracleSeconds * 1000.0 << " ms, wrote " << (shown / "frame.png").string()
-            << " and " << (shown / "needbuffer.png").string() << "\n";
+  std::cout << "oracle (profile " << arithmeticLabel(settings.arithmetic) << "): " << width << " x "
+            << height << " in " << oracleSeconds * 1000.0 << " ms, wrote "
+            << (shown / "frame.png").string() << " and " << (shown / "needbuffer.png").string()
+            << "\n";
   if (!context) return;
 
   const std::unique_ptr<FrameRenderer> gl = makeFrameRenderer(Backend::kGl, cache);

@@ -27,6 +27,7 @@
 #include "eval/evaluation.h"
 #include "eval/evaluation_report.h"
 #include "eval/flight_records.h"
+#include "render/arithmetic_points.h"
 #include "runtime/needbuffer_scale.h"
 #include "scene/box_room.h"
 #include "scene/obj_mesh.h"
@@ -89,7 +90,7 @@ void addEvalCommand(CLI::App& app) {
   command->add_flag("--preload-visible", o->preloadVisible,
                     "Also load the pages the first frame needs before it (4.2.1)");
   command->add_option("--profile", o->profile, "Precision profile of the oracle")
-      ->check(CLI::IsMember(namesOf(kPrecisionProfileNames)))
+      ->check(CLI::IsMember(arithmeticPointNames()))
       ->capture_default_str();
   command->add_option("--jobs", o->jobs, "Runs at once (0: every core)")
       ->check(workerCount())
@@ -107,10 +108,9 @@ void addEvalCommand(CLI::App& app) {
       // A configurations file says every setting of its runs; only the cache size, a property
       // of the regime rather than of a strategy, may be set for all of them at once (one file
       // flown on maps whose working sets differ).
-      for (const char* option :
-           {"--heuristic", "--budget", "--ancestors", "--locked-levels", "--need-scale",
-            "--lookahead", "--trilinear-parents", "--hotspot", "--noise-skipping",
-            "--initial-levels", "--preload-visible"})
+      for (const char* option : {"--heuristic", "--budget", "--ancestors", "--locked-levels",
+                                 "--need-scale", "--lookahead", "--trilinear-parents", "--hotspot",
+                                 "--noise-skipping", "--initial-levels", "--preload-visible"})
         if (command->count(option) > 0)
           throw std::invalid_argument(std::string("give either --configs or ") + option);
       ConfigurationsFile loaded = loadConfigurationsFile(o->configs);
@@ -155,7 +155,7 @@ void addEvalCommand(CLI::App& app) {
                          static_cast<uint64_t>(path.frameCount()), static_cast<uint64_t>(v.width),
                          static_cast<uint64_t>(v.height), 1 + configurations.size());
     options.settings.need8 = need8Encodes(reader.description().finestLevel());
-    options.settings.profile = parsePrecisionProfile(o->profile);
+    options.settings.arithmetic = arithmeticPoint(o->profile);
     options.jobs = o->jobs;
     const uint64_t total = static_cast<uint64_t>(path.frameCount()) * (1 + configurations.size());
     ProgressBar bar("eval", total);

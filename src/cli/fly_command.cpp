@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "calibrate/fingerprint.h"
 #include "cli/argument_checks.h"
 #include "cli/commands.h"
 #include "cli/configuration_options.h"
@@ -21,6 +22,7 @@
 #include "eval/flight.h"
 #include "eval/flight_records.h"
 #include "reference/texture_source.h"
+#include "render/arithmetic_points.h"
 #include "render/backend.h"
 #include "runtime/needbuffer_scale.h"
 #include "scene/box_room.h"
@@ -81,9 +83,9 @@ void addFlyCommand(CLI::App& app) {
   command
       ->add_option("--profile", o->profile,
                    "Precision profile of the oracle: auto (exact; with gl, GL_RENDERER's), " +
-                       joinedNames(kPrecisionProfileNames))
+                       joinedArithmeticPointNames())
       ->check(CLI::IsMember([] {
-        std::vector<std::string> names = namesOf(kPrecisionProfileNames);
+        std::vector<std::string> names = arithmeticPointNames();
         names.insert(names.begin(), "auto");
         return names;
       }()))
@@ -136,9 +138,14 @@ void addFlyCommand(CLI::App& app) {
     options.link = LinkModel{o->linkLatency, o->linkMegabytes * 1e6};
     options.backend = parseBackend(o->backend);
     const BackendContext context(options.backend);
-    options.settings.profile = o->profile == "auto"
-                                   ? modelForRenderer(context.renderer()).arithmetic
-                                   : parsePrecisionProfile(o->profile);
+    // auto: with GL, the named point the implementation reproduces (its fingerprint), else exact.
+    std::string note;
+    options.settings.arithmetic =
+        o->profile != "auto" ? arithmeticPoint(o->profile)
+        : options.backend == Backend::kGl
+            ? calibrate::resolveModelHere("auto", context.renderer(), &note).arithmetic
+            : arithmeticPoint("exact");
+    if (!note.empty()) std::cerr << "vt fly: " << note << "\n";
     // Reference images: every page resident, drawn by the oracle at the screen's resolution
     // (DESIGN section 5).
     std::unique_ptr<reference::ResidentTexture> everything;
@@ -167,9 +174,13 @@ void addFlyCommand(CLI::App& app) {
 
     if (!o->capture.empty()) {
       const std::string renderer = context.captureName(options.settings);
+      // The named point this GL implementation reproduces, recorded for `--model auto`.
+      const std::string fingerprint =
+          options.backend == Backend::kGl ? calibrate::fingerprintedPoint().value_or("") : "";
       options.wantsCapture = [&](int frame) { return frame % o->captureEvery == 0; };
-      options.capture = [&, renderer](const FlightCaptureView& view) {
-        writeFlightCapture(captureStaging->path(), view, reader, options.settings, renderer);
+      options.capture = [&, renderer, fingerprint](const FlightCaptureView& view) {
+        writeFlightCapture(captureStaging->path(), view, reader, options.settings, renderer,
+                           fingerprint);
       };
     }
 
@@ -183,7 +194,7 @@ void addFlyCommand(CLI::App& app) {
                     {"link_latency_seconds", o->linkLatency},
                     {"link_megabytes_per_second", o->linkMegabytes},
                     {"backend", o->backend},
-                    {"profile", toString(options.settings.profile)}});
+                    {"profile", arithmeticLabel(options.settings.arithmetic)}});
     summary.update(flightTotals(result));
     writeFileAtomically(folder / "summary.json", summary.dump(2) + "\n");
     writeFileAtomically(folder / "timing.json",

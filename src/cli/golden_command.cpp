@@ -7,12 +7,14 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "calibrate/fingerprint.h"
 #include "cli/commands.h"
 #include "cli/configuration_options.h"
 #include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/output_path.h"
 #include "eval/golden.h"
+#include "render/arithmetic_points.h"
 #include "render/backend.h"
 #include "render/precision_model_file.h"
 
@@ -39,8 +41,8 @@ void addGoldenCommand(CLI::App& app) {
       ->capture_default_str();
   generate
       ->add_option("--profile", g->profile,
-                   "The oracle's arithmetic: " + joinedNames(kPrecisionProfileNames))
-      ->check(CLI::IsMember(namesOf(kPrecisionProfileNames)))
+                   "The oracle's arithmetic: " + joinedArithmeticPointNames())
+      ->check(CLI::IsMember(arithmeticPointNames()))
       ->capture_default_str();
   generate->add_option("-o,--output", g->output, "Golden folder")->required();
   generate->callback([g, configuration] {
@@ -50,7 +52,7 @@ void addGoldenCommand(CLI::App& app) {
     request.mesh = g->mesh;
     request.path = g->path;
     request.viewport = parseSize(g->size);
-    request.profile = parsePrecisionProfile(g->profile);
+    request.profile = arithmeticPoint(g->profile);
     request.configuration = configuration->configuration();
     generateGolden(request, g->output);
     std::cout << "wrote golden images of every " << request.every << "th frame to "
@@ -84,7 +86,11 @@ void addGoldenCommand(CLI::App& app) {
     const Backend backend = parseBackend(c->backend);
     const BackendContext context(backend);
     // The oracle judges itself under the golden set's own profile; the model matters for GL.
-    const PrecisionModel glModel = resolveModel(c->model, context.renderer());
+    std::string note;
+    const PrecisionModel glModel =
+        backend == Backend::kGl ? calibrate::resolveModelHere(c->model, context.renderer(), &note)
+                                : resolveModel(c->model == "auto" ? "exact" : c->model, "");
+    if (!note.empty()) std::cerr << "vt golden check: " << note << "\n";
     if (const std::string warning =
             calibrationMismatch(glModel, context.renderer(), context.version());
         !warning.empty())

@@ -15,6 +15,7 @@
 #include "common/input_file.h"
 #include "common/output_path.h"
 #include "eval/image_metrics.h"
+#include "render/arithmetic_points.h"
 #include "render/backend.h"
 #include "render/frame_images.h"
 #include "scene/box_room.h"
@@ -68,7 +69,7 @@ void addRenderCommand(CLI::App& app) {
       ->check(sizeValidator())
       ->capture_default_str();
   command->add_option("--profile", o->profile, "Precision profile")
-      ->check(CLI::IsMember(namesOf(kPrecisionProfileNames)))
+      ->check(CLI::IsMember(arithmeticPointNames()))
       ->capture_default_str();
   command->add_option("--depth", o->depth, "Depth buffer format")
       ->check(CLI::IsMember({"24", "32f"}))
@@ -99,7 +100,7 @@ void addRenderCommand(CLI::App& app) {
       throw InputError(o->output, "given as both the colour image and the needbuffer image");
     RenderSettings settings;
     settings.viewport = parseSize(o->size);
-    settings.profile = parsePrecisionProfile(o->profile);
+    settings.arithmetic = arithmeticPoint(o->profile);
     settings.depthFormat = o->depth == "24" ? DepthFormat::kDepth24 : DepthFormat::kDepth32F;
     settings.trilinear = !o->bilinear;
     settings.exactFilter = !o->hardwareFilter;

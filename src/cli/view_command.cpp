@@ -164,10 +164,10 @@ void addViewCommand(CLI::App& app) {
       const auto drawStart = Clock::now();
       const Frame drawn = gl.render(toClipSpace(mesh, camera, settings.viewport), settings,
                                     run.runtime().needsDepth());
-      run.frame(frame, previous, camera,
-                DrawnFrame{.need = drawn.need, .depth = drawn.depth,
-                           .needViewport = settings.viewport},
-                std::chrono::duration<double>(Clock::now() - drawStart).count());
+      run.frame(
+          frame, previous, camera,
+          DrawnFrame{.need = drawn.need, .depth = drawn.depth, .needViewport = settings.viewport},
+          std::chrono::duration<double>(Clock::now() - drawStart).count());
       const FrameStatistics& statistics = run.frames().back().statistics;
       streamedTotal += statistics.streamed;
 

@@ -11,6 +11,7 @@
 #include "common/posix_file.h"
 #include "eval/evaluation_plots.h"
 #include "eval/flight_records.h"
+#include "render/arithmetic_points.h"
 
 namespace vt {
 namespace {
@@ -93,7 +94,7 @@ nlohmann::json summaryJson(const EvaluationDescription& description, const Camer
           {"frames", path.frameCount()},
           {"width", settings.viewport.width},
           {"height", settings.viewport.height},
-          {"profile", toString(settings.profile)},
+          {"profile", arithmeticLabel(settings.arithmetic)},
           {"jobs", description.jobs},
           {"view_seconds", evaluation.viewSeconds},
           {"recolor_seconds", evaluation.recolorSeconds},

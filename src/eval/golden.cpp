@@ -19,6 +19,7 @@
 #include "reference/frame_comparison.h"
 #include "reference/renderer.h"
 #include "reference/texture_source.h"
+#include "render/arithmetic_points.h"
 #include "render/precision_model.h"
 #include "scene/obj_mesh.h"
 #include "shader/needbuffer.h"
@@ -81,16 +82,16 @@ struct Recorded {
 // Flies `configuration` and keeps every `every`-th frame.
 std::vector<Recorded> flyAndRecord(const VirtualTextureReader& reader, const Mesh& mesh,
                                    const CameraPath& path, const FlightConfiguration& configuration,
-                                   Viewport viewport, PrecisionProfile profile, int every,
+                                   Viewport viewport, const Arithmetic& profile, int every,
                                    Backend backend, const PrecisionModel* judge = nullptr) {
   FlightOptions options;
   options.settings.viewport = viewport;
-  options.settings.profile = profile;
+  options.settings.arithmetic = profile;
   options.settings.need8 = need8Encodes(reader.description().finestLevel());
   options.backend = backend;
   const reference::ResidentTexture everything(reader);
   RenderSettings referenceSettings = options.settings;
-  referenceSettings.profile = PrecisionProfile::kExact;
+  referenceSettings.arithmetic = arithmeticPoint("exact");
   // Reference images for the recorded frames only.
   options.reference = [&](int frame) {
     return frame % every == 0 ? referenceImage(everything, mesh, path.at(frame), referenceSettings)
@@ -160,7 +161,7 @@ void generateGolden(const GoldenRequest& request, const std::filesystem::path& d
                                  {"configuration", request.configuration.toJson()},
                                  {"width", request.viewport.width},
                                  {"height", request.viewport.height},
-                                 {"profile", toString(request.profile)},
+                                 {"profile", arithmeticLabel(request.profile)},
                                  {"every", request.every},
                                  {"frames", frames}};
   writeFileAtomically(folder / "golden.json", golden.dump(1) + "\n");
@@ -179,7 +180,7 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
                         Backend backend, const PrecisionModel& glModel,
                         const std::filesystem::path& reportFolder) {
   const bool gl = backend == Backend::kGl;
-  const PrecisionProfile glProfile = glModel.arithmetic;
+  const Arithmetic glProfile = glModel.arithmetic;
   const std::filesystem::path manifest = folder / "golden.json";
   // Whole numbers only: a float converted to int out of its range is undefined.
   const auto whole = [](const nlohmann::json& value, const char* what) {
@@ -190,7 +191,7 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
   nlohmann::json golden;
   FlightConfiguration configuration;
   Viewport viewport;
-  PrecisionProfile profile;
+  Arithmetic profile;
   int every = 1;
   try {
     golden = readJsonFile(manifest, "golden set");
@@ -198,7 +199,7 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
       throw std::invalid_argument("format is not '" + std::string(kFormat) + "'");
     configuration = FlightConfiguration::fromJson(golden.at("configuration"), {});
     viewport = {whole(golden.at("width"), "width"), whole(golden.at("height"), "height")};
-    profile = parsePrecisionProfile(golden.at("profile").get<std::string>());
+    profile = arithmeticPoint(golden.at("profile").get<std::string>());
     every = whole(golden.at("every"), "every");
     for (const char* key : {"texture_identity", "mesh_checksum", "path_checksum"})
       golden.at(key).get<std::string>();
@@ -230,7 +231,7 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
   GoldenCheck check;
   check.backend = toString(backend);
   check.profile = gl ? glProfile : profile;
-  check.model = gl ? glModel.name : toString(profile);
+  check.model = gl ? glModel.name : arithmeticLabel(profile);
   const CameraPath cameraPath = CameraPath::load(path);
   requirePathPixelsFit(path, static_cast<uint64_t>(cameraPath.frameCount()),
                        static_cast<uint64_t>(viewport.width),
@@ -293,14 +294,15 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
                       {"passed", frame.passed}});
     check.frames.push_back(frame);
   }
-  writeFileAtomically(report / "check.json", nlohmann::json{{"golden", folder.string()},
-                                                            {"backend", check.backend},
-                                                            {"profile", toString(check.profile)},
-                                                            {"model", check.model},
-                                                            {"passed", check.passed()},
-                                                            {"frames", frames}}
-                                                     .dump(2) +
-                                                 "\n");
+  writeFileAtomically(report / "check.json",
+                      nlohmann::json{{"golden", folder.string()},
+                                     {"backend", check.backend},
+                                     {"profile", arithmeticLabel(check.profile)},
+                                     {"model", check.model},
+                                     {"passed", check.passed()},
+                                     {"frames", frames}}
+                              .dump(2) +
+                          "\n");
   staging.commit();
   return check;
 }

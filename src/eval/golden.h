@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "eval/flight.h"
+#include "render/arithmetic_points.h"
 #include "render/precision_model.h"
 
 namespace vt {
@@ -26,7 +27,7 @@ struct GoldenRequest {
   std::filesystem::path texture, mesh, path;  // the mesh and path files must exist
   FlightConfiguration configuration;
   Viewport viewport{160, 100};
-  PrecisionProfile profile = PrecisionProfile::kExact;
+  Arithmetic profile = arithmeticPoint("exact");
   int every = 25;  // record frames 0, every, 2 every, ...
 };
 
@@ -46,7 +47,7 @@ struct GoldenFrameCheck {
 
 struct GoldenCheck {
   std::string backend;
-  PrecisionProfile profile = PrecisionProfile::kExact;
+  Arithmetic profile = arithmeticPoint("exact");
   std::string model;  // the model that judged
   std::vector<GoldenFrameCheck> frames;
   bool passed() const;

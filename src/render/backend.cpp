@@ -5,6 +5,7 @@
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
 #include "reference/oracle_frame_renderer.h"
+#include "render/arithmetic_points.h"
 
 namespace vt {
 
@@ -27,7 +28,7 @@ std::string BackendContext::version() const { return gl_ ? gl_->version() : ""; 
 
 std::string BackendContext::captureName(const RenderSettings& settings) const {
   return gl_ ? gl_->renderer()
-             : std::string(kOracleRenderer) + " (" + toString(settings.profile) + ")";
+             : std::string(kOracleRenderer) + " (" + arithmeticLabel(settings.arithmetic) + ")";
 }
 
 std::unique_ptr<FrameRenderer> makeFrameRenderer(Backend backend, const CacheState& cache) {

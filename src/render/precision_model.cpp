@@ -21,8 +21,8 @@ std::map<std::string, std::string> everyParameterFrom(const std::string& source)
 
 bool PrecisionModel::pinned() const {
   return coveragePinned() && depthUlps == 0 && depthRoundsToNearest && attributeUlps == 0 &&
-         log2 != Log2Arithmetic::kBounded && sqrtUlps == 0 && arithmeticUlps == 0 &&
-         filter != FilterArithmetic::kBounded && colorRoundsToNearest && denormalsPinned;
+         log2Pinned && sqrtUlps == 0 && arithmeticUlps == 0 && filterPinned &&
+         colorRoundsToNearest && denormalsPinned;
 }
 
 bool PrecisionModel::onlyDenormalsFree() const {
@@ -31,63 +31,19 @@ bool PrecisionModel::onlyDenormalsFree() const {
   return !denormalsPinned && rest.pinned();
 }
 
-PrecisionModel llvmpipeModel() {
+PrecisionModel pinnedModel(const Arithmetic& arithmetic, const std::string& name,
+                           const std::string& source) {
   PrecisionModel m;
-  m.name = "llvmpipe";
-  m.arithmetic = PrecisionProfile::kLlvmpipe;
-  m.log2 = Log2Arithmetic::kLlvmpipe;
-  m.filter = FilterArithmetic::kLlvmpipe8Bit;
-  m.sources =
-      everyParameterFrom("measured on Mesa 22.3.6 llvmpipe, x86-64 with FMA: DESIGN section 7");
-  return m;
-}
-
-Log2Arithmetic log2Of(PrecisionProfile arithmetic) {
-  switch (arithmetic) {
-    case PrecisionProfile::kLlvmpipe:
-      return Log2Arithmetic::kLlvmpipe;
-    case PrecisionProfile::kSoftpipe:
-      return Log2Arithmetic::kSoftpipe;
-    case PrecisionProfile::kExact:
-      break;
-  }
-  return Log2Arithmetic::kIeee;
-}
-
-PrecisionModel softpipeModel() {
-  PrecisionModel m;
-  m.name = "softpipe";
-  m.arithmetic = PrecisionProfile::kSoftpipe;
-  m.log2 = log2Of(m.arithmetic);
-  m.filter = FilterArithmetic::kFloat;
-  m.sources = everyParameterFrom(
-      "Mesa 22.3 softpipe, read from its source and confirmed bit for bit by emulation: "
-      "reference/softpipe-arithmetic.md");
-  m.sources["subpixel_bits"] = m.sources["fill_rule"] =
-      "Mesa 22.3 softpipe: no snapping, coverage by float scanline spans with its own tie rule "
-      "(reference/softpipe-arithmetic.md, 2.3); the oracle rasterizes the same way";
-  // Flushed while draw_vbo shades, kept for the tail of a batch with a clipped vertex, which is
-  // shaded after it returns (vt calibrate's probe quad is such a tail).
-  m.denormalsPinned = false;
-  m.sources["denormals"] =
-      "Mesa 22.3 softpipe: flushed for batches without a clipped vertex, kept for the tail of a "
-      "batch with one (reference/softpipe-arithmetic.md, 5.3): free, each pixel's set holds its "
-      "value with denormals flushed and with them kept";
-  return m;
-}
-
-PrecisionModel exactModel() {
-  PrecisionModel m;
-  m.name = "exact";
-  m.arithmetic = PrecisionProfile::kExact;
-  m.sources = everyParameterFrom("the oracle's IEEE float arithmetic in source order, pinned");
+  m.name = name;
+  m.arithmetic = arithmetic;
+  m.sources = everyParameterFrom(source);
   return m;
 }
 
 PrecisionModel gl45Model() {
   PrecisionModel m;
   m.name = "gl45";
-  m.arithmetic = PrecisionProfile::kExact;
+  m.arithmetic = Arithmetic{};  // IEEE float in source order: the centre of gl45's sets
   // GL 4.5 core, table 23.53 (implementation-dependent values): SUBPIXEL_BITS is at least 4.
   // Chapter 14 does not say how vertices are snapped; any grid of 2^-4 pixel or finer.
   m.subpixelBits = 4;
@@ -101,7 +57,7 @@ PrecisionModel gl45Model() {
   // Depth is interpolated like any attribute (section 14.6.1, equation 14.10, without the
   // perspective division) and converted to fixed point by section 2.3.5.2.
   // The only number the specification gives is the general "about 1 part in 10^5" of section
-  // 2.3.4.1: 84 units of 2^-23.
+  // 2.3.4.1: 84 units of 2^-23, of the depth range [0, 1] the terms of z lie in.
   m.depthUlps = 84;
   m.depthRoundsToNearest = false;
   m.sources["depth"] =
@@ -116,7 +72,7 @@ PrecisionModel gl45Model() {
       "GL 4.5 core, section 14.6.1 (perspective-correct barycentric interpolation at the pixel "
       "centre, no precision given); dEQP's interpolation verifier: 3 ULP per barycentric area, "
       "8 ULP per division, 1 ULP per addition, 20 units of 2^-23 beyond the snapping";
-  m.log2 = Log2Arithmetic::kBounded;
+  m.log2Pinned = false;
   m.log2AbsoluteError = 0x1p-21;
   m.log2Ulps = 3;
   m.sources["log2"] = "GLSL 4.50, section 4.7.1: 3 ULP outside [0.5, 2], absolute 2^-21 inside";
@@ -132,7 +88,7 @@ PrecisionModel gl45Model() {
   // Section 8.14.2 defines GL_LINEAR in real numbers and gives no precision; dEQP's texture
   // lookup verifier passes, for 8-bit formats, 7 sub-texel bits and a colour threshold of the
   // format's bits minus 2 (its lenient 4 bits only earn a quality warning).
-  m.filter = FilterArithmetic::kBounded;
+  m.filterPinned = false;
   m.subTexelBits = 7;
   m.filterErrorUnits = 4;
   m.sources["filter"] =
@@ -147,35 +103,36 @@ PrecisionModel gl45Model() {
   return m;
 }
 
-PrecisionModel modelOfArithmetic(PrecisionProfile arithmetic) {
-  switch (arithmetic) {
-    case PrecisionProfile::kLlvmpipe:
-      return llvmpipeModel();
-    case PrecisionProfile::kSoftpipe:
-      return softpipeModel();
-    case PrecisionProfile::kExact:
-      break;
-  }
-  return exactModel();
+std::vector<Gl45Excess> excessesOverGl45(const PrecisionModel& m) {
+  const PrecisionModel g = gl45Model();
+  std::vector<Gl45Excess> excesses;
+  const auto beyond = [&](const std::string& what, double value, double bound,
+                          const std::string& key) {
+    excesses.push_back({key, what + " " + std::to_string(value) + " beyond the specification's " +
+                                 std::to_string(bound) + " (" + g.sources.at(key) + ")"});
+  };
+  if (m.subpixelBits < g.subpixelBits)
+    beyond("sub-pixel bits", m.subpixelBits, g.subpixelBits, "subpixel_bits");
+  if (m.depthUlps > g.depthUlps) beyond("depth error in ulps", m.depthUlps, g.depthUlps, "depth");
+  if (m.attributeUlps > g.attributeUlps)
+    beyond("attribute error in ulps", m.attributeUlps, g.attributeUlps, "attributes");
+  if (!m.log2Pinned && m.log2AbsoluteError > g.log2AbsoluteError)
+    beyond("log2 absolute error inside [0.5, 2]", m.log2AbsoluteError, g.log2AbsoluteError, "log2");
+  if (!m.log2Pinned && m.log2Ulps > g.log2Ulps)
+    beyond("log2 error in ulps outside [0.5, 2]", m.log2Ulps, g.log2Ulps, "log2");
+  if (m.sqrtUlps > g.sqrtUlps) beyond("sqrt error in ulps", m.sqrtUlps, g.sqrtUlps, "sqrt");
+  if (m.arithmeticUlps > g.arithmeticUlps)
+    beyond("shader arithmetic error in ulps", m.arithmeticUlps, g.arithmeticUlps, "arithmetic");
+  if (!m.filterPinned && m.subTexelBits < g.subTexelBits)
+    beyond("GL_LINEAR sub-texel bits", m.subTexelBits, g.subTexelBits, "filter");
+  if (!m.filterPinned && m.filterErrorUnits > g.filterErrorUnits)
+    beyond("GL_LINEAR error in units of 1/255", m.filterErrorUnits, g.filterErrorUnits, "filter");
+  return excesses;
 }
 
-bool isModelName(const std::string& name) {
-  return name == "llvmpipe" || name == "softpipe" || name == "exact" || name == "gl45";
-}
-
-PrecisionModel namedModel(const std::string& name) {
-  if (name == "llvmpipe") return llvmpipeModel();
-  if (name == "softpipe") return softpipeModel();
-  if (name == "exact") return exactModel();
-  if (name == "gl45") return gl45Model();
-  throw std::invalid_argument("precision model '" + name + "' is not one of " + kModelNames);
-}
-
-PrecisionModel modelForRenderer(const std::string& glRenderer) {
-  if (glRenderer.find("llvmpipe") != std::string::npos && __builtin_cpu_supports("fma"))
-    return llvmpipeModel();
-  if (glRenderer.find("softpipe") != std::string::npos) return softpipeModel();
-  return gl45Model();
+std::string beyondGl45(const PrecisionModel& m) {
+  const std::vector<Gl45Excess> excesses = excessesOverGl45(m);
+  return excesses.empty() ? "" : excesses.front().text;
 }
 
 }  // namespace vt

@@ -1,10 +1,10 @@
 #pragma once
 // Precision models: within which limits a GL implementation may compute differently from the
 // oracle's own arithmetic (DESIGN section 3, "Exactness"). The oracle computes one value per pixel
-// with its arithmetic (`exact` IEEE float, or llvmpipe's measured arithmetic, precision_profile.h)
-// and, under a model that leaves any parameter free, the set of every value a conforming
-// implementation could produce there (result_set.h). Each parameter says where its value comes
-// from; no width in the oracle is a bare number.
+// with its arithmetic (a point of the space of choices, arithmetic.h) and, under a model that
+// leaves any parameter free, the set of every value a conforming implementation could produce there
+// (result_set.h). Each parameter says where its value comes from; no width in the oracle is a bare
+// number.
 //
 // Shipped models:
 //   llvmpipe  Mesa 22.3 llvmpipe on x86-64 with FMA, every parameter pinned (DESIGN section 7):
@@ -21,38 +21,25 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
-#include "render/precision_profile.h"
+#include "render/arithmetic.h"
 
 namespace vt {
-
-// How a sampler's GL_LINEAR weights the four texels.
-enum class FilterArithmetic {
-  kLlvmpipe8Bit,  // pinned: rule 9 of DESIGN section 7 (8-bit weights, fixed-point lerps)
-  kFloat,         // pinned: IEEE float positions, weights and lerps
-  kBounded,       // free within subTexelBits and filterErrorUnits
-};
-
-// The shader's log2 (the manual LOD).
-enum class Log2Arithmetic {
-  kLlvmpipe,  // pinned: llvmpipe's polynomial (rule 8)
-  kSoftpipe,  // pinned: logf(x) * 1.442695f (reference/softpipe-arithmetic.md, 5.2)
-  kIeee,      // pinned: the C library's log2f, correctly rounded on this project's machines
-  kBounded,   // free within the GLSL 4.50 precision table (log2AbsoluteError, log2Ulps)
-};
 
 struct PrecisionModel {
   std::string name;
   std::string renderer;   // the GL_RENDERER a measured model describes; empty for shipped ones
   std::string glVersion;  // the GL_VERSION (driver) it was measured with; empty for shipped ones
   // The oracle's own arithmetic, the centre of every set.
-  PrecisionProfile arithmetic = PrecisionProfile::kExact;
+  Arithmetic arithmetic;
 
   // Rasterization. Vertices are snapped to 2^-subpixelBits pixel; with 8 bits and a pinned fill
   // rule coverage is the oracle's (rule 4), bit for bit.
   int subpixelBits = 8;
   bool fillRulePinned = true;  // false: a centre on an edge may belong to either triangle
-  // Depth: relative error of the interpolated window z beyond vertex snapping, in units of 2^-23;
+  // Depth: error of the interpolated window z beyond vertex snapping, in units of 2^-23 of the
+  // depth range [0, 1] (a plane's rounding scales with its terms, which lie in [0, 1]);
   // with depthRoundsToNearest false, Z24 may store either of the two nearest values.
   double depthUlps = 0;
   bool depthRoundsToNearest = true;
@@ -61,18 +48,20 @@ struct PrecisionModel {
   // snapping explains, in units of 2^-23 (0: the oracle's plane evaluation, bit for bit).
   double attributeUlps = 0;
 
-  // Shader arithmetic of the manual LOD (all `precise`).
-  Log2Arithmetic log2 = Log2Arithmetic::kIeee;
-  double log2AbsoluteError = 0;  // kBounded: inside [0.5, 2]
-  double log2Ulps = 0;           // kBounded: outside [0.5, 2]
+  // Shader arithmetic of the manual LOD (all `precise`): log2 pinned to the arithmetic's member,
+  // or free within log2AbsoluteError and log2Ulps (at least the GLSL 4.50 table's).
+  bool log2Pinned = true;
+  double log2AbsoluteError = 0;  // bounded: inside [0.5, 2]
+  double log2Ulps = 0;           // bounded: outside [0.5, 2]
   double sqrtUlps = 0;           // relative error of sqrt, in units of 2^-23
   double arithmeticUlps = 0;     // of +, -, * in the shader (0: correctly rounded, as the oracle)
 
-  // Texture filtering: the sampler's GL_LINEAR (the hardware_linear sampling mode). The exact
-  // sampling mode fetches texels and filters in the shader's float arithmetic.
-  FilterArithmetic filter = FilterArithmetic::kFloat;
-  int subTexelBits = 0;         // kBounded: texel positions snapped to 2^-subTexelBits texel
-  double filterErrorUnits = 0;  // kBounded: error of the filtered value, in units of 1/255
+  // Texture filtering: the sampler's GL_LINEAR (the hardware_linear sampling mode), pinned to the
+  // arithmetic's member or free within subTexelBits and filterErrorUnits. The exact sampling mode
+  // fetches texels and filters in the shader's float arithmetic.
+  bool filterPinned = true;
+  int subTexelBits = 0;         // bounded: texel positions snapped to 2^-subTexelBits texel
+  double filterErrorUnits = 0;  // bounded: error of the filtered value, in units of 1/255
 
   // Framebuffer: a float colour becomes RGBA8 by rounding to nearest (pinned) or may become either
   // of the two nearest values (GL 4.5 section 2.3.5.2).
@@ -92,26 +81,20 @@ struct PrecisionModel {
   bool operator==(const PrecisionModel&) const = default;
 };
 
-// The pinned log2 an arithmetic computes (the oracle always computes its arithmetic's own).
-Log2Arithmetic log2Of(PrecisionProfile arithmetic);
+// The model with every parameter pinned to `arithmetic`, named `name`, every parameter's source
+// `source`. The shipped pinned models are arithmetic_points.h's.
+PrecisionModel pinnedModel(const Arithmetic& arithmetic, const std::string& name,
+                           const std::string& source = "pinned to the arithmetic's members");
 
-PrecisionModel llvmpipeModel();
-PrecisionModel softpipeModel();
-// The pinned model whose arithmetic is `arithmetic`: llvmpipe, softpipe or exact.
-PrecisionModel modelOfArithmetic(PrecisionProfile arithmetic);
-PrecisionModel exactModel();
 PrecisionModel gl45Model();
 
-// The shipped names, for messages and command-line choices.
-inline constexpr const char* kModelNames = "llvmpipe, softpipe, exact, gl45";
-// Whether `name` is one of kModelNames (anything else given as a model is a model file).
-bool isModelName(const std::string& name);
-// A shipped model by name; throws std::invalid_argument for any other name.
-PrecisionModel namedModel(const std::string& name);
-
-// The model for an implementation's GL_RENDERER: llvmpipe on a CPU with FMA, softpipe for
-// softpipe, gl45 otherwise (llvmpipe without FMA computes neither rule 8's fused polynomial nor
-// the fused planes).
-PrecisionModel modelForRenderer(const std::string& glRenderer);
+// What `model` allows beyond the specification: each bound wider than gl45's, with the
+// parameter's name as in model files and, in words, the value and its specification section.
+struct Gl45Excess {
+  std::string parameter, text;
+};
+std::vector<Gl45Excess> excessesOverGl45(const PrecisionModel& model);
+// The first excess in words, or "" for a model within gl45.
+std::string beyondGl45(const PrecisionModel& model);
 
 }  // namespace vt

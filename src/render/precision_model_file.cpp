@@ -8,40 +8,49 @@
 
 #include "common/error.h"
 #include "common/json_text.h"
+#include "render/arithmetic_points.h"
 
 namespace vt {
 
-// Names of the enums in model files (found by argument-dependent lookup, so in this namespace).
-NLOHMANN_JSON_SERIALIZE_ENUM(PrecisionProfile, {{PrecisionProfile::kExact, "exact"},
-                                                {PrecisionProfile::kLlvmpipe, "llvmpipe"},
-                                                {PrecisionProfile::kSoftpipe, "softpipe"}})
-NLOHMANN_JSON_SERIALIZE_ENUM(Log2Arithmetic, {{Log2Arithmetic::kLlvmpipe, "llvmpipe"},
-                                              {Log2Arithmetic::kSoftpipe, "softpipe"},
-                                              {Log2Arithmetic::kIeee, "ieee"},
-                                              {Log2Arithmetic::kBounded, "bounded"}})
-NLOHMANN_JSON_SERIALIZE_ENUM(FilterArithmetic, {{FilterArithmetic::kLlvmpipe8Bit, "llvmpipe_8bit"},
-                                                {FilterArithmetic::kFloat, "float"},
-                                                {FilterArithmetic::kBounded, "bounded"}})
-
 namespace {
 
-constexpr const char* kFormat = "vt-precision-model-1";
+constexpr const char* kFormat = "vt-precision-model-2";
+constexpr const char* kFormatVersion1 = "vt-precision-model-1";
 constexpr double kMaxError = 1 << 20;
 
 // The fields of a model file, read one by one with the field named in every error.
 class Fields {
  public:
-  Fields(const std::filesystem::path& file, const nlohmann::json& json)
-      : file_(file), json_(json) {}
+  Fields(const std::filesystem::path& file, const nlohmann::json& json, std::string prefix = "")
+      : file_(file), json_(json), prefix_(std::move(prefix)) {}
 
   const nlohmann::json& at(const char* field) const {
-    if (!json_.contains(field))
-      throw InputError(file_, std::string("field ") + field + " is missing");
+    if (!json_.contains(field)) throw InputError(file_, "field " + prefix_ + field + " is missing");
     return json_.at(field);
+  }
+  InputError failure(const std::string& text) const { return InputError(file_, text); }
+  // The object in `field`, its fields named with it.
+  Fields object(const char* field) const {
+    const nlohmann::json& v = at(field);
+    if (!v.is_object()) throw InputError(file_, "field " + prefix_ + field + " is not an object");
+    return Fields(file_, v, prefix_ + field + ".");
+  }
+  bool flag(const char* field) const {
+    const nlohmann::json& v = at(field);
+    if (!v.is_boolean())
+      throw InputError(file_, "field " + prefix_ + field + " is not true or false");
+    return v.get<bool>();
+  }
+  template <class Enum, size_t N>
+  Enum named(const char* field, const EnumNames<Enum, N>& names) const {
+    const std::string v = text(field);
+    if (const auto value = findByName(names, v)) return *value;
+    throw InputError(
+        file_, "field " + prefix_ + field + " is '" + v + "', not one of " + joinedNames(names));
   }
   std::string text(const char* field) const {
     const nlohmann::json& v = at(field);
-    if (!v.is_string()) throw InputError(file_, std::string("field ") + field + " is not a string");
+    if (!v.is_string()) throw InputError(file_, "field " + prefix_ + field + " is not a string");
     return v.get<std::string>();
   }
   std::string choice(const char* field, std::initializer_list<const char*> values) const {
@@ -51,20 +60,20 @@ class Fields {
       if (v == value) return v;
       list.append(list.empty() ? "" : ", ").append(value);
     }
-    throw InputError(file_, std::string("field ") + field + " is '" + v + "', not one of " + list);
+    throw InputError(file_, "field " + prefix_ + field + " is '" + v + "', not one of " + list);
   }
   double number(const char* field, double lo, double hi) const {
     const nlohmann::json& v = at(field);
     if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < lo ||
         v.get<double>() > hi)
-      throw InputError(file_, std::string("field ") + field + " is not a number from " +
+      throw InputError(file_, "field " + prefix_ + field + " is not a number from " +
                                   std::to_string(lo) + " to " + std::to_string(hi));
     return v.get<double>();
   }
   int whole(const char* field, int lo, int hi) const {
     const nlohmann::json& v = at(field);
     if (!v.is_number_integer() || v.get<int64_t>() < lo || v.get<int64_t>() > hi)
-      throw InputError(file_, std::string("field ") + field + " is not a whole number from " +
+      throw InputError(file_, "field " + prefix_ + field + " is not a whole number from " +
                                   std::to_string(lo) + " to " + std::to_string(hi));
     return static_cast<int>(v.get<int64_t>());
   }
@@ -72,14 +81,66 @@ class Fields {
  private:
   const std::filesystem::path& file_;
   const nlohmann::json& json_;
+  std::string prefix_;
 };
 
-template <class Enum>
-Enum enumOf(const std::string& text) {
-  return nlohmann::json(text).get<Enum>();
+Arithmetic readArithmetic(const Fields& f) {
+  Arithmetic a;
+  a.fusedViewport = f.choice("viewport", {"fused", "unfused"}) == "fused";
+  const Fields coverage = f.object("coverage");
+  a.coverage.rule = coverage.named("rule", kCoverageRuleNames);
+  a.coverage.subpixelBits = coverage.whole("subpixel_bits", 1, 16);
+  a.coverage.rounding = coverage.named("rounding", kSnapRoundingNames);
+  a.coverage.leftEdgesIn = coverage.flag("left_edges_in");
+  a.coverage.bottomEdgesIn = coverage.flag("bottom_edges_in");
+  a.planeSetup = f.named("plane_setup", kPlaneSetupNames);
+  a.planeEvaluation = f.named("plane_evaluation", kPlaneEvaluationNames);
+  a.perspective = f.named("perspective", kPerspectiveNames);
+  const Fields depth = f.object("depth");
+  a.depth.offsetAndClamp = depth.flag("offset_and_clamp");
+  a.depth.z24 = depth.named("z24", kZ24ConversionNames);
+  a.log2 = f.named("log2", kLog2FormNames);
+  const Fields filter = f.object("filter");
+  a.filter.weights = filter.named("weights", kFilterWeightsNames);
+  a.filter.fusedLerp = filter.flag("fused_lerp");
+  a.filter.fusedCoordinate = filter.flag("fused_coordinate");
+  a.texelConversion = f.named("texel_conversion", kUnormConversionNames);
+  a.flushDenormals = f.choice("denormals", {"flushed", "kept"}) == "flushed";
+  return a;
+}
+
+// Version 1 files name a point, and their log2 and filter fields a member (arithmetic_points.h).
+void readVersion1(const Fields& f, PrecisionModel& m) {
+  const std::string point = f.text("arithmetic"), log2 = f.text("log2"), filter = f.text("filter");
+  if (!readVersion1Arithmetic(point, log2, filter, m))
+    throw f.failure("fields arithmetic, log2 and filter ('" + point + "', '" + log2 + "', '" +
+                    filter + "') are not a version 1 model's");
 }
 
 }  // namespace
+
+nlohmann::ordered_json arithmeticJson(const Arithmetic& a) {
+  return {{"viewport", a.fusedViewport ? "fused" : "unfused"},
+          {"coverage",
+           {{"rule", nameOf(kCoverageRuleNames, a.coverage.rule)},
+            {"subpixel_bits", a.coverage.subpixelBits},
+            {"rounding", nameOf(kSnapRoundingNames, a.coverage.rounding)},
+            {"left_edges_in", a.coverage.leftEdgesIn},
+            {"bottom_edges_in", a.coverage.bottomEdgesIn}}},
+          {"plane_setup", nameOf(kPlaneSetupNames, a.planeSetup)},
+          {"plane_evaluation", nameOf(kPlaneEvaluationNames, a.planeEvaluation)},
+          {"perspective", nameOf(kPerspectiveNames, a.perspective)},
+          {"depth",
+           {{"offset_and_clamp", a.depth.offsetAndClamp},
+            {"z24", nameOf(kZ24ConversionNames, a.depth.z24)}}},
+          {"log2", nameOf(kLog2FormNames, a.log2)},
+          {"filter",
+           {{"weights", nameOf(kFilterWeightsNames, a.filter.weights)},
+            {"fused_lerp", a.filter.fusedLerp},
+            {"fused_coordinate", a.filter.fusedCoordinate}}},
+          {"texel_conversion", nameOf(kUnormConversionNames, a.texelConversion)},
+          {"denormals", a.flushDenormals ? "flushed" : "kept"}};
+}
 
 PrecisionModel readModelFile(const std::filesystem::path& file) {
   nlohmann::json json;
@@ -90,24 +151,26 @@ PrecisionModel readModelFile(const std::filesystem::path& file) {
   }
   if (!json.is_object()) throw InputError(file, "not a precision model: not a JSON object");
   const Fields f(file, json);
-  if (f.text("format") != kFormat)
-    throw InputError(file, std::string("field format is not '") + kFormat + "'");
+  const std::string format = f.choice("format", {kFormat, kFormatVersion1});
   PrecisionModel m;
   m.name = f.text("name");
   m.renderer = f.text("renderer");
-  m.arithmetic =
-      enumOf<PrecisionProfile>(f.choice("arithmetic", {"exact", "llvmpipe", "softpipe"}));
+  if (format == kFormatVersion1) {
+    readVersion1(f, m);
+  } else {
+    m.arithmetic = readArithmetic(f.object("arithmetic"));
+    m.log2Pinned = f.choice("log2", {"pinned", "bounded"}) == "pinned";
+    m.filterPinned = f.choice("filter", {"pinned", "bounded"}) == "pinned";
+  }
   m.subpixelBits = f.whole("subpixel_bits", 1, 16);
   m.fillRulePinned = f.choice("fill_rule", {"pinned", "free"}) == "pinned";
   m.depthUlps = f.number("depth_ulps", 0, kMaxError);
   m.depthRoundsToNearest = f.choice("depth_rounding", {"nearest", "either"}) == "nearest";
   m.attributeUlps = f.number("attribute_ulps", 0, kMaxError);
-  m.log2 = enumOf<Log2Arithmetic>(f.choice("log2", {"llvmpipe", "softpipe", "ieee", "bounded"}));
   m.log2AbsoluteError = f.number("log2_absolute_error", 0, 1);
   m.log2Ulps = f.number("log2_ulps", 0, kMaxError);
   m.sqrtUlps = f.number("sqrt_ulps", 0, kMaxError);
   m.arithmeticUlps = f.number("arithmetic_ulps", 0, kMaxError);
-  m.filter = enumOf<FilterArithmetic>(f.choice("filter", {"llvmpipe_8bit", "float", "bounded"}));
   m.subTexelBits = f.whole("sub_texel_bits", 0, 16);
   m.filterErrorUnits = f.number("filter_error_units", 0, 255);
   m.colorRoundsToNearest = f.choice("color_conversion", {"nearest", "either"}) == "nearest";
@@ -126,13 +189,11 @@ PrecisionModel readModelFile(const std::filesystem::path& file) {
       throw InputError(file, "field calibration.gl_version is missing or not a string");
     m.glVersion = calibration.at("gl_version").get<std::string>();
   }
-  if (m.filter == FilterArithmetic::kBounded && m.subTexelBits == 0)
+  if (!m.filterPinned && m.subTexelBits == 0)
     throw InputError(file, "field sub_texel_bits is 0 for a bounded filter");
-  if (m.log2 != Log2Arithmetic::kBounded && m.log2 != log2Of(m.arithmetic))
-    throw InputError(file, "field log2 is '" + nlohmann::json(m.log2).get<std::string>() +
-                               "' under " + toString(m.arithmetic) +
-                               " arithmetic (the oracle computes that arithmetic's log2; a "
-                               "pinned log2 must be it)");
+  // A model wider than the specification would pass a non-conformant implementation.
+  if (const std::string beyond = beyondGl45(m); !beyond.empty())
+    throw InputError(file, "allows " + beyond);
   return m;
 }
 
@@ -141,18 +202,18 @@ std::string modelJson(const PrecisionModel& m) {
       {"format", kFormat},
       {"name", m.name},
       {"renderer", m.renderer},
-      {"arithmetic", nlohmann::json(m.arithmetic)},
+      {"arithmetic", arithmeticJson(m.arithmetic)},
       {"subpixel_bits", m.subpixelBits},
       {"fill_rule", m.fillRulePinned ? "pinned" : "free"},
       {"depth_ulps", m.depthUlps},
       {"depth_rounding", m.depthRoundsToNearest ? "nearest" : "either"},
       {"attribute_ulps", m.attributeUlps},
-      {"log2", nlohmann::json(m.log2)},
+      {"log2", m.log2Pinned ? "pinned" : "bounded"},
       {"log2_absolute_error", m.log2AbsoluteError},
       {"log2_ulps", m.log2Ulps},
       {"sqrt_ulps", m.sqrtUlps},
       {"arithmetic_ulps", m.arithmeticUlps},
-      {"filter", nlohmann::json(m.filter)},
+      {"filter", m.filterPinned ? "pinned" : "bounded"},
       {"sub_texel_bits", m.subTexelBits},
       {"filter_error_units", m.filterErrorUnits},
       {"color_conversion", m.colorRoundsToNearest ? "nearest" : "either"},
@@ -190,9 +251,11 @@ std::optional<std::filesystem::path> measuredModelFile(const std::string& glRend
 }
 
 PrecisionModel resolveModel(const std::string& nameOrFile, const std::string& glRenderer) {
+  // Without a GL context to fingerprint (calibrate/fingerprint.h), a renderer's name is no
+  // evidence: a measured model of it, else the specification.
   if (nameOrFile == "auto") {
     if (const auto file = measuredModelFile(glRenderer)) return readModelFile(*file);
-    return modelForRenderer(glRenderer);
+    return gl45Model();
   }
   if (isModelName(nameOrFile)) return namedModel(nameOrFile);
   return readModelFile(nameOrFile);

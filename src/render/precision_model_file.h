@@ -1,29 +1,34 @@
 #pragma once
 // Precision models as JSON files (a model measured on one implementation, or written by hand):
 //
-//   {"format": "vt-precision-model-1", "name": "...", "renderer": "<GL_RENDERER it describes>",
-//    "arithmetic": "exact" | "llvmpipe",
+//   {"format": "vt-precision-model-2", "name": "...", "renderer": "<GL_RENDERER it describes>",
+//    "arithmetic": {one member per family of render/arithmetic.h, e.g. "log2": "libm"},
 //    "subpixel_bits": 1..16, "fill_rule": "pinned" | "free",
 //    "depth_ulps": >= 0, "depth_rounding": "nearest" | "either",
 //    "attribute_ulps": >= 0,
-//    "log2": "llvmpipe" | "ieee" | "bounded", "log2_absolute_error": >= 0, "log2_ulps": >= 0,
+//    "log2": "pinned" | "bounded", "log2_absolute_error": >= 0, "log2_ulps": >= 0,
 //    "sqrt_ulps": >= 0, "arithmetic_ulps": >= 0,
-//    "filter": "llvmpipe_8bit" | "float" | "bounded", "sub_texel_bits": 0..16,
+//    "filter": "pinned" | "bounded", "sub_texel_bits": 0..16,
 //    "filter_error_units": >= 0,
 //    "color_conversion": "nearest" | "either", "denormals": "pinned" | "free",
 //    "sources": {"<parameter>": "<where its value comes from>", ...}}
 //
 // Every field is required; a missing, misspelt or out-of-range one is refused with the file and
-// the field named. Errors in ulps and units are at most 2^20 (a bound that loose would accept
-// anything, and is a mistake).
+// the field named, and so is a model that allows more than gl45 (precision_model.h, beyondGl45).
+// Version 1 files ("vt-precision-model-1": "arithmetic" names a point, "log2" and "filter" name
+// members or "bounded") are still read.
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
 #include "render/precision_model.h"
 
 namespace vt {
+
+// An arithmetic as the model file's "arithmetic" object.
+nlohmann::ordered_json arithmeticJson(const Arithmetic& arithmetic);
 
 PrecisionModel readModelFile(const std::filesystem::path& file);
 std::string modelJson(const PrecisionModel& model);
@@ -42,9 +47,9 @@ std::string calibrationMismatch(const PrecisionModel& model, const std::string& 
 // matches. Files there that are not models are refused (InputError naming the file).
 std::optional<std::filesystem::path> measuredModelFile(const std::string& glRenderer);
 
-// A model by name (llvmpipe, exact, gl45), a model file, or "auto": the measured model of
-// `glRenderer` (measuredModelFile), else modelForRenderer (llvmpipe on llvmpipe with FMA, else
-// gl45).
+// A model by name (llvmpipe, softpipe, exact, gl45), a model file, or "auto": the measured model
+// of `glRenderer` (measuredModelFile), else gl45. Where a GL context is at hand, "auto" is
+// calibrate/fingerprint.h's resolveModelHere, which also confirms a pinned model by probe draws.
 PrecisionModel resolveModel(const std::string& nameOrFile, const std::string& glRenderer);
 
 }  // namespace vt

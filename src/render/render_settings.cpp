@@ -3,7 +3,7 @@
 namespace vt {
 
 void applyModel(RenderSettings& settings, const PrecisionModel& model) {
-  settings.profile = model.arithmetic;
+  settings.arithmetic = model.arithmetic;
   settings.model = std::make_shared<const PrecisionModel>(model);
 }
 

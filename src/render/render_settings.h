@@ -5,8 +5,8 @@
 
 #include <memory>
 
+#include "render/arithmetic.h"
 #include "render/precision_model.h"
-#include "render/precision_profile.h"
 #include "scene/clip_space_mesh.h"
 
 namespace vt {
@@ -15,9 +15,9 @@ enum class DepthFormat { kDepth24, kDepth32F };
 
 struct RenderSettings {
   Viewport viewport{640, 360};
-  PrecisionProfile profile = PrecisionProfile::kExact;  // the oracle's arithmetic
+  Arithmetic arithmetic;  // the oracle's arithmetic (arithmetic.h); the default is IEEE float
   // The model the frame will be judged under (precision_model.h); its arithmetic must be
-  // `profile`. When it leaves any parameter free the frame carries every pixel's result set.
+  // `arithmetic`. When it leaves any parameter free the frame carries every pixel's result set.
   std::shared_ptr<const PrecisionModel> model = nullptr;
   DepthFormat depthFormat = DepthFormat::kDepth32F;
   bool trilinear = true;

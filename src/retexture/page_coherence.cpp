@@ -37,9 +37,9 @@ PageCoherence measureCoherence(const TexturedScene& scene, const Retexturing& la
   while (description.sideTexels() < layout.side) ++description.levelCount;
   const CacheState cache = rootOnlyCache(description);
   const Mesh mesh{scene.positions, uvs, scene.indices};
-  RenderSettings render{
-      .viewport = {static_cast<int>(settings.width), static_cast<int>(settings.height)},
-      .threads = settings.threads};
+  RenderSettings render;
+  render.viewport = {static_cast<int>(settings.width), static_cast<int>(settings.height)};
+  render.threads = settings.threads;
   PageCoherence coherence;
   double sumPer1000 = 0.0, sumPages = 0.0;
   uint32_t coveredViews = 0;

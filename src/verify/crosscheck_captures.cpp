@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/posix_file.h"
+#include "render/arithmetic_points.h"
 #include "render/precision_model_file.h"
 #include "verify/comparison_report.h"
 #include "verify/junit_report.h"
@@ -52,12 +53,12 @@ std::string pixelLine(const oracle::PixelDifference& d, int height) {
 struct JudgingModel {
   std::filesystem::path file;  // a model file; empty: a shipped model
   oracle::Profile profile = oracle::Profile::kExact;
-  std::string from;  // "option", "capture", "measured" or "renderer"
+  std::string from;  // "option", "capture", "measured", "fingerprint" or "unverified"
 };
 
 // --model NAME or FILE judges every capture. auto: the model file the capture names, else a
-// measured model of its renderer ($VT_PRECISION_MODELS), else the shipped model for its
-// renderer's name.
+// measured model of its renderer ($VT_PRECISION_MODELS), else the shipped model whose
+// fingerprint the capturing program reproduced, else gl45: a renderer's name decides nothing.
 JudgingModel judgingModel(const std::string& option, const oracle::Capture& capture) {
   if (option != "auto") {
     if (isModelName(option)) return {{}, oracle::parseProfile(option), "option"};
@@ -66,7 +67,9 @@ JudgingModel judgingModel(const std::string& option, const oracle::Capture& capt
   if (!capture.model.empty()) return {capture.model, oracle::Profile::kExact, "capture"};
   if (const std::optional<std::filesystem::path> measured = measuredModelFile(capture.renderer))
     return {*measured, oracle::Profile::kExact, "measured"};
-  return {{}, oracle::profileForRenderer(capture.renderer), "renderer"};
+  if (!capture.fingerprint.empty())
+    return {{}, oracle::parseProfile(capture.fingerprint), "fingerprint"};
+  return {{}, oracle::Profile::kGl45, "unverified"};
 }
 
 }  // namespace
@@ -114,15 +117,16 @@ CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options) {
       nlohmann::json mismatches = nlohmann::json::array();
       for (const oracle::PixelDifference& d : c.mismatches)
         mismatches.push_back(pixelJson(d, v.height));
-      nlohmann::json frame = {{"capture", manifest.filename().string()},
-                              {"renderer", capture.renderer},
-                              {"model", c.model},
-                              {"model_file", judge.file.empty() ? nlohmann::json(nullptr)
-                                                                : nlohmann::json(judge.file.string())},
-                              {"model_from", judge.from},
-                              {"needbuffer_encoding", oracle::toString(capture.needEncoding)},
-                              {"filtering", oracle::toString(capture.filtering)},
-                              {"sampling", oracle::toString(capture.sampling)}};
+      nlohmann::json frame = {
+          {"capture", manifest.filename().string()},
+          {"renderer", capture.renderer},
+          {"model", c.model},
+          {"model_file",
+           judge.file.empty() ? nlohmann::json(nullptr) : nlohmann::json(judge.file.string())},
+          {"model_from", judge.from},
+          {"needbuffer_encoding", oracle::toString(capture.needEncoding)},
+          {"filtering", oracle::toString(capture.filtering)},
+          {"sampling", oracle::toString(capture.sampling)}};
       frame.update(comparisonJson(c));
       frame["unexplained_pixels"] = mismatches;
       frames.push_back(frame);

@@ -9,9 +9,10 @@ namespace vt {
 
 void writeFlightCapture(const std::filesystem::path& folder, const FlightCaptureView& view,
                         const VirtualTextureReader& reader, const RenderSettings& settings,
-                        const std::string& renderer) {
+                        const std::string& renderer, const std::string& fingerprint) {
   oracle::Capture capture;
   capture.renderer = renderer;
+  capture.fingerprint = fingerprint;
   capture.texture = reader.path();
   capture.textureIdentity = reader.identity();
   capture.scene = oracle::publicScene(view.mesh, settings.viewport);

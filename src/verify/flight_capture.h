@@ -11,9 +11,10 @@
 
 namespace vt {
 
-// Writes `view` as DIR/frameNNNN.json and its data files.
+// Writes `view` as DIR/frameNNNN.json and its data files; `fingerprint` names the shipped model
+// the renderer reproduced (calibrate/fingerprint.h), or is empty.
 void writeFlightCapture(const std::filesystem::path& folder, const FlightCaptureView& view,
                         const VirtualTextureReader& reader, const RenderSettings& settings,
-                        const std::string& renderer);
+                        const std::string& renderer, const std::string& fingerprint = "");
 
 }  // namespace vt

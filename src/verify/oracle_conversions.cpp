@@ -1,5 +1,7 @@
 #include "verify/oracle_conversions.h"
 
+#include "render/arithmetic_points.h"
+
 namespace vt {
 
 oracle::CacheState publicCacheState(const CacheState& cache) {
@@ -17,8 +19,9 @@ oracle::RenderOptions publicRenderOptions(const RenderSettings& settings,
   oracle::RenderOptions options;
   options.modelFile = modelFile;
   if (modelFile.empty())
-    options.profile = oracle::publicProfile(settings.model ? *settings.model
-                                                           : modelOfArithmetic(settings.profile));
+    options.profile = oracle::publicProfile(
+        settings.model ? *settings.model
+                       : pinnedModel(settings.arithmetic, arithmeticLabel(settings.arithmetic)));
   options.needEncoding =
       settings.need8 ? oracle::NeedEncoding::k8Bit : oracle::NeedEncoding::k32Bit;
   options.filtering =

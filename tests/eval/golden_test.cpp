@@ -13,6 +13,7 @@
 #include "common/error.h"
 #include "eval/box_room_scene.h"
 #include "test_support.h"
+#include "render/arithmetic_points.h"
 
 namespace vt {
 namespace {

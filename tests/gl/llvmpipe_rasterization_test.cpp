@@ -16,6 +16,7 @@
 #include "calibrate/probe_draws.h"
 #include "gl/headless_context.h"
 #include "reference/renderer.h"
+#include "render/arithmetic_points.h"
 #include "test_support.h"
 
 namespace vt {
@@ -42,8 +43,7 @@ TEST_F(LlvmpipeRasterization, OracleMatchesEveryPixelBitForBit) {
   const reference::ResidentTexture texture(reader);
   RenderSettings settings;
   settings.debugChannels = true;
-  settings.profile =
-      __builtin_cpu_supports("fma") ? PrecisionProfile::kLlvmpipe : PrecisionProfile::kExact;
+  settings.arithmetic = arithmeticPoint(__builtin_cpu_supports("fma") ? "llvmpipe" : "exact");
   settings.viewport = {160, 120};
   for (const unsigned seed : {1u, 2u, 3u}) {
     const ClipSpaceMesh mesh = calibrate::randomTriangles(seed, 120);

@@ -15,8 +15,9 @@
 #include "build/synthetic_texture.h"
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
-#include "reference/renderer.h"
 #include "random_triangles.h"
+#include "reference/renderer.h"
+#include "render/arithmetic_points.h"
 #include "test_support.h"
 
 namespace vt {
@@ -61,8 +62,7 @@ TEST_P(LlvmpipeShading, OracleMatchesColourAndNeedbufferBitForBit) {
 
   RenderSettings settings;
   settings.viewport = {192, 128};
-  settings.profile =
-      __builtin_cpu_supports("fma") ? PrecisionProfile::kLlvmpipe : PrecisionProfile::kExact;
+  settings.arithmetic = arithmeticPoint(__builtin_cpu_supports("fma") ? "llvmpipe" : "exact");
   settings.exactFilter = GetParam().exactFilter;
   settings.trilinear = GetParam().trilinear;
   settings.need8 = GetParam().need8;

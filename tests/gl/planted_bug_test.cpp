@@ -2,7 +2,9 @@
 // textual change of the shader source made here, never in the shipped shader), drawn on llvmpipe
 // and judged by the oracle. Under the pinned llvmpipe model every bug must be caught, with the
 // right parameter named; under gl45 every bug the specification forbids must be caught, and the
-// ones it allows are listed (README, "Planted bugs").
+// ones it allows are listed (README, "Planted bugs"). The same bugs drawn on llvmpipe generated
+// without FMA (GALLIUM_OVERRIDE_CPU_CAPS=sse4.1, an implementation no code of the oracle names)
+// must be caught under the model `vt calibrate` measures there, as under llvmpipe's.
 
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
@@ -13,12 +15,14 @@
 #include <string>
 
 #include "build/synthetic_texture.h"
+#include "calibrate/calibration.h"
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
 #include "gl/virtual_texture_program.h"
+#include "random_triangles.h"
 #include "reference/frame_comparison.h"
 #include "reference/renderer.h"
-#include "random_triangles.h"
+#include "render/arithmetic_points.h"
 #include "test_support.h"
 
 namespace vt {
@@ -123,7 +127,11 @@ class PlantedBugs : public ::testing::Test {
     return verdict;
   }
 
+  // Whether the fixture draws on a variant of llvmpipe (set before its context is made).
+  virtual bool variant() const { return false; }
+
   void SetUp() override {
+    if (variant()) ::setenv("GALLIUM_OVERRIDE_CPU_CAPS", "sse4.1", 1);
     context_ = std::make_unique<HeadlessContext>();
     if (context_->renderer().find("llvmpipe") == std::string::npos ||
         !__builtin_cpu_supports("fma"))
@@ -168,6 +176,32 @@ TEST_F(PlantedBugs, EveryBugIsCaughtUnderLlvmpipeAndGl45CatchesWhatTheSpecificat
     if (!bug.allowedByGl45) {
       EXPECT_GT(loose.unexplained, 0u) << bug.name << " passes gl45";
     }
+  }
+}
+
+class PlantedBugsOnAVariant : public PlantedBugs {
+ protected:
+  bool variant() const override { return true; }
+  void TearDown() override { ::unsetenv("GALLIUM_OVERRIDE_CPU_CAPS"); }
+};
+
+TEST_F(PlantedBugsOnAVariant, EveryBugIsCaughtUnderTheVariantsCalibratedModel) {
+  const calibrate::Calibration calibration = calibrate::calibrate();
+  ASSERT_TRUE(calibration.conformant());
+  const PrecisionModel model = calibration.model;
+  EXPECT_TRUE(model.pinned()) << describe(model.arithmetic);
+  EXPECT_FALSE(model.arithmetic == llvmpipeModel().arithmetic);
+  EXPECT_EQ(judge(nullptr, model).unexplained, 0u);
+  for (const PlantedBug& bug : kBugs) {
+    const Verdict calibrated = judge(&bug, model);
+    std::printf(
+        "planted bug | %-24s | llvmpipe without FMA, calibrated: %7llu unexplained (%s "
+        "%llu)\n",
+        bug.name, static_cast<unsigned long long>(calibrated.unexplained), reasonName(bug.reason),
+        static_cast<unsigned long long>(calibrated.by[static_cast<size_t>(bug.reason)]));
+    EXPECT_GT(calibrated.unexplained, 0u) << bug.name;
+    EXPECT_GT(calibrated.by[static_cast<size_t>(bug.reason)], 0u)
+        << bug.name << ": the calibrated model should name " << reasonName(bug.reason);
   }
 }
 

@@ -11,6 +11,7 @@
 #include "build/synthetic_texture.h"
 #include "reference/api/api_internal.h"
 #include "reference/renderer.h"
+#include "render/arithmetic_points.h"
 #include "render/precision_model.h"
 #include "render/precision_model_file.h"
 #include "scene/obj_mesh.h"
@@ -100,7 +101,7 @@ TEST(OracleApi, RendersTheSameFrameAsTheOracleItWraps) {
   const reference::ResidentTexture everything(reader);
   RenderSettings settings;
   settings.viewport = {96, 64};
-  settings.profile = PrecisionProfile::kLlvmpipe;
+  settings.arithmetic = arithmeticPoint("llvmpipe");
   settings.need8 = true;
   const NamedScene named = testScene("room");
   const Frame expected = reference::renderFrame(

@@ -9,6 +9,7 @@
 #include "build/synthetic_texture.h"
 #include "reference/renderer.h"
 #include "reference/visibility.h"
+#include "render/arithmetic_points.h"
 #include "shader/needbuffer.h"
 #include "test_support.h"
 
@@ -48,7 +49,7 @@ int32_t bruteForce(const std::vector<SetupTriangle>& triangles, int px, int py) 
   float bestZ = 1.0f;
   for (size_t k = 0; k < triangles.size(); ++k) {
     if (!triangles[k].covers(px, py)) continue;
-    const float z = windowDepth(triangles[k], px, py, PrecisionProfile::kExact);
+    const float z = windowDepth(triangles[k], px, py, arithmeticPoint("exact"));
     if (z < bestZ) {  // strictly less: the earlier drawn keeps a tie
       best = static_cast<int32_t>(k);
       bestZ = z;
@@ -75,7 +76,7 @@ class Oracle : public ::testing::Test {
 TEST_F(Oracle, SharedEdgesCoverEveryPixelExactlyOnce) {
   for (const int n : {3, 7, 40}) {
     const Viewport viewport{97, 61};
-    const auto triangles = setupTriangles(fan(n), viewport, PrecisionProfile::kExact);
+    const auto triangles = setupTriangles(fan(n), viewport, arithmeticPoint("exact"));
     for (int py = 0; py < viewport.height; ++py)
       for (int px = 0; px < viewport.width; ++px) {
         int count = 0;
@@ -105,8 +106,9 @@ TEST_F(Oracle, VisibilityMatchesBruteForceOnRandomTriangles) {
       mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
     }
   const Viewport viewport{80, 50};
-  const auto triangles = setupTriangles(mesh, viewport, PrecisionProfile::kExact);
-  const Visibility visibility(triangles, viewport, DepthFormat::kDepth32F, PrecisionProfile::kExact);
+  const auto triangles = setupTriangles(mesh, viewport, arithmeticPoint("exact"));
+  const Visibility visibility(triangles, viewport, DepthFormat::kDepth32F,
+                              arithmeticPoint("exact"));
   for (int py = 0; py < viewport.height; ++py)
     for (int px = 0; px < viewport.width; ++px)
       ASSERT_EQ(visibility.at(px, py).triangle, bruteForce(triangles, px, py)) << px << ", " << py;
@@ -222,14 +224,15 @@ TEST_F(Oracle, TriangleCrossingTheNearPlaneIsClippedNotDropped) {
                    {{0.0f, 2.0f, -3.0f, -1.0f}, {0.5f, 1}}};
   mesh.indices = {0, 1, 2};
   SetupStatistics stats;
-  const auto triangles = setupTriangles(mesh, {64, 64}, PrecisionProfile::kExact, &stats);
+  const auto triangles = setupTriangles(mesh, {64, 64}, arithmeticPoint("exact"), &stats);
   EXPECT_EQ(stats.clipped, 1u);
   EXPECT_GE(triangles.size(), 1u);
   RenderSettings settings;
   settings.debugChannels = true;
   settings.viewport = {64, 64};
   const Frame frame = renderFrame(mesh, *texture_, settings);
-  const Visibility visibility(triangles, settings.viewport, DepthFormat::kDepth32F, PrecisionProfile::kExact);
+  const Visibility visibility(triangles, settings.viewport, DepthFormat::kDepth32F,
+                              arithmeticPoint("exact"));
   int covered = 0;
   for (int py = 0; py < 64; ++py)
     for (int px = 0; px < 64; ++px) {

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "build/synthetic_texture.h"
+#include "render/arithmetic_points.h"
 #include "scene/box_room.h"
 #include "scene/camera_path.h"
 #include "test_support.h"
@@ -53,13 +54,13 @@ TEST_F(Recolor, GivesTheBytesOfDrawingUnderTheCacheState) {
   const std::vector<CacheState> states = caches();
   const CameraPath path = boxRoomPath();
   int differing = 0, compared = 0;
-  for (const PrecisionProfile profile : {PrecisionProfile::kExact, PrecisionProfile::kLlvmpipe})
+  for (const char* point : {"exact", "llvmpipe"})
     for (const bool trilinear : {true, false})
       for (const bool exactFilter : {true, false})
         for (const int frame : {0, path.frameCount() / 2}) {
           RenderSettings settings;
           settings.viewport = {83, 61};  // odd sizes: quads cut by the edges
-          settings.profile = profile;
+          settings.arithmetic = arithmeticPoint(point);
           settings.trilinear = trilinear;
           settings.exactFilter = exactFilter;
           settings.threads = frame == 0 ? 1 : 3;
@@ -82,8 +83,8 @@ TEST_F(Recolor, GivesTheBytesOfDrawingUnderTheCacheState) {
             std::vector<uint8_t> color;
             recolor(drawn, cache, settings, color);
             ASSERT_EQ(color.size(), direct.color.size());
-            EXPECT_EQ(color, direct.color) << "profile " << toString(profile) << " trilinear "
-                                           << trilinear << " exact filter " << exactFilter;
+            EXPECT_EQ(color, direct.color) << "arithmetic " << point << " trilinear " << trilinear
+                                           << " exact filter " << exactFilter;
             EXPECT_EQ(together[k], direct.color) << "together, state " << k;
             // The caches differ from every page resident: the test compares colours that move.
             differing += drawn.color != direct.color;
@@ -93,7 +94,8 @@ TEST_F(Recolor, GivesTheBytesOfDrawingUnderTheCacheState) {
   EXPECT_EQ(differing, compared);
 }
 
-// A LookAhead camera's pass reads no texel; its needbuffer, depth and triangles are the full pass's.
+// A LookAhead camera's pass reads no texel; its needbuffer, depth and triangles are the full
+// pass's.
 TEST_F(Recolor, ANeedOnlyPassGivesTheNeedbufferAndDepthOfTheFullPass) {
   const std::vector<CacheState> states = caches();
   for (const bool need8 : {false, true})

@@ -12,6 +12,7 @@
 #include "build/synthetic_texture.h"
 #include "reference/renderer.h"
 #include "reference/triangle_setup.h"
+#include "render/arithmetic_points.h"
 #include "render/frame_images.h"
 #include "scene/camera.h"
 #include "test_support.h"
@@ -275,7 +276,7 @@ TEST_F(Stability, DegenerateAndSliverTriangles) {
   mesh.indices = {0, 1, 2, 3, 4, 5, 6, 7, 8};
   SetupStatistics stats;
   const Viewport viewport{64, 64};
-  const auto triangles = setupTriangles(mesh, viewport, PrecisionProfile::kExact, &stats);
+  const auto triangles = setupTriangles(mesh, viewport, arithmeticPoint("exact"), &stats);
   EXPECT_EQ(stats.empty, 2u);  // the collinear and the repeated-vertex triangles draw nothing
   RenderSettings settings;
   settings.debugChannels = true;

@@ -9,6 +9,7 @@
 #include "common/error.h"
 #include "render/precision_model_file.h"
 #include "test_support.h"
+#include "render/arithmetic_points.h"
 
 namespace vt::reference {
 namespace {
@@ -47,7 +48,8 @@ TEST(PrecisionModelFile, RoundTripsEveryParameter) {
   measured.renderer = "softpipe";
   measured.subpixelBits = 16;
   measured.fillRulePinned = true;
-  measured.filter = FilterArithmetic::kFloat;
+  measured.filterPinned = true;
+  measured.arithmetic.filter.fusedLerp = true;
   measured.sources["filter"] = "probe draws";
   for (const PrecisionModel& m : {measured, llvmpipeModel(), softpipeModel(), exactModel()}) {
     std::ofstream(dir / "m.json") << modelJson(m);
@@ -59,7 +61,8 @@ TEST(PrecisionModelFile, RoundTripsEveryParameter) {
   EXPECT_EQ(resolveModel("softpipe", "llvmpipe"), softpipeModel());
   EXPECT_EQ(resolveModel("llvmpipe", "softpipe"), llvmpipeModel());
   EXPECT_EQ(resolveModel("gl45", "llvmpipe"), gl45Model());
-  EXPECT_EQ(resolveModel("auto", "softpipe"), softpipeModel());
+  // Without a context to fingerprint, a renderer's name is no evidence.
+  EXPECT_EQ(resolveModel("auto", "softpipe"), gl45Model());
   EXPECT_EQ(resolveModel("auto", "an unknown GPU"), gl45Model());
 }
 
@@ -84,13 +87,31 @@ TEST(PrecisionModelFile, RefusesMalformedFilesNamingTheField) {
   refused(j, "field subpixel_bits is not a whole number from 1 to 16");
   j = good;
   j["filter"] = "magic";
-  refused(j, "field filter is 'magic', not one of llvmpipe_8bit, float, bounded");
+  refused(j, "field filter is 'magic', not one of pinned, bounded");
+  j = good;
+  j["arithmetic"]["coverage"]["rounding"] = "sideways";
+  refused(j,
+          "field arithmetic.coverage.rounding is 'sideways', not one of half_even, half_up, "
+          "floor, ceil");
+  j = good;
+  j["arithmetic"]["depth"].erase("z24");
+  refused(j, "field arithmetic.depth.z24 is missing");
+  j = good;
+  j["filter_error_units"] = 5;
+  refused(j,
+          "allows GL_LINEAR error in units of 1/255 5.000000 beyond the specification's "
+          "4.000000 (GL 4.5 core, section 8.14.2");
+  j = good;
+  j["depth_ulps"] = 85;
+  refused(j, "allows depth error in ulps 85.000000 beyond the specification's 84.000000");
   j = good;
   j["depth_ulps"] = -1;
   refused(j, "field depth_ulps is not a number from 0");
   j = good;
   j["format"] = "vt-precision-model-0";
-  refused(j, "field format is not 'vt-precision-model-1'");
+  refused(j,
+          "field format is 'vt-precision-model-0', not one of vt-precision-model-2, "
+          "vt-precision-model-1");
   j = good;
   j["sub_texel_bits"] = 0;
   refused(j, "field sub_texel_bits is 0 for a bounded filter");

@@ -19,6 +19,7 @@
 #include "verify/crosscheck_scenes.h"
 #include "verify/oracle_conversions.h"
 #include "vt/oracle.h"
+#include "render/arithmetic_points.h"
 
 namespace vt {
 namespace {
@@ -179,7 +180,7 @@ TEST_F(CapturesCrosscheck, ACapturesOwnModelFileJudgesItUnderAuto) {
             std::filesystem::canonical(dir_ / "models" / "llvmpipe.json"));
   const nlohmann::json& other = summary["frames"][1];
   EXPECT_EQ(other["model"], "gl45");
-  EXPECT_EQ(other["model_from"], "renderer");
+  EXPECT_EQ(other["model_from"], "unverified");
   EXPECT_TRUE(other["model_file"].is_null());
 
   const CapturesCheck option = crosscheckCaptures({dir_ / "captures", dir_ / "out", "exact"});

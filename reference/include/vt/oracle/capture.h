@@ -39,7 +39,12 @@ struct Capture {
   // against the manifest's folder; empty when the capture names none. `vt crosscheck --captures
   // --model auto` uses it; checkCapture(capture, texture, capture.model) does the same here.
   std::filesystem::path model;
-  uint64_t textureIdentity = 0;   // Texture::identity() of the file the frame was drawn from
+  // The shipped model ("llvmpipe", "softpipe", "exact") whose fingerprint the capturing program
+  // reproduced on the renderer bit for bit (`vt fly --capture` runs it); empty when none did or
+  // none was run. `--model auto` trusts a shipped pinned model only on this evidence, never on
+  // the renderer's name.
+  std::string fingerprint;
+  uint64_t textureIdentity = 0;  // Texture::identity() of the file the frame was drawn from
   Scene scene;
   CacheState cache;
   NeedEncoding needEncoding = NeedEncoding::k32Bit;

@@ -1,4 +1,4 @@
-#include "reference/profile_arithmetic.h"
+#include "reference/shader_math.h"
 
 #include <xmmintrin.h>
 
@@ -9,7 +9,7 @@
 
 namespace vt::reference {
 
-float llvmpipeLog2(float x) {
+float polynomialLog2(float x, bool fused) {
   // Rule 8: e = exponent - 127, m = mantissa in [1, 2), y = (m - 1) / (m + 1), z = y * y,
   // P = fma(fma(z*z, c3, c1), z, fma(z*z, fma(z*z, c4, c2), c0)), result fma(y, P, e).
   if (std::isnan(x) || x < 0.0f) return std::bit_cast<float>(0x7fc00000u);
@@ -24,29 +24,32 @@ float llvmpipeLog2(float x) {
   constexpr float c0 = 2.88539009343309178325f, c1 = 0.961791550404184197881f,
                   c2 = 0.577440339438736392009f, c3 = 0.403343858251329912514f,
                   c4 = 0.406718052498846252698f;
-  const float p = std::fma(std::fma(z2, c3, c1), z, std::fma(z2, std::fma(z2, c4, c2), c0));
-  return std::fma(y, p, e);
+  const auto madd = [fused](float a, float b, float c) {
+    return fused ? std::fma(a, b, c) : a * b + c;
+  };
+  const float p = madd(madd(z2, c3, c1), z, madd(z2, madd(z2, c4, c2), c0));
+  return madd(y, p, e);
 }
 
-float softpipeLog2(float x) {
+float naturalTimesLog2e(float x) {
   // tgsi_exec's micro_lg2: the C library's logf, then one float multiply by (float)M_LOG2E.
   const float natural = std::log(x);
   return natural * 1.442695f;
 }
 
-float profileLog2(PrecisionProfile profile, float x) {
-  switch (profile) {
-    case PrecisionProfile::kLlvmpipe:
-      return llvmpipeLog2(x);
-    case PrecisionProfile::kSoftpipe:
-      return softpipeLog2(x);
-    case PrecisionProfile::kExact:
+float log2Of(Log2Form form, float x) {
+  switch (form) {
+    case Log2Form::kPolynomialFused:
+      return polynomialLog2(x, true);
+    case Log2Form::kPolynomialUnfused:
+      return polynomialLog2(x, false);
+    case Log2Form::kNaturalTimesLog2e:
+      return naturalTimesLog2e(x);
+    case Log2Form::kLibm:
       break;
   }
   return std::log2(x);
 }
-
-DenormalMode::DenormalMode(PrecisionProfile profile) : DenormalMode(flushesDenormals(profile)) {}
 
 DenormalMode::DenormalMode(bool flush) : saved_(_mm_getcsr()) {
   constexpr unsigned kFlushToZero = 0x8000, kDenormalsAreZero = 0x0040;

@@ -1,0 +1,160 @@
+#include "calibrate/filter_fit.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <random>
+
+#include "calibrate/probe_draws.h"
+#include "reference/linear_filter.h"
+
+namespace vt::calibrate {
+namespace {
+
+struct Sampled {
+  ShaderProbe probe;
+  std::vector<glm::vec4> out;
+};
+
+// A texture of random texels (a fixed seed) sampled with textureLod at `coordinates`.
+Sampled sample(int width, int height, const std::vector<glm::vec2>& coordinates,
+               std::mt19937& random) {
+  Sampled s;
+  s.probe.body = "result = textureLod(uTexture, x.xy, 0.0);";
+  s.probe.textureSize = {width, height};
+  s.probe.linear = true;
+  for (int i = 0; i < width * height; ++i) {
+    const uint32_t bits = static_cast<uint32_t>(random());
+    s.probe.texels.push_back(
+        glm::u8vec4(bits & 255, (bits >> 8) & 255, (bits >> 16) & 255, bits >> 24));
+  }
+  for (const glm::vec2 u : coordinates) s.probe.inputs.push_back(glm::vec4(u, 0.0f, 0.0f));
+  s.out = runShaderProbe(s.probe);
+  return s;
+}
+
+std::vector<Sampled> probes() {
+  std::mt19937 random(7);
+  std::vector<Sampled> result;
+  constexpr int kSide = 16;
+  std::vector<glm::vec2> steps;
+  for (int i = 0; i < 32768; ++i) {
+    glm::vec2 t;
+    for (int k = 0; k < 2; ++k) {
+      const uint32_t r = static_cast<uint32_t>(random());
+      float v = static_cast<float>(r % (kSide * 4096)) / 4096.0f;
+      if (i % 2 == 1) {
+        v = static_cast<float>(r % (kSide * 256)) / 256.0f;
+        if (r & (1u << 30)) v = std::nextafter(v, (r & (1u << 31)) ? 0.0f : 100.0f);
+      }
+      t[k] = v / static_cast<float>(kSide);  // exact: a power of two
+    }
+    steps.push_back(t);
+  }
+  std::vector<glm::vec2> uniform;
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (int i = 0; i < 16384; ++i) uniform.push_back(glm::vec2(unit(random), unit(random)));
+  result.push_back(sample(kSide, kSide, steps, random));
+  result.push_back(sample(24, 40, uniform, random));
+  return result;
+}
+
+template <class Fetch8>
+bool reproduces(const glm::vec4& got, const Fetch8& fetch8, glm::vec2 u, glm::ivec2 size,
+                const Filter& filter, UnormConversion conversion) {
+  const glm::vec4 expected = reference::sampleLinearAt(fetch8, u, size, filter, conversion);
+  for (int c = 0; c < 4; ++c) {
+    if (filter.weights == FilterWeights::kFixedPoint8) {
+      // A whole number of 1/255: how it becomes a float (k / 255 or k * (1 / 255)) does not reach
+      // an RGBA8 target.
+      const float units = got[c] * 255.0f;
+      if (std::nearbyint(units) != std::nearbyint(expected[c] * 255.0f) ||
+          std::fabs(units - std::nearbyint(units)) > 1e-3f)
+        return false;
+    } else if (std::bit_cast<uint32_t>(got[c]) != std::bit_cast<uint32_t>(expected[c])) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Bilinear filtering at normalized u with positions rounded to 2^-bits texel and real-valued
+// weights and lerps, in units of 1/255.
+glm::dvec4 snappedBilinear(const ShaderProbe& probe, glm::vec2 u, int bits) {
+  const glm::ivec2 size = probe.textureSize;
+  const double step = std::ldexp(1.0, -bits);
+  glm::dvec2 p;
+  for (int k = 0; k < 2; ++k)
+    p[k] = std::nearbyint((static_cast<double>(u[k]) * size[k] - 0.5) / step) * step;
+  const glm::dvec2 base = glm::floor(p), f = p - base;
+  const auto at = [&](int dx, int dy) {
+    const int i = std::clamp(static_cast<int>(base.x) + dx, 0, size.x - 1);
+    const int j = std::clamp(static_cast<int>(base.y) + dy, 0, size.y - 1);
+    return glm::dvec4(probe.texels[static_cast<size_t>(j * size.x + i)]);
+  };
+  const glm::dvec4 row0 = at(0, 0) + (at(1, 0) - at(0, 0)) * f.x;
+  const glm::dvec4 row1 = at(0, 1) + (at(1, 1) - at(0, 1)) * f.x;
+  return row0 + (row1 - row0) * f.y;
+}
+
+}  // namespace
+
+const std::vector<NamedFilter>& filterMembers() {
+  static const std::vector<NamedFilter> members = {
+      {{FilterWeights::kFixedPoint8, false, false}, "fixed_point_8"},
+      {{FilterWeights::kFloat, false, false}, "float"},
+      {{FilterWeights::kFloat, true, false}, "float_fused_lerp"},
+      {{FilterWeights::kFloat, false, true}, "float_fused_position"},
+      {{FilterWeights::kFloat, true, true}, "float_fused_lerp_and_position"}};
+  return members;
+}
+
+FilterFit fitFilter(UnormConversion conversion) {
+  const std::vector<Sampled> sampled = probes();
+  FilterFit result;
+  result.fit.parameter = "filter";
+  result.fit.probe =
+      "GL_LINEAR samples: a 16 x 16 RGBA8 texture at 32,768 positions on and beside 1/256-texel "
+      "steps, a 24 x 40 one at 16,384 random coordinates";
+  for (const Sampled& s : sampled) result.fit.probes += s.out.size();
+  for (const NamedFilter& member : filterMembers()) {
+    uint64_t missed = 0;
+    for (const Sampled& s : sampled) {
+      const auto fetch8 = [&](glm::ivec2 t) {
+        return s.probe.texels[static_cast<size_t>(t.y * s.probe.textureSize.x + t.x)];
+      };
+      for (size_t i = 0; i < s.out.size(); ++i)
+        missed += !reproduces(s.out[i], fetch8, glm::vec2(s.probe.inputs[i]), s.probe.textureSize,
+                              member.filter, conversion);
+    }
+    result.fit.members.push_back({member.name, missed});
+  }
+  result.filter = filterMembers()[result.fit.choose()].filter;
+  if (result.fit.pinned) {
+    result.fit.finding = result.fit.chosen + ", every sample bit for bit (" +
+                         result.fit.memberSummary() + " samples)";
+    return result;
+  }
+  // Bounded: the sub-texel precision whose real-valued filter leaves the smallest largest error.
+  double best = 1e30;
+  for (int bits = 4; bits <= 12; ++bits) {
+    double largest = 0;
+    for (const Sampled& s : sampled)
+      for (size_t i = 0; i < s.out.size(); ++i) {
+        const glm::dvec4 expected = snappedBilinear(s.probe, glm::vec2(s.probe.inputs[i]), bits);
+        for (int c = 0; c < 4; ++c)
+          largest = std::max(largest, std::fabs(s.out[i][c] * 255.0 - expected[c]));
+      }
+    if (largest < best) best = largest, result.subTexelBits = bits;
+  }
+  result.errorUnits = best;
+  result.fit.unit = "units of 1/255";
+  result.fit.largestResidual = best;
+  result.fit.finding = "no member of the family (" + result.fit.memberSummary() +
+                       " samples): closest with positions on 2^-" +
+                       std::to_string(result.subTexelBits) + " texel, largest error " +
+                       std::to_string(best) + " / 255";
+  return result;
+}
+
+}  // namespace vt::calibrate

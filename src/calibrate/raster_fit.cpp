@@ -1,0 +1,496 @@
+#include "calibrate/raster_fit.h"
+
+#include <stdlib.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <random>
+#include <type_traits>
+
+#include "build/synthetic_texture.h"
+#include "calibrate/coverage_fit.h"
+#include "calibrate/float_bits.h"
+#include "calibrate/probe_draws.h"
+#include "format/virtual_texture_reader.h"
+#include "reference/renderer.h"
+#include "render/precision_model.h"
+
+namespace vt::calibrate {
+namespace {
+
+// A scratch folder for the oracle's texture, removed with it.
+class ScratchFolder {
+ public:
+  ScratchFolder() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "vt-calibrate-XXXXXX").string();
+    if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot make a scratch folder");
+    path_ = pattern;
+  }
+  ~ScratchFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// What one combination of members misses of one implementation's readbacks.
+struct Counts {
+  uint64_t pixels = 0, coverage = 0, shared = 0, attributes = 0, depth = 0;
+  double attributeUlps = 0, depthUlps = 0;  // residuals in the precision model's units
+  bool reproduces() const { return coverage == 0 && attributes == 0 && depth == 0; }
+  uint64_t total() const { return coverage + attributes + depth; }
+};
+
+// The error of `got` against `own` beyond the model's absolute 2^-23, relative to `size`, in
+// units of 2^-23 (the widening of reference/result_set_builder.cpp).
+double residual(double got, double own, double size) {
+  return std::max(0.0, std::fabs(got - own) - kFloatUlp) /
+         (kFloatUlp * std::max(std::fabs(size), 0x1p-126));
+}
+
+void compare(const RasterReadback& gl, const Frame& oracle, Counts& c) {
+  for (size_t i = 0; i < oracle.triangle.size(); ++i) {
+    ++c.pixels;
+    if (gl.triangle[i] != oracle.triangle[i]) {
+      ++c.coverage;
+      continue;
+    }
+    if (gl.triangle[i] < 0) continue;
+    ++c.shared;
+    bool differs = false;
+    for (int k = 0; k < 2; ++k) {
+      const float own = oracle.uv[i][k];
+      differs |= !sameBits(gl.uv[i][k], own);
+      c.attributeUlps = std::max(c.attributeUlps, residual(gl.uv[i][k], own, own));
+    }
+    for (int k = 0; k < 4; ++k) {
+      const float own = oracle.derivatives[i][k];
+      differs |= !sameBits(gl.derivatives[i][k], own);
+      // A fine derivative is the difference of two values, each within the relative error.
+      const double size = 2.0 * std::fabs(oracle.uv[i][k % 2]) + std::fabs(own);
+      c.attributeUlps = std::max(c.attributeUlps, residual(gl.derivatives[i][k], own, size));
+    }
+    c.attributes += differs;
+    if (!sameBits(gl.depth[i], oracle.depth[i])) {
+      ++c.depth;
+      // Window z and the terms it is summed from lie in [0, 1]: units of 2^-23 of that range.
+      c.depthUlps = std::max(c.depthUlps, residual(gl.depth[i], oracle.depth[i], 1.0));
+    }
+  }
+}
+
+vt::SnapRounding roundingOf(calibrate::SnapRounding rounding) {
+  switch (rounding) {
+    case calibrate::SnapRounding::kHalfUp:
+      return vt::SnapRounding::kHalfUp;
+    case calibrate::SnapRounding::kFloor:
+      return vt::SnapRounding::kFloor;
+    case calibrate::SnapRounding::kCeil:
+      return vt::SnapRounding::kCeil;
+    default:
+      return vt::SnapRounding::kHalfEven;
+  }
+}
+
+}  // namespace
+
+std::string nameOf(const Coverage& c) {
+  if (c.rule == CoverageRule::kScanlineSpans) return "scanline_spans";
+  return std::to_string(c.subpixelBits) + "_bits_" +
+         std::string(vt::nameOf(kSnapRoundingNames, c.rounding)) + "_" +
+         (c.leftEdgesIn ? "left" : "right") + "_" + (c.bottomEdgesIn ? "bottom" : "top");
+}
+
+namespace {
+
+// Coverage alone: the snapping rasterizers the coverage probes leave consistent.
+struct GridResult {
+  ParameterFit fit;
+  std::vector<Coverage> candidates;
+  int coarsestBits = 0;
+};
+
+GridResult fitGrid() {
+  const Viewport viewport{1024, 512};
+  const std::vector<CoverageProbe> probes = coverageProbes(12, viewport);
+  const RasterReadback drawn = drawTriangles(coverageMesh(probes, viewport), viewport);
+  const CoverageFit fit = fitCoverage(probes, viewport, drawn.triangle);
+  GridResult result;
+  result.coarsestBits = fit.coarsestBits();
+  const std::string over = std::to_string(fit.pixels) + " pixels of " +
+                           std::to_string(probes.size()) +
+                           " probe triangles at 2^-12 offsets around pixel centres";
+  std::string finding;
+  if (fit.consistent.empty()) {
+    finding =
+        "no snapping grid of 1 to 14 bits nor unsnapped vertices with a fixed tie rule "
+        "covers the " +
+        over + " as drawn; closest: " + describe(fit.closest) + " (" +
+        std::to_string(fit.closestMismatches) + " pixels differ)";
+  } else {
+    finding =
+        "the " + over + " are covered as drawn by " +
+        (fit.consistent.size() == 1 ? std::string("exactly one rasterizer of the grid family")
+                                    : std::to_string(fit.consistent.size()) +
+                                          " rasterizers of the grid family, the coarsest " +
+                                          std::to_string(result.coarsestBits) + " sub-pixel bits") +
+        ":";
+    for (size_t i = 0; i < fit.consistent.size() && i < 6; ++i)
+      finding += (i ? "; " : " ") + describe(fit.consistent[i]);
+    if (fit.consistent.size() > 6) finding += "; ...";
+  }
+  result.fit.parameter = "subpixel_bits";
+  result.fit.finding = finding;
+  result.fit.probe = "3,570 triangles at 2^-12-pixel offsets around pixel centres";
+  result.fit.probes = fit.pixels;
+  result.fit.mismatches = fit.consistent.empty() ? fit.closestMismatches : 0;
+  result.fit.pinned = fit.consistent.size() == 1;
+  result.fit.fromGl45 = fit.consistent.empty();
+  result.fit.chosen = fit.consistent.empty() ? "" : describe(fit.consistent.front());
+  // The snapping members among them (a few: coverage at centres cannot tell b bits rounded from
+  // b + 1 truncated), and the closest where none is consistent.
+  std::vector<CoverageHypothesis> hypotheses = fit.consistent;
+  if (hypotheses.empty()) hypotheses.push_back(fit.closest);
+  for (const CoverageHypothesis& h : hypotheses) {
+    if (h.rounding == calibrate::SnapRounding::kNone || result.candidates.size() >= 4) continue;
+    result.candidates.push_back({CoverageRule::kSnappedEdges, h.subpixelBits,
+                                 roundingOf(h.rounding), h.leftEdgesIn, h.bottomEdgesIn});
+  }
+  Coverage spans;
+  spans.rule = CoverageRule::kScanlineSpans;
+  result.candidates.push_back(spans);
+  return result;
+}
+
+// Triangles on the near plane: every vertex at z = -w, inside by the clip test, whose window z
+// z * (1 / w) * 0.5 + 0.5 is 0 or, where 1 / w rounds up, just below it; half of them tilted a
+// hair away from the plane. Their pixels' window z is 0 up to rounding: where it goes below 0 a
+// clamp shows, and where it is -0.0 the + 0.0 offset term (DESIGN section 7, rule 7), which the
+// random triangles rarely reach.
+ClipSpaceMesh nearPlaneTriangles(unsigned seed, int triangles) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), wRange(0.3f, 3.0f), hair(0.0f, 1e-6f);
+  ClipSpaceMesh mesh;
+  for (int k = 0; k < triangles; ++k) {
+    const glm::vec2 centre(0.6f * unit(random), 0.6f * unit(random));
+    for (int corner = 0; corner < 3; ++corner) {
+      const float w = wRange(random);
+      const glm::vec2 xy = centre + 0.5f * glm::vec2(unit(random), unit(random));
+      const float z = k % 2 ? -w : -w * (1.0f - hair(random));
+      mesh.vertices.push_back(
+          {{xy.x * w, xy.y * w, z, w}, {0.5f + 0.5f * unit(random), 0.5f + 0.5f * unit(random)}});
+      mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
+    }
+  }
+  return mesh;
+}
+
+// What the result sets of `model` leave unexplained of the implementation's readbacks: pixels
+// whose triangle no alternative names, and how far (s, t) lies outside its alternative's
+// interval, in the precision model's unit (2^-23 of |s|: reference/result_set_builder.cpp).
+struct SetResiduals {
+  uint64_t unexplainedOwners = 0;
+  double attributeUlps = 0;
+};
+
+SetResiduals setResiduals(const PrecisionModel& model,
+                          const std::vector<std::pair<ClipSpaceMesh, RasterReadback>>& drawn,
+                          const reference::ResidentTexture& texture, Viewport viewport) {
+  SetResiduals r;
+  for (const auto& [mesh, gl] : drawn) {
+    RenderSettings settings;
+    settings.viewport = viewport;
+    applyModel(settings, model);
+    const Frame frame = reference::renderFrame(mesh, texture, settings);
+    for (size_t i = 0; i < gl.triangle.size(); ++i) {
+      const Alternative* match = nullptr;
+      for (uint32_t a = frame.sets.offsets[i]; a < frame.sets.offsets[i + 1]; ++a)
+        if (frame.sets.alternatives[a].triangle == gl.triangle[i])
+          match = &frame.sets.alternatives[a];
+      if (!match) {
+        ++r.unexplainedOwners;
+        continue;
+      }
+      if (gl.triangle[i] < 0) continue;
+      for (int k = 0; k < 2; ++k) {
+        const double uv = std::clamp(gl.uv[i][k], 0.0f, 1.0f);
+        const double outside = std::max(match->uvLo[k] - uv, uv - match->uvHi[k]);
+        if (outside > 0)
+          r.attributeUlps =
+              std::max(r.attributeUlps, outside / (kFloatUlp * std::max(uv, 0x1p-126)));
+      }
+    }
+  }
+  return r;
+}
+
+// One combination of the rasterization members.
+struct Combination {
+  Arithmetic arithmetic;
+  Counts counts;
+};
+
+}  // namespace
+
+RasterFits fitRasterization(const Arithmetic& base) {
+  RasterFits result;
+  GridResult grid = fitGrid();
+  result.subpixelBits = grid.coarsestBits;
+
+  const ScratchFolder folder;
+  writeSyntheticTexture(
+      folder.path() / "t.vt",
+      {{.pageSize = 16, .border = 2, .levelCount = 4, .channels = 4}, std::nullopt});
+  const VirtualTextureReader reader(folder.path() / "t.vt");
+  const reference::ResidentTexture texture(reader);
+  const Viewport viewport{160, 120};
+  const auto draw = [&](const ClipSpaceMesh& mesh, const Arithmetic& arithmetic,
+                        DepthFormat format) {
+    RenderSettings settings;
+    settings.debugChannels = true;
+    settings.viewport = viewport;
+    settings.arithmetic = arithmetic;
+    settings.depthFormat = format;
+    return reference::renderFrame(mesh, texture, settings);
+  };
+
+  std::vector<Combination> combinations;
+  for (const Coverage& coverage : grid.candidates)
+    for (const bool fusedViewport : {true, false})
+      for (const auto& [setup, setupName] : kPlaneSetupNames)
+        for (const auto& [evaluation, evaluationName] : kPlaneEvaluationNames)
+          for (const auto& [perspective, perspectiveName] : kPerspectiveNames)
+            for (const bool offsetAndClamp : {true, false}) {
+              Arithmetic a = base;
+              a.coverage = coverage;
+              a.fusedViewport = fusedViewport;
+              a.planeSetup = setup;
+              a.planeEvaluation = evaluation;
+              a.perspective = perspective;
+              a.depth.offsetAndClamp = offsetAndClamp;
+              combinations.push_back({a, {}});
+            }
+  std::vector<std::pair<ClipSpaceMesh, RasterReadback>> drawn;
+  for (const unsigned seed : {1u, 2u, 3u, 4u}) {
+    const ClipSpaceMesh mesh = seed < 4 ? randomTriangles(seed, 120) : nearPlaneTriangles(seed, 60);
+    const RasterReadback gl = drawTriangles(mesh, viewport);
+    for (Combination& c : combinations)
+      compare(gl, draw(mesh, c.arithmetic, DepthFormat::kDepth32F), c.counts);
+    drawn.emplace_back(mesh, gl);
+  }
+
+  // The combination taken: the first that reproduces everything, else the closest.
+  const auto closer = [](const Counts& a, const Counts& b) {
+    if (a.coverage != b.coverage) return a.coverage < b.coverage;
+    if (a.attributes != b.attributes) return a.attributes < b.attributes;
+    return a.depth < b.depth;
+  };
+  size_t taken = 0;
+  for (size_t i = 1; i < combinations.size(); ++i)
+    if (closer(combinations[i].counts, combinations[taken].counts)) taken = i;
+  const Combination& chosen = combinations[taken];
+  const bool reproduced = chosen.counts.reproduces();
+  result.arithmetic = chosen.arithmetic;
+  result.coveragePinned = chosen.counts.coverage == 0;
+
+  // Each family's evidence: per member, the fewest values any combination with it misses.
+  const std::string probe =
+      "360 random triangles (slivers, perspective, near-plane clipping, a "
+      "coplanar pair) and 60 cut just behind the near plane, at 160 x 120";
+  const auto family = [&](const char* parameter, auto memberOf, auto nameOfMember,
+                          const auto& members) {
+    ParameterFit fit;
+    fit.parameter = parameter;
+    fit.probe = probe;
+    fit.probes = chosen.counts.pixels;
+    std::vector<std::string> reproducing;
+    for (const auto& member : members) {
+      uint64_t fewest = std::numeric_limits<uint64_t>::max();
+      for (const Combination& c : combinations)
+        if (memberOf(c.arithmetic) == member) {
+          fewest = std::min(fewest, c.counts.total());
+          if (c.counts.reproduces()) {
+            const std::string name = nameOfMember(member);
+            if (std::find(reproducing.begin(), reproducing.end(), name) == reproducing.end())
+              reproducing.push_back(name);
+          }
+        }
+      fit.members.push_back({nameOfMember(member), fewest});
+    }
+    fit.chosen = nameOfMember(memberOf(chosen.arithmetic));
+    fit.consistent = reproducing;
+    fit.pinned = reproduced;
+    fit.mismatches = reproduced ? 0 : chosen.counts.total();
+    if (!reproduced)
+      fit.finding = "no combination of members reproduces every probe; closest " + fit.chosen +
+                    " (" + fit.memberSummary() + " pixel values, fewest over the combinations)";
+    else if (reproducing.size() == 1)
+      fit.finding = fit.chosen + ", bit for bit (" + fit.memberSummary() +
+                    " pixel values, fewest over the combinations)";
+    else
+      fit.finding = std::to_string(reproducing.size()) +
+                    " members reproduce every probe, which cannot tell them apart; the first, " +
+                    fit.chosen + ", is taken";
+    result.fits.push_back(fit);
+  };
+  std::vector<Coverage> coverages = grid.candidates;
+  family(
+      "coverage", [](const Arithmetic& a) { return a.coverage; },
+      [](const Coverage& c) { return nameOf(c); }, coverages);
+  if (!result.coveragePinned) {
+    result.fits.back().pinned = false;
+    result.fits.back().fromGl45 = grid.coarsestBits == 0;
+  }
+  result.fits.push_back(grid.fit);
+  family(
+      "viewport", [](const Arithmetic& a) { return a.fusedViewport; },
+      [](bool fused) { return std::string(fused ? "fused" : "unfused"); },
+      std::vector<bool>{true, false});
+  const auto names = [](const auto& table) {
+    std::vector<std::remove_cvref_t<decltype(table[0].value)>> values;
+    for (const auto& entry : table) values.push_back(entry.value);
+    return values;
+  };
+  family(
+      "plane_setup", [](const Arithmetic& a) { return a.planeSetup; },
+      [](PlaneSetup s) { return std::string(vt::nameOf(kPlaneSetupNames, s)); },
+      names(kPlaneSetupNames));
+  family(
+      "plane_evaluation", [](const Arithmetic& a) { return a.planeEvaluation; },
+      [](PlaneEvaluation e) { return std::string(vt::nameOf(kPlaneEvaluationNames, e)); },
+      names(kPlaneEvaluationNames));
+  family(
+      "perspective", [](const Arithmetic& a) { return a.perspective; },
+      [](Perspective p) { return std::string(vt::nameOf(kPerspectiveNames, p)); },
+      names(kPerspectiveNames));
+  family(
+      "depth_offset", [](const Arithmetic& a) { return a.depth.offsetAndClamp; },
+      [](bool on) { return std::string(on ? "offset_and_clamp" : "as_interpolated"); },
+      std::vector<bool>{true, false});
+
+  // The residuals of the combination taken: none when it reproduces everything; else measured
+  // against the result sets of the model it leaves (render/result_set.h), which already allow
+  // what vertices moved within the sub-pixel grid explain.
+  const Counts& c = chosen.counts;
+  if (!reproduced) {
+    PrecisionModel bounds = gl45Model();
+    bounds.arithmetic = chosen.arithmetic;
+    if (result.coveragePinned) {
+      bounds.subpixelBits = chosen.arithmetic.coverage.subpixelBits;
+      bounds.fillRulePinned = true;
+    } else if (grid.coarsestBits > 0) {
+      bounds.subpixelBits = grid.coarsestBits;
+    }
+    bounds.attributeUlps = bounds.depthUlps = 0;
+    SetResiduals r = setResiduals(bounds, drawn, texture, viewport);
+    result.attributeUlps = r.attributeUlps;
+    result.unexplainedOwners = r.unexplainedOwners;
+    // A pixel whose triangle no set admits: the smallest whole depth bound that admits every one
+    // (doubling up to twice gl45's, then halving the interval), or, past that, the largest error
+    // against the oracle's own value.
+    if (r.unexplainedOwners) {
+      const double gl45 = gl45Model().depthUlps;
+      double lo = 0, hi = 1;
+      const auto explains = [&](double ulps) {
+        bounds.depthUlps = ulps;
+        return setResiduals(bounds, drawn, texture, viewport).unexplainedOwners == 0;
+      };
+      while (hi < gl45 && !explains(hi)) lo = hi, hi = std::min(2 * hi, gl45);
+      if (!explains(hi)) {
+        // Not even gl45's bound admits them. The depth rule itself is probed on its own
+        // (calibration.h, depth test); these pixels are where the oracle's sets are narrower
+        // than the specification (a limit of the interval arithmetic of
+        // reference/result_set_builder.cpp), so the bound stays gl45's and the finding says so.
+        result.depthUlps = gl45;
+        result.depthBeyondSets = true;
+      } else {
+        while (hi - lo > 1) {
+          const double mid = std::floor((lo + hi) / 2);
+          (explains(mid) ? hi : lo) = mid;
+        }
+        result.depthUlps = hi;
+      }
+    }
+  }
+  result.attributes = {"attributes", probe, c.shared};
+  result.attributes.pinned = c.attributes == 0 && result.coveragePinned;
+  result.attributes.mismatches = c.attributes;
+  result.attributes.unit = "units of 2^-23 relative, beyond the sub-pixel grid";
+  result.attributes.largestResidual = result.attributeUlps;
+  result.attributes.finding =
+      c.attributes == 0
+          ? "texture coordinates and fine derivatives bit for bit"
+          : std::to_string(c.attributes) + " of " + std::to_string(c.shared) +
+                " pixels' coordinates or derivatives differ; beyond what the sub-pixel grid "
+                "explains, the largest is " +
+                std::to_string(result.attributeUlps) + " units of 2^-23 relative";
+  result.depth = {"depth", probe, c.shared};
+  result.depth.pinned = c.depth == 0 && result.coveragePinned;
+  result.depth.mismatches = c.depth;
+  result.depth.unit = "units of 2^-23 of the depth range";
+  result.depth.largestResidual = result.depthUlps;
+  result.depth.finding =
+      c.depth == 0 ? "the stored 32F depth bit for bit"
+      : result.unexplainedOwners == 0
+          ? std::to_string(c.depth) + " of " + std::to_string(c.shared) +
+                " pixels' depth differs; every pixel's triangle is one the sub-pixel grid "
+                "allows"
+          : std::to_string(c.depth) + " of " + std::to_string(c.shared) +
+                " pixels' depth differs, and " + std::to_string(result.unexplainedOwners) +
+                " pixels show a triangle the sub-pixel grid alone does not allow; " +
+                (result.depthBeyondSets
+                     ? std::string("no depth bound up to gl45's admits them in the oracle's "
+                                   "result sets (whose depth intervals are narrower than the "
+                                   "specification there): gl45's bound is kept")
+                     : "a depth error of " + std::to_string(result.depthUlps) +
+                           " units of 2^-23 of the depth range admits them all");
+
+  // Z24 under the members taken.
+  const ClipSpaceMesh mesh = randomTriangles(5, 120);
+  const RasterReadback gl = drawTriangles(mesh, viewport, DepthFormat::kDepth24);
+  ParameterFit z24;
+  z24.parameter = "z24";
+  z24.probe = "120 random triangles drawn into a Z24 depth buffer";
+  for (const auto& [conversion, name] : kZ24ConversionNames) {
+    Arithmetic a = result.arithmetic;
+    a.depth.z24 = conversion;
+    const Frame oracle = draw(mesh, a, DepthFormat::kDepth24);
+    uint64_t missed = 0, shared = 0;
+    for (size_t i = 0; i < oracle.triangle.size(); ++i) {
+      if (gl.triangle[i] != oracle.triangle[i] || gl.triangle[i] < 0) continue;
+      ++shared;
+      missed += !sameBits(gl.depth[i], oracle.depth[i]);
+    }
+    z24.probes = shared;
+    z24.members.push_back({std::string(name), missed});
+  }
+  result.arithmetic.depth.z24 = kZ24ConversionNames[z24.choose()].value;
+  result.z24Pinned = z24.pinned && result.coveragePinned && reproduced;
+  z24.pinned = result.z24Pinned;
+  z24.finding = (z24.pinned ? z24.chosen + ", bit for bit"
+                            : std::string("not pinned: either of the two nearest values")) +
+                " (" + z24.memberSummary() + " depths)";
+  result.fits.push_back(z24);
+  return result;
+}
+
+std::string rasterMemberOf(const std::string& family, const Arithmetic& a) {
+  if (family == "coverage") return nameOf(a.coverage);
+  if (family == "viewport") return a.fusedViewport ? "fused" : "unfused";
+  if (family == "plane_setup") return std::string(vt::nameOf(kPlaneSetupNames, a.planeSetup));
+  if (family == "plane_evaluation")
+    return std::string(vt::nameOf(kPlaneEvaluationNames, a.planeEvaluation));
+  if (family == "perspective") return std::string(vt::nameOf(kPerspectiveNames, a.perspective));
+  if (family == "depth_offset")
+    return a.depth.offsetAndClamp ? "offset_and_clamp" : "as_interpolated";
+  if (family == "z24") return std::string(vt::nameOf(kZ24ConversionNames, a.depth.z24));
+  return "";
+}
+
+}  // namespace vt::calibrate

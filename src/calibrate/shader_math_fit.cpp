@@ -1,0 +1,192 @@
+#include "calibrate/shader_math_fit.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <random>
+
+#include "calibrate/float_bits.h"
+#include "calibrate/probe_draws.h"
+#include "reference/linear_filter.h"
+#include "reference/shader_math.h"
+
+namespace vt::calibrate {
+namespace {
+
+// 65,536 positive normal floats: every exponent, random mantissas (a fixed seed), 1 and the
+// powers of two among them.
+std::vector<glm::vec4> mathInputs() {
+  std::mt19937 random(20261123);
+  std::vector<glm::vec4> inputs(65536);
+  for (size_t i = 0; i < inputs.size(); ++i) {
+    const uint32_t exponent = 1 + static_cast<uint32_t>(i % 254);
+    const uint32_t mantissa = i % 509 == 0 ? 0u : static_cast<uint32_t>(random()) >> 9;
+    inputs[i] = glm::vec4(std::bit_cast<float>((exponent << 23) | mantissa), 1.0f, 0.0f, 0.0f);
+  }
+  return inputs;
+}
+
+void fitLog2AndSqrt(ShaderMathFits& m) {
+  ShaderProbe probe;
+  probe.body = "result = vec4(log2(x.x), sqrt(x.x), x.z * x.y, 0.0);";
+  probe.inputs = mathInputs();
+  probe.inputs[0].z = 0x1p-130f;  // a denormal, times the 1 in y
+  const std::vector<glm::vec4> out = runShaderProbe(probe);
+  const uint64_t n = out.size();
+  const std::string inputs = "log2 and sqrt of 65,536 positive floats of every exponent";
+
+  m.log2 = {"log2", inputs, n};
+  for (const auto& [form, name] : kLog2FormNames) {
+    uint64_t missed = 0;
+    for (size_t i = 0; i < n; ++i)
+      missed += !sameBits(out[i].x, reference::log2Of(form, probe.inputs[i].x));
+    m.log2.members.push_back({std::string(name), missed});
+  }
+  m.log2Form = kLog2FormNames[m.log2.choose()].value;
+  uint64_t notSqrt = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const float x = probe.inputs[i].x;
+    const double exact = std::log2(static_cast<double>(x));
+    if (x >= 0.5f && x <= 2.0f)
+      m.log2Absolute = std::max(m.log2Absolute, std::fabs(out[i].x - exact));
+    else
+      m.log2Ulps = std::max(m.log2Ulps, ulpsFrom(out[i].x, exact));
+    notSqrt += !sameBits(out[i].y, std::sqrt(x));
+    m.sqrtUlps = std::max(m.sqrtUlps, ulpsFrom(out[i].y, std::sqrt(static_cast<double>(x))));
+  }
+  if (m.log2.pinned) {
+    m.log2.finding = m.log2.chosen + ", bit for bit (" + m.log2.memberSummary() + ")";
+    m.log2Absolute = m.log2Ulps = 0;
+  } else {
+    m.log2.unit = "ulps outside [0.5, 2]";
+    m.log2.largestResidual = m.log2Ulps;
+    m.log2.finding = "no member of the family (" + m.log2.memberSummary() +
+                     "): largest error against the true log2 inside [0.5, 2] " +
+                     std::to_string(m.log2Absolute) + ", outside " + std::to_string(m.log2Ulps) +
+                     " ulps";
+  }
+  m.sqrt = {"sqrt", inputs, n, {{"ieee", notSqrt}}};
+  m.sqrt.choose();
+  m.sqrt.unit = "ulps";
+  if (!m.sqrt.pinned) m.sqrt.largestResidual = m.sqrtUlps;
+  m.sqrt.finding = notSqrt == 0 ? "IEEE sqrt, correctly rounded, bit for bit"
+                                : differ(notSqrt, n) + " from IEEE sqrt, largest " +
+                                      std::to_string(m.sqrtUlps) + " ulps";
+  if (notSqrt == 0) m.sqrtUlps = 0;
+
+  // The same product in a draw the clipper leaves whole (the one above is clipped).
+  ShaderProbe whole;
+  whole.body = "result = vec4(x.z * x.y, 0.0, 0.0, 0.0);";
+  whole.width = 16;
+  whole.inputs.assign(16 * 16, glm::vec4(0.0f, 1.0f, 0x1p-130f, 0.0f));
+  whole.clipped = false;
+  const std::vector<glm::vec4> unclipped = runShaderProbe(whole);
+  uint64_t flushedUnclipped = 0;
+  for (const glm::vec4& v : unclipped) flushedUnclipped += v.x == 0.0f;
+  const bool flushedClipped = out[0].z == 0.0f;
+  m.flushesDenormals = flushedUnclipped == unclipped.size();
+  m.denormalsAlike = flushedClipped == m.flushesDenormals &&
+                     (flushedUnclipped == 0 || flushedUnclipped == unclipped.size());
+  const uint64_t values = 1 + unclipped.size();
+  const uint64_t kept = (flushedClipped ? 0 : 1) + unclipped.size() - flushedUnclipped;
+  m.denormals = {"denormals",
+                 "a denormal times a 1 read from the inputs, in a clipped draw and "
+                 "in 256 pixels of an unclipped one",
+                 values,
+                 {{"flushed", kept}, {"kept", values - kept}}};
+  m.denormals.choose();
+  m.denormals.pinned = m.denormalsAlike;
+  m.denormals.finding = m.denormalsAlike
+                            ? (m.flushesDenormals ? "a denormal times 1 gives 0: flushed to zero"
+                                                  : "a denormal times 1 stays a denormal: kept")
+                            : std::string("flushed in ") + std::to_string(flushedUnclipped) +
+                                  " of 256 pixels of the unclipped draw, " +
+                                  (flushedClipped ? "flushed" : "kept") +
+                                  " in the clipped one: the mode changes between batches, free";
+}
+
+// texelFetch of every unorm8 value, and the shader's lerps.
+void fitConversionAndLerps(ShaderMathFits& m) {
+  ShaderProbe fetch;
+  fetch.body = "result = texelFetch(uTexture, ivec2(int(x.x), 0), 0);";
+  fetch.width = 256;
+  for (int k = 0; k < 256; ++k) {
+    fetch.inputs.push_back(glm::vec4(static_cast<float>(k), 0, 0, 0));
+    const auto v = static_cast<uint8_t>(k);
+    fetch.texels.push_back(glm::u8vec4(v, static_cast<uint8_t>(255 - k), v, 255));
+  }
+  fetch.textureSize = {256, 1};
+  const std::vector<glm::vec4> fetched = runShaderProbe(fetch);
+  m.texelConversion = {"texel_conversion", "texelFetch of the 256 unorm8 values", 1024};
+  double conversionUlps = 0;
+  for (const auto& [conversion, name] : kUnormConversionNames) {
+    uint64_t missed = 0;
+    for (size_t k = 0; k < 256; ++k) {
+      const glm::vec4 expected = reference::unorm8ToFloat(fetch.texels[k], conversion);
+      for (int c = 0; c < 4; ++c) missed += !sameBits(fetched[k][c], expected[c]);
+    }
+    m.texelConversion.members.push_back({std::string(name), missed});
+  }
+  m.conversion = kUnormConversionNames[m.texelConversion.choose()].value;
+  for (size_t k = 0; k < 256; ++k) {
+    const glm::vec4 expected = reference::unorm8ToFloat(fetch.texels[k], m.conversion);
+    for (int c = 0; c < 4; ++c)
+      conversionUlps = std::max(conversionUlps, std::fabs(fetched[k][c] - expected[c]) / kFloatUlp);
+  }
+  m.texelConversion.unit = "units of 2^-23";
+  if (!m.texelConversion.pinned) m.texelConversion.largestResidual = conversionUlps;
+  m.texelConversion.finding =
+      (m.texelConversion.pinned
+           ? m.texelConversion.chosen + ", bit for bit"
+           : "no member, largest " + std::to_string(conversionUlps) + " units of 2^-23") +
+      " (" + m.texelConversion.memberSummary() + ")";
+
+  // The shader's lerps (the exact bilinear filter's rows and columns, the trilinear blend):
+  // a + (b - a) * w under `precise`, colours of unorm8 values or any in [0, 1], weights in [0, 1).
+  ShaderProbe blend;
+  blend.body = "result = vec4(x.x + (x.y - x.x) * x.z, 0.0, 0.0, 0.0);";
+  std::mt19937 random(20261124);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const auto colour = [&]() {
+    return random() % 2 ? static_cast<float>(random() % 256) * (1.0f / 255.0f) : unit(random);
+  };
+  for (int i = 0; i < 16384; ++i) {
+    const float a = colour(), b = colour();
+    blend.inputs.push_back(glm::vec4(a, b, unit(random), 0.0f));
+  }
+  const std::vector<glm::vec4> blended = runShaderProbe(blend);
+  uint64_t missed = 0;
+  double lerpUlps = 0;
+  for (size_t i = 0; i < blended.size(); ++i) {
+    const glm::vec4 in = blend.inputs[i];
+    const float expected = in.x + (in.y - in.x) * in.z;  // no contraction (-ffp-contract=off)
+    missed += !sameBits(blended[i].x, expected);
+    const double scale = std::max({std::fabs(in.x), std::fabs(in.y), 0x1p-126f});
+    lerpUlps = std::max(lerpUlps, std::fabs(blended[i].x - expected) / (kFloatUlp * scale));
+  }
+  m.lerp = {"arithmetic",
+            "16,384 precise lerps a + (b - a) * w",
+            blended.size(),
+            {{"rounded_per_operation", missed}}};
+  m.lerp.choose();
+  m.lerp.unit = "units of 2^-23 of the larger operand";
+  if (!m.lerp.pinned) m.lerp.largestResidual = lerpUlps;
+  m.lerp.finding = missed == 0
+                       ? "the lerp a + (b - a) * w rounds each operation, bit for bit"
+                       : differ(missed, blended.size()) +
+                             " from rounding each operation, largest " + std::to_string(lerpUlps) +
+                             " units of 2^-23 of the larger "
+                             "operand";
+  m.arithmeticUlps = std::max(m.texelConversion.largestResidual, m.lerp.largestResidual);
+}
+
+}  // namespace
+
+ShaderMathFits fitShaderMath() {
+  ShaderMathFits m;
+  fitLog2AndSqrt(m);
+  fitConversionAndLerps(m);
+  return m;
+}
+
+}  // namespace vt::calibrate

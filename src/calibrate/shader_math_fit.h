@@ -1,0 +1,35 @@
+#pragma once
+// The shader-math families of the arithmetic (render/arithmetic.h) fitted from probe draws
+// (probe_draws.h): log2, sqrt, texel values, the `precise` lerps, denormals.
+//
+//   log2, sqrt   65,536 positive floats of every exponent through log2() and sqrt(): every member
+//                of the log2 family bit for bit; else the residual against the true log2
+//                (absolute inside [0.5, 2], ulps outside: the GLSL 4.50 table's units). sqrt is
+//                IEEE or bounded by its residual in ulps.
+//   texel values texelFetch of the 256 unorm8 values against both conversions
+//   lerps        16,384 of the shader's `precise` lerps a + (b - a) * w rounded per operation;
+//                else the residual in units of 2^-23 of the larger operand (the precision
+//                model's arithmetic_ulps: a relative error per operation)
+//   denormals    a denormal times a 1 read from the inputs, in a draw the clipper cuts and in one
+//                it leaves whole: flushed or kept, or free where the two differ
+
+#include "calibrate/family_fit.h"
+#include "render/arithmetic.h"
+
+namespace vt::calibrate {
+
+struct ShaderMathFits {
+  ParameterFit log2, sqrt, texelConversion, lerp, denormals;
+  Log2Form log2Form = Log2Form::kLibm;    // the chosen member
+  double log2Absolute = 0, log2Ulps = 0;  // residuals against the true log2 (unpinned only)
+  double sqrtUlps = 0;
+  UnormConversion conversion = UnormConversion::kTimesReciprocal;
+  double arithmeticUlps = 0;      // texel values and lerps, per operation (unpinned only)
+  bool flushesDenormals = false;  // in a draw the clipper leaves whole
+  bool denormalsAlike = true;     // the same in every draw
+};
+
+// Draws the probes on the current GL context and fits the families.
+ShaderMathFits fitShaderMath();
+
+}  // namespace vt::calibrate

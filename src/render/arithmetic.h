@@ -1,0 +1,144 @@
+#pragma once
+// The oracle's arithmetic as independent choices (DESIGN section 3, "An implementation is a point
+// in a space of choices"). Each step a GL implementation may compute in more than one conforming
+// way is a family below; an implementation is one member of each family. The oracle draws any
+// point of this space (reference/triangle_setup.h, reference/shader_math.h,
+// reference/linear_filter.h), `vt calibrate` measures each family from its own probes
+// (src/calibrate/), and the named points of implementations read from their source or measured
+// bit for bit are data in one file (arithmetic_points.cpp).
+//
+// The choices are values, not template parameters: a calibrated point is any combination, known
+// only at run time. Each per-pixel function takes the one choice it needs.
+//
+// Families and their members, with where each member comes from:
+//
+//   viewport       window x, y, z of the mesh's vertices as fma(ndc, half, half) or as a product
+//                  and a sum (vertices made by the clipper are never fused: DESIGN 7, rule 5)
+//   coverage       snapped edge functions (DESIGN 7, rules 2 and 4): sub-pixel bits 1-16, the
+//                  rounding of (X - 0.5) * 2^bits, and which edges own a centre on them (left or
+//                  right, bottom or top: the four rules GL 4.5 section 14.6.1 allows); or float
+//                  scanline spans over unsnapped vertices with truncated span ends
+//                  (reference/softpipe-arithmetic.md, 2.3)
+//   plane setup    the attribute planes from the first vertex of the oriented triangle (DESIGN 7,
+//                  rule 3), or from the lowest vertex over the y-sorted edges
+//                  (softpipe-arithmetic.md, 3.1)
+//   plane eval     at integer pixel coordinates fused (fma(dady, y, fma(dadx, x, a0))), the same
+//                  unfused, or at the quad's even corner stepped to its other pixels by + dadx
+//                  and + dady (softpipe-arithmetic.md, 3.2)
+//   perspective    s/w and t/w times the reciprocal of the 1/w plane, or divided by it
+//   depth          a + 0.0 offset term and a clamp to [0, 1] (DESIGN 7, rule 7) or neither; Z24
+//                  stored as round-half-even(z * (2^24 - 1)) or truncated (unsigned)(z * ...)
+//   derivatives    fine: the differences within the pixel's quad row and column, helpers
+//                  included (the shader asks for dFdxFine and dFdyFine; coarse derivatives would
+//                  break GLSL 4.50 section 8.13.1, so they are not a member)
+//   log2           a degree-4 minimax polynomial in (m - 1) / (m + 1) evaluated with fused
+//                  multiply-adds (DESIGN 7, rule 8) or with products and sums, the C library's
+//                  log2f, or logf(x) * 1.442695f (softpipe-arithmetic.md, 5.2)
+//   GL_LINEAR      weights on 8 bits with fixed-point lerps a + ((f * (b - a) + 128) >> 8)
+//                  (DESIGN 7, rule 9), or float weights with lerps a + (b - a) * w rounded per
+//                  operation or fma(w, b - a, a); the texel position u * size - 0.5 as a product
+//                  and a difference or one fma
+//   texel values   texelFetch of unorm8 k as k * (1 / 255) (DESIGN 7, rule 9) or k / 255
+//   precision      each float operation rounded to float (SSE arithmetic), or expressions
+//                  evaluated in extended precision and rounded once (an x87 code generator):
+//                  measured, not emulated (the oracle computes the first)
+//   denormals      flushed to zero in fragment arithmetic (DAZ and FTZ) or kept
+//
+// sqrt and the shader's + - * are IEEE in every member (GLSL 4.50 section 4.7.1 allows more; a
+// measurement that differs is bounded, see precision_model.h).
+
+#include <string>
+
+#include "common/enum_names.h"
+
+namespace vt {
+
+enum class SnapRounding { kHalfEven, kHalfUp, kFloor, kCeil };
+inline constexpr EnumNames<SnapRounding, 4> kSnapRoundingNames = {
+    {{SnapRounding::kHalfEven, "half_even"},
+     {SnapRounding::kHalfUp, "half_up"},
+     {SnapRounding::kFloor, "floor"},
+     {SnapRounding::kCeil, "ceil"}}};
+
+enum class CoverageRule { kSnappedEdges, kScanlineSpans };
+inline constexpr EnumNames<CoverageRule, 2> kCoverageRuleNames = {
+    {{CoverageRule::kSnappedEdges, "snapped_edges"},
+     {CoverageRule::kScanlineSpans, "scanline_spans"}}};
+
+struct Coverage {
+  CoverageRule rule = CoverageRule::kSnappedEdges;
+  // kSnappedEdges only: X snaps to 0.5 + round((X - 0.5) * 2^subpixelBits) / 2^subpixelBits.
+  int subpixelBits = 8;
+  SnapRounding rounding = SnapRounding::kHalfEven;
+  // A centre exactly on an edge belongs to the triangle when the edge is a left edge and
+  // leftEdgesIn (else a right edge), or a horizontal bottom edge and bottomEdgesIn (else top).
+  bool leftEdgesIn = true;
+  bool bottomEdgesIn = true;
+  bool operator==(const Coverage&) const = default;
+};
+
+enum class PlaneSetup { kFirstVertex, kLowestVertex };
+inline constexpr EnumNames<PlaneSetup, 2> kPlaneSetupNames = {
+    {{PlaneSetup::kFirstVertex, "first_vertex"}, {PlaneSetup::kLowestVertex, "lowest_vertex"}}};
+
+enum class PlaneEvaluation { kFused, kUnfused, kQuadStepped };
+inline constexpr EnumNames<PlaneEvaluation, 3> kPlaneEvaluationNames = {
+    {{PlaneEvaluation::kFused, "fused"},
+     {PlaneEvaluation::kUnfused, "unfused"},
+     {PlaneEvaluation::kQuadStepped, "quad_stepped"}}};
+
+enum class Perspective { kReciprocalTimes, kDivided };
+inline constexpr EnumNames<Perspective, 2> kPerspectiveNames = {
+    {{Perspective::kReciprocalTimes, "reciprocal_times"}, {Perspective::kDivided, "divided"}}};
+
+enum class Z24Conversion { kNearestEven, kTruncated };
+inline constexpr EnumNames<Z24Conversion, 2> kZ24ConversionNames = {
+    {{Z24Conversion::kNearestEven, "nearest_even"}, {Z24Conversion::kTruncated, "truncated"}}};
+
+struct Depth {
+  bool offsetAndClamp = true;  // z + 0.0, clamped to [0, 1]; false: the plane's value as it is
+  Z24Conversion z24 = Z24Conversion::kNearestEven;
+  bool operator==(const Depth&) const = default;
+};
+
+enum class Log2Form { kPolynomialFused, kPolynomialUnfused, kLibm, kNaturalTimesLog2e };
+inline constexpr EnumNames<Log2Form, 4> kLog2FormNames = {
+    {{Log2Form::kPolynomialFused, "polynomial_fused"},
+     {Log2Form::kPolynomialUnfused, "polynomial_unfused"},
+     {Log2Form::kLibm, "libm"},
+     {Log2Form::kNaturalTimesLog2e, "natural_times_log2e"}}};
+
+enum class FilterWeights { kFixedPoint8, kFloat };
+inline constexpr EnumNames<FilterWeights, 2> kFilterWeightsNames = {
+    {{FilterWeights::kFixedPoint8, "fixed_point_8"}, {FilterWeights::kFloat, "float"}}};
+
+struct Filter {
+  FilterWeights weights = FilterWeights::kFloat;
+  bool fusedLerp = false;        // kFloat: fma(w, b - a, a) instead of a + (b - a) * w
+  bool fusedCoordinate = false;  // kFloat: fma(u, size, -0.5) instead of u * size - 0.5
+  bool operator==(const Filter&) const = default;
+};
+
+enum class UnormConversion { kTimesReciprocal, kDivided };
+inline constexpr EnumNames<UnormConversion, 2> kUnormConversionNames = {
+    {{UnormConversion::kTimesReciprocal, "times_reciprocal"},
+     {UnormConversion::kDivided, "divided"}}};
+
+struct Arithmetic {
+  bool fusedViewport = false;
+  Coverage coverage;
+  PlaneSetup planeSetup = PlaneSetup::kFirstVertex;
+  PlaneEvaluation planeEvaluation = PlaneEvaluation::kUnfused;
+  Perspective perspective = Perspective::kReciprocalTimes;
+  Depth depth;
+  Log2Form log2 = Log2Form::kLibm;
+  Filter filter;
+  UnormConversion texelConversion = UnormConversion::kTimesReciprocal;
+  bool flushDenormals = false;
+  bool operator==(const Arithmetic&) const = default;
+};
+
+// One line per family, e.g. "log2: polynomial_fused", for messages and reports.
+std::string describe(const Arithmetic& arithmetic);
+
+}  // namespace vt
