@@ -1,5 +1,6 @@
 #include "scene/test_scenes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -50,6 +51,63 @@ NamedScene coplanar() {
   return scene;
 }
 
+// A textured wall with occluders well in front of it, in both draw orders: a panel drawn before
+// the wall (without a depth test the wall would paint over it) and a box drawn after it, its faces
+// toward the camera first (without a depth test its back faces would paint over them). The near
+// plane at 0.5 keeps the window depths of wall, box and panel about 2^-7 apart, far beyond gl45's
+// depth bound (84 units of 2^-23 plus 1/16 pixel of vertex movement): only pixels on the box's
+// silhouette are left to either face.
+NamedScene occluders() {
+  NamedScene scene{"occluders", {}, {}};
+  scene.camera.position = {0.4f, 0.6f, 3};
+  scene.camera.target = {0, 0, -4};
+  scene.camera.nearPlane = 1;
+  scene.camera.farPlane = 20;
+  addQuad(scene.mesh, {-2.2f, -1.2f, 0}, {1.6f, 0, 0}, {0, 1.4f, 0}, {0.55f, 0.1f}, {0.35f, 0},
+          {0, 0.35f});  // the panel, 3 units from the camera
+  addQuad(scene.mesh, {-6, -3.5f, -5}, {12, 0, 0}, {0, 7, 0}, {0, 0}, {1, 0}, {0, 1});  // the wall
+  // A cube of side 1.4 turned 35 degrees about y and tilted 20 degrees about x, 4.5 units away.
+  const glm::vec3 centre(1.3f, -0.2f, -1.5f);
+  const float cy = std::cos(0.61f), sy = std::sin(0.61f), cx = std::cos(0.35f),
+              sx = std::sin(0.35f);
+  const glm::vec3 ex(cy, 0, -sy), ey(sy * sx, cx, cy * sx), ez(sy * cx, -sx, cy * cx);
+  struct Face {
+    glm::vec3 normal, u, v;
+  };
+  // u x v = the outward normal: each face is counter-clockwise seen from outside.
+  std::vector<Face> faces = {{ez, ex, ey},  {-ez, ey, ex}, {ex, ey, ez},
+                             {-ex, ez, ey}, {ey, ez, ex},  {-ey, ex, ez}};
+  std::stable_partition(faces.begin(), faces.end(), [&](const Face& f) {
+    return glm::dot(f.normal, scene.camera.position - (centre + 0.7f * f.normal)) > 0;
+  });
+  for (size_t k = 0; k < faces.size(); ++k) {
+    const Face& f = faces[k];
+    const glm::vec2 uv0(0.1f + 0.13f * static_cast<float>(k), 0.6f);
+    addQuad(scene.mesh, centre + 0.7f * (f.normal - f.u - f.v), 1.4f * f.u, 1.4f * f.v, uv0,
+            {0.12f, 0}, {0, 0.3f});
+  }
+  return scene;
+}
+
+// Two large quads through the origin crossing at an angle, one turned 30 degrees about y, the
+// other 30 degrees about x: their intersection runs diagonally across the screen, and each hides
+// the other on one side of it. Depth decides every pixel but a band about a pixel wide along the
+// line, where gl45's depth bound leaves either quad.
+NamedScene crossing() {
+  NamedScene scene{"crossing", {}, {}};
+  scene.camera.position = {0, 0, 5};
+  scene.camera.target = {0, 0, 0};
+  scene.camera.nearPlane = 1;
+  scene.camera.farPlane = 20;
+  const float c = std::cos(0.7854f), s = std::sin(0.7854f);
+  const glm::vec3 ua(c, 0, -s), va(0, 1, 0), ub(1, 0, 0), vb(0, c, -s);
+  addQuad(scene.mesh, -2.0f * ua - 2.0f * va, 4.0f * ua, 4.0f * va, {0.05f, 0.05f}, {0.5f, 0},
+          {0, 0.5f});
+  addQuad(scene.mesh, -2.0f * ub - 2.0f * vb, 4.0f * ub, 4.0f * vb, {0.95f, 0.45f}, {0, 0.5f},
+          {-0.5f, 0});
+  return scene;
+}
+
 NamedScene minified() {
   NamedScene scene{"minified", {}, {}};
   addQuad(scene.mesh, {-3, -1, -20}, {2, 0, 0}, {0, 2, 0}, {0, 0}, {1, 0},
@@ -64,7 +122,7 @@ NamedScene minified() {
 }  // namespace
 
 std::vector<std::string> testSceneNames() {
-  return {"room", "grazing", "horizon", "coplanar", "minified", "terrain"};
+  return {"room", "grazing", "horizon", "coplanar", "minified", "terrain", "occluders", "crossing"};
 }
 
 NamedScene testScene(const std::string& name) {
@@ -76,8 +134,12 @@ NamedScene testScene(const std::string& name) {
   if (name == "coplanar") return coplanar();
   if (name == "minified") return minified();
   if (name == "terrain") return {"terrain", heightmapTerrain({}), terrainCamera({})};
-  throw std::invalid_argument("scene '" + name +
-                              "' is not one of room, grazing, horizon, coplanar, minified");
+  if (name == "occluders") return occluders();
+  if (name == "crossing") return crossing();
+  std::string names;
+  for (const std::string& known : testSceneNames())
+    names.append(names.empty() ? "" : ", ").append(known);
+  throw std::invalid_argument("scene '" + name + "' is not one of " + names);
 }
 
 }  // namespace vt

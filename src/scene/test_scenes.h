@@ -9,6 +9,9 @@
 //   coplanar   two coplanar overlapping quads with different texture areas (decals)
 //   minified   a whole texture on a few hundred pixels, and a magnified corner
 //   terrain    hills from a heightmap under one continuous texture area (terrain.h)
+//   occluders  a wall with a panel drawn before it and a box drawn after it, well in front: what
+//              the depth test decides, whatever the draw order
+//   crossing   two large quads crossing at an angle: a depth-decided intersection line
 
 #include <string>
 #include <vector>

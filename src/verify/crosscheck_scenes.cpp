@@ -11,6 +11,7 @@
 #include "format/virtual_texture_reader.h"
 #include "gl/headless_context.h"
 #include "render/backend.h"
+#include "render/precision_model.h"
 #include "render/precision_model_file.h"
 #include "scene/clip_space_mesh.h"
 #include "shader/needbuffer.h"
@@ -36,7 +37,7 @@ std::string modelFileFor(const std::string& model, const std::string& renderer) 
     const std::optional<std::filesystem::path> measured = measuredModelFile(renderer);
     return measured ? measured->string() : "";
   }
-  return model == "exact" || model == "llvmpipe" || model == "gl45" ? "" : model;
+  return isModelName(model) ? "" : model;
 }
 
 }  // namespace
@@ -98,6 +99,7 @@ ScenesCheck crosscheckScenes(const ScenesCheckOptions& options) {
   summary["resident_pages"] = cache.residentPages.size();
   summary["settings"] = {{"LP_NUM_THREADS", environment("LP_NUM_THREADS")},
                          {"GALLIVM_PERF", environment("GALLIVM_PERF")},
+                         {"LP_PERF", environment("LP_PERF")},
                          {"GALLIUM_OVERRIDE_CPU_CAPS", environment("GALLIUM_OVERRIDE_CPU_CAPS")},
                          {"cpu_fma", static_cast<bool>(__builtin_cpu_supports("fma"))}};
   summary["frames"] = nlohmann::json::array();

@@ -39,7 +39,7 @@ TEST(CrosscheckCommand, EveryScenePassesAndTheSummaryRecordsTheSettings) {
   std::ifstream in(dir / "out" / "summary.json");
   const auto summary = nlohmann::json::parse(in);
   EXPECT_EQ(summary["passed"], true);
-  EXPECT_EQ(summary["frames"].size(), 12u);  // six scenes, two modes
+  EXPECT_EQ(summary["frames"].size(), 16u);  // eight scenes, two modes
   EXPECT_EQ(summary["settings"]["LP_NUM_THREADS"], "2");
   EXPECT_TRUE(summary["settings"].contains("GALLIVM_PERF"));
   EXPECT_TRUE(summary["settings"].contains("GALLIUM_OVERRIDE_CPU_CAPS"));
@@ -122,7 +122,7 @@ TEST(CrosscheckCommand, LlvmpipeLiesInsideEveryGl45Set) {
   std::ifstream in(dir / "out" / "summary.json");
   const auto summary = nlohmann::json::parse(in);
   EXPECT_EQ(summary["model"], "gl45");
-  EXPECT_EQ(summary["frames"].size(), 12u);
+  EXPECT_EQ(summary["frames"].size(), 16u);
   EXPECT_EQ(summary["totals"]["unexplained"], 0u);
   // The model leaves room (llvmpipe differs from IEEE arithmetic in places), and says how much.
   EXPECT_GT(summary["totals"]["explained"].get<uint64_t>(), 0u);
@@ -171,7 +171,7 @@ TEST(CrosscheckCommand, SoftpipeIsBitExactUnderItsModel) {
   const auto summary = nlohmann::json::parse(in);
   EXPECT_EQ(summary["gl_renderer"], "softpipe");
   EXPECT_EQ(summary["model"], "softpipe");  // auto
-  EXPECT_EQ(summary["frames"].size(), 12u);
+  EXPECT_EQ(summary["frames"].size(), 16u);
   EXPECT_EQ(summary["totals"]["identical"], summary["totals"]["pixels"]);
   // Ambiguous only where flushing or keeping denormals changes the value: nowhere here.
   EXPECT_EQ(summary["totals"]["ambiguous_fraction"].get<double>(), 0.0);

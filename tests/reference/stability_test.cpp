@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -47,21 +48,26 @@ class Stability : public ::testing::Test {
     return *textures_.back();
   }
 
+  struct Coverage {
+    size_t covered = 0, defined = 0;
+  };
+
   // Every covered pixel's needbuffer names a page inside its level, levels within [0, L], and
-  // the colour is a byte (not NaN). Returns the number of covered pixels.
-  static size_t expectDefined(const Frame& frame, uint32_t finestLevel) {
-    size_t covered = 0;
+  // the lod lies in [0, L]. Returns the covered pixels and how many of them are so defined.
+  static Coverage expectDefined(const Frame& frame, uint32_t finestLevel) {
+    Coverage coverage;
     for (size_t i = 0; i < frame.need.size(); ++i) {
       const auto page = decodeNeed(frame.need[i], false);
       if (!page) continue;
-      ++covered;
-      EXPECT_LE(page->level, finestLevel);
-      EXPECT_LT(page->x, 1u << page->level);
-      EXPECT_LT(page->y, 1u << page->level);
-      EXPECT_GE(frame.lod[i], 0.0f);
-      EXPECT_LE(frame.lod[i], static_cast<float>(finestLevel));
+      ++coverage.covered;
+      const bool defined = page->level <= finestLevel && page->x < (1u << page->level) &&
+                           page->y < (1u << page->level) && frame.lod[i] >= 0.0f &&
+                           frame.lod[i] <= static_cast<float>(finestLevel);
+      EXPECT_TRUE(defined) << "pixel " << i << ": page (" << page->x << ", " << page->y
+                           << ") of level " << page->level << ", lod " << frame.lod[i];
+      coverage.defined += defined ? 1 : 0;
     }
-    return covered;
+    return coverage;
   }
 
   test::ScratchDirectory dir_;
@@ -120,6 +126,10 @@ double expectedLod(double thetaDegrees, double scale, Viewport viewport, const C
 }
 
 TEST_F(Stability, GrazingAnglesUpTo8999Degrees) {
+  // The oracle's float arithmetic (exact profile) against double precision: at 89.99 degrees one
+  // pixel spans about 10^4 texels, and the interpolated (s, t) carry float's relative error.
+  // 2e-3 levels is this suite's own bound, far below any level decision (a level is 1.0).
+  const double bound = 2e-3;
   const ResidentTexture& t = texture(9);  // L = 8, 4096 texels
   const Viewport viewport{128, 96};
   const int px = 64, py = 10;  // well below the centre: on the plane at every angle
@@ -138,11 +148,11 @@ TEST_F(Stability, GrazingAnglesUpTo8999Degrees) {
     const double expected = expectedLod(theta, scale, viewport, camera, px, py, 8, 4096.0);
     const double error = std::fabs(frame.lod[i] - expected);
     worst = std::max(worst, error);
-    EXPECT_LE(error, 2e-3) << "theta " << theta << ": lod " << frame.lod[i] << ", expected "
-                           << expected;
+    EXPECT_LE(error, bound) << "theta " << theta << ": lod " << frame.lod[i] << ", expected "
+                            << expected;
   }
   report("grazing angles 0..89.99 deg (lod at one pixel)", "ray-plane lod in double",
-         format("worst error %.2e", worst), "2e-3 levels");
+         format("worst error %.2e", worst), format("%g levels", bound));
 }
 
 TEST_F(Stability, ExtremeMagnificationAndMinificationClampTheLod) {
@@ -150,14 +160,16 @@ TEST_F(Stability, ExtremeMagnificationAndMinificationClampTheLod) {
   RenderSettings settings;
   settings.debugChannels = true;
   settings.viewport = {64, 64};
+  std::string measured;
   for (const float scale : {1e-7f, 1e3f}) {
     Camera camera;
     const Frame frame = renderFrame(tiltedQuad(0.0, scale, settings.viewport, camera), t, settings);
     expectDefined(frame, 4);
     const float lod = frame.lod[static_cast<size_t>(32 * 64 + 32)];
     EXPECT_EQ(lod, scale < 1.0f ? 4.0f : 0.0f);
+    measured.append(measured.empty() ? "" : " / ").append(format("lod = %g", lod));
   }
-  report("extreme magnification / minification", "lod = L / lod = 0", "lod = L / lod = 0", "exact");
+  report("extreme magnification / minification", "lod = L = 4 / lod = 0", measured, "exact");
 }
 
 TEST_F(Stability, ZeroDerivativesNeedTheFinestLevel) {
@@ -170,12 +182,17 @@ TEST_F(Stability, ZeroDerivativesNeedTheFinestLevel) {
   settings.debugChannels = true;
   settings.viewport = {32, 32};
   const Frame frame = renderFrame(mesh, t, settings);
-  EXPECT_EQ(expectDefined(frame, 4), 32u * 32u);
+  EXPECT_EQ(expectDefined(frame, 4).covered, 32u * 32u);
+  size_t asExpected = 0;
   for (size_t i = 0; i < frame.need.size(); ++i) {
     EXPECT_EQ(frame.lod[i], 4.0f);                      // log2(0) = -Inf clamps to the finest level
     EXPECT_EQ(frame.need[i], glm::uvec4(4, 11, 4, 1));  // floor(0.3 * 16), floor(0.7 * 16)
+    asExpected += frame.lod[i] == frame.lod[0] && frame.need[i] == frame.need[0] ? 1 : 0;
   }
-  report("zero derivatives (constant uv)", "lod = L, page floor(uv 2^L)", "lod = L, page (4, 11)",
+  char measured[96];
+  std::snprintf(measured, sizeof measured, "lod = %g, page (%u, %u) at %zu of %zu pixels",
+                frame.lod[0], frame.need[0].x, frame.need[0].y, asExpected, frame.need.size());
+  report("zero derivatives (constant uv)", "lod = L = 4, page floor(uv 2^L) = (4, 11)", measured,
          "exact");
 }
 
@@ -184,6 +201,7 @@ TEST_F(Stability, CoordinatesAtZeroAndOneStayInTheTexture) {
   RenderSettings settings;
   settings.debugChannels = true;
   settings.viewport = {16, 16};
+  std::string measured;
   for (const float value : {0.0f, 1.0f}) {
     ClipSpaceMesh mesh;
     for (const auto& [x, y] : std::vector<std::pair<float, float>>{{-1, -1}, {3, -1}, {-1, 3}})
@@ -193,9 +211,13 @@ TEST_F(Stability, CoordinatesAtZeroAndOneStayInTheTexture) {
     expectDefined(frame, 4);
     const uint32_t page = value == 0.0f ? 0u : 15u;
     EXPECT_EQ(frame.need[0], glm::uvec4(page, page, 4, 1));
+    char text[48];
+    std::snprintf(text, sizeof text, "(%u, %u) of level %u", frame.need[0].x, frame.need[0].y,
+                  frame.need[0].z);
+    measured.append(measured.empty() ? "" : " / ").append(text);
   }
-  report("s, t exactly 0 and 1.0", "first page / last page (15, 15) of level 4",
-         "(0, 0) / (15, 15)", "exact");
+  report("s, t exactly 0 and 1.0", "first page (0, 0) / last page (15, 15) of level 4", measured,
+         "exact");
 }
 
 TEST_F(Stability, NanAndInfiniteAttributesGiveDefinedPages) {
@@ -205,21 +227,29 @@ TEST_F(Stability, NanAndInfiniteAttributesGiveDefinedPages) {
   settings.viewport = {16, 16};
   const float nan = std::numeric_limits<float>::quiet_NaN(),
               inf = std::numeric_limits<float>::infinity();
+  size_t covered = 0, defined = 0;
   for (const glm::vec2 uv : {glm::vec2(nan, 0.5f), glm::vec2(inf, -inf), glm::vec2(nan, nan)}) {
     ClipSpaceMesh mesh;
     mesh.vertices = {
         {{-1, -1, 0, 1}, uv}, {{3, -1, 0, 1}, {0.5f, 0.5f}}, {{-1, 3, 0, 1}, {0.5f, 0.5f}}};
     mesh.indices = {0, 1, 2};
-    const Frame frame = renderFrame(mesh, t, settings);
-    EXPECT_EQ(expectDefined(frame, 4), 256u);
+    const Coverage coverage = expectDefined(renderFrame(mesh, t, settings), 4);
+    EXPECT_EQ(coverage.covered, 256u);
+    covered += coverage.covered;
+    defined += coverage.defined;
   }
   // A NaN position drops the triangle (it draws nothing).
   ClipSpaceMesh broken;
   broken.vertices = {{{nan, -1, 0, 1}, {0, 0}}, {{3, -1, 0, 1}, {0, 0}}, {{-1, 3, 0, 1}, {0, 0}}};
   broken.indices = {0, 1, 2};
-  EXPECT_EQ(expectDefined(renderFrame(broken, t, settings), 4), 0u);
-  report("NaN and Inf attributes", "pages inside their level, lod in [0, L]", "all pixels defined",
-         "exact");
+  const size_t drawnByNan = expectDefined(renderFrame(broken, t, settings), 4).covered;
+  EXPECT_EQ(drawnByNan, 0u);
+  char measured[96];
+  std::snprintf(measured, sizeof measured,
+                "%zu of %zu pixels defined; a NaN position draws %zu pixels", defined, covered,
+                drawnByNan);
+  report("NaN and Inf attributes", "pages inside their level, lod in [0, L]; NaN position: nothing",
+         measured, "exact");
 }
 
 TEST_F(Stability, HugeTextureCoordinatePrecision) {
@@ -254,10 +284,14 @@ TEST_F(Stability, HugeTextureCoordinatePrecision) {
     worstTexels =
         std::max(worstTexels, std::fabs(frame.uv[static_cast<size_t>(px)].x - exact) * 524288.0);
   }
-  // Plane setup, two fused evaluations, a reciprocal and a product: a few ulps each way.
-  EXPECT_LE(worstTexels, 8.0 / 32.0);  // 8 ulps of s
+  // Plane setup, two fused evaluations, a reciprocal and a product: a few ulps each way; this
+  // suite's bound is 8 ulps of s.
+  const int boundUlps = 8;
+  EXPECT_LE(worstTexels, boundUlps / 32.0);
+  char bound[48];
+  std::snprintf(bound, sizeof bound, "%d ulps = %g texel", boundUlps, boundUlps / 32.0);
   report("2^19 texels per side, s near 1", "one ulp of s = 1/32 texel",
-         format("worst %.4f texel", worstTexels), "8 ulps = 0.25 texel");
+         format("worst %.4f texel", worstTexels), bound);
 }
 
 TEST_F(Stability, DegenerateAndSliverTriangles) {
@@ -323,7 +357,8 @@ TEST_F(Stability, HelperPixelsBeyondTheHorizon) {
   settings.viewport = {64, 64};
   applyModel(settings, gl45Model());
   const Frame frame = renderFrame(toClipSpace(ground, camera, settings.viewport), t, settings);
-  EXPECT_GT(expectDefined(frame, 4), 0u);
+  const Coverage coverage = expectDefined(frame, 4);
+  EXPECT_GT(coverage.covered, 0u);
   // Under gl45 a helper pixel near w = 0 leaves the LOD open: the set spans several levels.
   size_t beyond = 0;
   for (size_t i = 0; i < frame.need.size(); ++i)
@@ -334,9 +369,15 @@ TEST_F(Stability, HelperPixelsBeyondTheHorizon) {
         break;
       }
   EXPECT_GT(beyond, 0u);  // the case really happens, and the set widens for it
-  std::string measured = std::to_string(beyond);
-  measured.append(" pixels with open levels under gl45, all defined");
-  report("helper pixels beyond w = 0", "defined pages; open levels under gl45", measured, "exact");
+  char measured[96];
+  std::snprintf(measured, sizeof measured,
+                "%zu pixels with open levels under gl45; %zu of %zu defined", beyond,
+                coverage.defined, coverage.covered);
+  const PrecisionModel gl45 = gl45Model();
+  char bound[96];
+  std::snprintf(bound, sizeof bound, "exact; gl45: attributes %g, sqrt %g, log2 %g units of 2^-23",
+                gl45.attributeUlps, gl45.sqrtUlps, gl45.log2Ulps);
+  report("helper pixels beyond w = 0", "defined pages; open levels under gl45", measured, bound);
 }
 
 TEST_F(Stability, CoplanarFacesFirstDrawnWinsAndEitherMayUnderGl45) {
@@ -351,8 +392,10 @@ TEST_F(Stability, CoplanarFacesFirstDrawnWinsAndEitherMayUnderGl45) {
   settings.viewport = {16, 16};
   applyModel(settings, gl45Model());
   const Frame frame = renderFrame(mesh, t, settings);
+  size_t firstWins = 0, bothInSet = 0;
   for (size_t i = 0; i < frame.triangle.size(); ++i) {
     EXPECT_EQ(frame.triangle[i], 0);  // GL_LESS: the later, equal depth fails
+    firstWins += frame.triangle[i] == 0 ? 1 : 0;
     // Under gl45 depth precision decides: the set holds the second triangle, for depth.
     bool second = false;
     for (uint32_t k = frame.sets.offsets[i]; k < frame.sets.offsets[i + 1]; ++k)
@@ -363,9 +406,17 @@ TEST_F(Stability, CoplanarFacesFirstDrawnWinsAndEitherMayUnderGl45) {
       listing += " (" + std::to_string(frame.sets.alternatives[k].triangle) + ", " +
                  std::to_string(frame.sets.alternatives[k].reasons) + ")";
     EXPECT_TRUE(second) << i << listing;
+    bothInSet += second ? 1 : 0;
   }
-  report("coplanar faces (decals)", "first drawn wins everywhere; either under gl45",
-         "first drawn; both in every set", "exact");
+  char measured[96];
+  std::snprintf(measured, sizeof measured,
+                "first drawn at %zu of %zu pixels; both in the set at %zu", firstWins,
+                frame.triangle.size(), bothInSet);
+  char bound[96];
+  std::snprintf(bound, sizeof bound, "exact; gl45: depth %g units of 2^-23",
+                settings.model->depthUlps);
+  report("coplanar faces (decals)", "first drawn wins everywhere; either under gl45", measured,
+         bound);
 }
 
 TEST_F(Stability, LodExactlyOnALevel) {
@@ -383,11 +434,26 @@ TEST_F(Stability, LodExactlyOnALevel) {
   RenderSettings bilinear = trilinear;
   bilinear.trilinear = false;
   const Frame a = renderFrame(mesh, t, trilinear), b = renderFrame(mesh, t, bilinear);
-  for (size_t i = 0; i < a.lod.size(); ++i) EXPECT_EQ(a.lod[i], 2.0f);
+  size_t onLevel = 0;
+  for (size_t i = 0; i < a.lod.size(); ++i) {
+    EXPECT_EQ(a.lod[i], 2.0f);
+    onLevel += a.lod[i] == 2.0f && a.need[i].z == 2 ? 1 : 0;
+  }
   EXPECT_EQ(a.need, b.need);
   EXPECT_EQ(a.color, b.color);
-  report("lod exactly on a level", "needs that level; trilinear = bilinear",
-         "lod 2.0, identical colours", "exact");
+  size_t sameColour = 0;
+  for (size_t i = 0; i < a.need.size() && 4 * i + 4 <= std::min(a.color.size(), b.color.size());
+       ++i)
+    sameColour +=
+        std::equal(a.color.begin() + 4 * i, a.color.begin() + 4 * i + 4, b.color.begin() + 4 * i)
+            ? 1
+            : 0;
+  char measured[112];
+  std::snprintf(measured, sizeof measured,
+                "lod 2.0 and level 2 at %zu of %zu pixels; colours identical at %zu of %zu",
+                onLevel, a.lod.size(), sameColour, a.need.size());
+  report("lod exactly on a level", "lod = L - 2 = 2 needs level 2; trilinear = bilinear", measured,
+         "exact");
 }
 
 }  // namespace
