@@ -1,6 +1,8 @@
 #include "reference/frame_comparison.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstdlib>
 #include <optional>
@@ -125,7 +127,120 @@ Alternative pointAlternative(const Frame& oracle, size_t i, bool need8) {
   return a;
 }
 
+// The unorm8 values of one channel some alternative admits, as 256 bits.
+class ChannelValues {
+ public:
+  void insert(int lo, int hi) {
+    for (int w = 0; w < 4; ++w) {
+      const int first = std::max(lo, 64 * w), last = std::min(hi, 64 * w + 63);
+      if (first > last) continue;
+      const int bits = last - first + 1;
+      const uint64_t run = bits == 64 ? ~uint64_t{0} : (uint64_t{1} << bits) - 1;
+      words_[static_cast<size_t>(w)] |= run << (first - 64 * w);
+    }
+  }
+  int count() const {
+    int n = 0;
+    for (const uint64_t word : words_) n += std::popcount(word);
+    return n;
+  }
+
+ private:
+  std::array<uint64_t, 4> words_{};
+};
+
+// The pages of one level an alternative admits: columns x0..x1, rows y0..y1.
+struct PageRange {
+  int x0, x1, y0, y1;
+};
+
+PageRange pageRange(const Alternative& a, int level) {
+  return {pageOf(a.uvLo.x, level), pageOf(a.uvHi.x, level), pageOf(a.uvLo.y, level),
+          pageOf(a.uvHi.y, level)};
+}
+
+// How many pages lie in at least one range: the plane cut at every range's edges into cells, each
+// cell counted once when a range holds it.
+uint64_t pagesInUnion(std::span<const PageRange> ranges) {
+  if (ranges.size() == 1)
+    return static_cast<uint64_t>(ranges[0].x1 - ranges[0].x0 + 1) *
+           static_cast<uint64_t>(ranges[0].y1 - ranges[0].y0 + 1);
+  std::vector<int> xs, ys;
+  for (const PageRange& r : ranges) {
+    xs.insert(xs.end(), {r.x0, r.x1 + 1});
+    ys.insert(ys.end(), {r.y0, r.y1 + 1});
+  }
+  for (std::vector<int>* cuts : {&xs, &ys}) {
+    std::sort(cuts->begin(), cuts->end());
+    cuts->erase(std::unique(cuts->begin(), cuts->end()), cuts->end());
+  }
+  uint64_t pages = 0;
+  for (size_t i = 0; i + 1 < xs.size(); ++i)
+    for (size_t j = 0; j + 1 < ys.size(); ++j) {
+      const bool held = std::any_of(ranges.begin(), ranges.end(), [&](const PageRange& r) {
+        return r.x0 <= xs[i] && xs[i] <= r.x1 && r.y0 <= ys[j] && ys[j] <= r.y1;
+      });
+      if (held)
+        pages +=
+            static_cast<uint64_t>(xs[i + 1] - xs[i]) * static_cast<uint64_t>(ys[j + 1] - ys[j]);
+    }
+  return pages;
+}
+
+double mean(double sum, uint64_t count) { return count ? sum / static_cast<double>(count) : 0.0; }
+
 }  // namespace
+
+double SetWidths::meanColorWidth() const { return mean(colorWidthSum, covered); }
+double SetWidths::meanLevels() const { return mean(static_cast<double>(levelSum), covered); }
+double SetWidths::meanPages() const { return mean(static_cast<double>(pageSum), covered); }
+
+void SetWidths::add(const SetWidths& other) {
+  covered += other.covered;
+  colorWidthSum += other.colorWidthSum;
+  levelSum += other.levelSum;
+  pageSum += other.pageSum;
+}
+
+SetWidths pixelSetWidths(const ResultSets& sets, size_t pixel) {
+  if (sets.empty()) return {};
+  const std::span<const Alternative> set(sets.alternatives.data() + sets.offsets[pixel],
+                                         sets.offsets[pixel + 1] - sets.offsets[pixel]);
+  std::array<ChannelValues, 4> channels;
+  uint32_t levels = 0;  // bit m: level m admitted
+  for (const Alternative& a : set) {
+    for (size_t c = 0; c < 4; ++c)
+      channels[c].insert(a.colorLo[static_cast<int>(c)], a.colorHi[static_cast<int>(c)]);
+    if (a.triangle >= 0)
+      for (int m = a.levelLo; m <= std::min<int>(a.levelHi, kMaxLevel); ++m) levels |= 1u << m;
+  }
+  if (levels == 0) return {};  // no triangle: the pixel stays empty
+  SetWidths widths;
+  widths.covered = 1;
+  for (const ChannelValues& values : channels) widths.colorWidthSum += values.count() - 1;
+  widths.colorWidthSum /= 4;
+  widths.levelSum = static_cast<uint64_t>(std::popcount(levels));
+  std::vector<PageRange> ranges;
+  for (int m = 0; m <= static_cast<int>(kMaxLevel); ++m) {
+    if ((levels & (1u << m)) == 0) continue;
+    ranges.clear();
+    for (const Alternative& a : set)
+      if (a.triangle >= 0 && a.levelLo <= m && m <= a.levelHi) ranges.push_back(pageRange(a, m));
+    widths.pageSum += pagesInUnion(ranges);
+  }
+  return widths;
+}
+
+SetWidths setWidths(const ResultSets& sets, std::span<const glm::uvec4> need, bool need8) {
+  SetWidths widths;
+  if (sets.empty()) {
+    for (const glm::uvec4& value : need)
+      if (decodeNeed(value, need8)) widths.add({1, 0.0, 1, 1});
+    return widths;
+  }
+  for (size_t i = 0; i + 1 < sets.offsets.size(); ++i) widths.add(pixelSetWidths(sets, i));
+  return widths;
+}
 
 const char* widthUnit(int reason) {
   static const char* const kUnits[kResultReasons] = {"triangle", "triangle", "pages", "levels",

@@ -66,4 +66,40 @@ FrameComparison compareFrames(const Frame& oracle, std::span<const uint8_t> colo
 // Adds another frame's counts (totals over frames; the listed pixels and images stay).
 void accumulate(FrameComparison& total, const FrameComparison& frame);
 
+// How tight a verdict is: how much each covered pixel's result set admits, where the ambiguous
+// fraction only counts the pixels that admit more than one value. A pixel is covered when some
+// alternative of its set draws a triangle (under a pinned model, whose sets are empty: when the
+// oracle's needbuffer names a page). Per covered pixel, each measure a marginal of the set (the
+// needbuffer and the colour must still come from one alternative to pass):
+//   colour width  per channel, the number of unorm8 values v that some alternative admits
+//                 (colorLo <= v <= colorHi; the clear alternative admits 0 alone) minus one: hi -
+//                 lo for one interval, 0 for one value, and a union of disjoint intervals counts
+//                 only the values inside them. Averaged over the four channels, in units of 1/255.
+//   levels        the number of needed levels m that some triangle's alternative admits
+//                 (levelLo <= m <= levelHi).
+//   pages         the number of distinct needbuffer values (px, py, m) that some triangle's
+//                 alternative admits: at each of its levels m, the pages from (s, t) = uvLo to uvHi
+//                 at level m, as compareFrames judges an observed page. "No geometry" is neither a
+//                 level nor a page.
+// The means are over covered pixels (a frame's background does not dilute them). Under a pinned
+// model every covered pixel's set is the oracle's one value: width 0, one level, one page.
+struct SetWidths {
+  uint64_t covered = 0;      // covered pixels
+  double colorWidthSum = 0;  // their colour widths (each the mean over channels), 1/255
+  uint64_t levelSum = 0;     // their admitted levels
+  uint64_t pageSum = 0;      // their admitted needbuffer values
+
+  double meanColorWidth() const;
+  double meanLevels() const;
+  double meanPages() const;
+  void add(const SetWidths& other);
+};
+
+// The widths of pixel `pixel`'s set (covered 0 or 1); nothing for empty (pinned) sets.
+SetWidths pixelSetWidths(const ResultSets& sets, size_t pixel);
+
+// A frame's widths: from its result sets, or, where they are empty (a pinned model), from the
+// oracle's own needbuffer `need` (one value per covered pixel).
+SetWidths setWidths(const ResultSets& sets, std::span<const glm::uvec4> need, bool need8);
+
 }  // namespace vt::reference

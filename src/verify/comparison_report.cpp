@@ -32,9 +32,23 @@ double fraction(uint64_t part, uint64_t whole) {
   return whole ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
 }
 
+// Written next to "ambiguous_fraction" in every record.
+void addWidths(nlohmann::json& record, const reference::SetWidths& widths) {
+  record["covered"] = widths.covered;
+  record["mean_color_width"] = widths.meanColorWidth();
+  record["mean_candidate_levels"] = widths.meanLevels();
+  record["mean_candidate_pages"] = widths.meanPages();
+}
+
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4f", value);
+  return text;
+}
+
 }  // namespace
 
-void ComparisonTotals::add(const oracle::Comparison& c) {
+void ComparisonTotals::add(const oracle::Comparison& c, const reference::SetWidths& frameWidths) {
   pixels += c.pixels;
   identical += c.identical;
   explained += c.explained;
@@ -45,56 +59,72 @@ void ComparisonTotals::add(const oracle::Comparison& c) {
     unexplainedBy[r] += c.unexplainedBy[r];
     widenBy[r] = std::max(widenBy[r], c.widenBy[r]);
   }
+  widths.add(frameWidths);
 }
 
 double ComparisonTotals::ambiguousFraction() const { return fraction(ambiguous, pixels); }
 
 nlohmann::json ComparisonTotals::json() const {
-  return {{"pixels", pixels},
-          {"identical", identical},
-          {"explained", explained},
-          {"unexplained", unexplained},
-          {"ambiguous", ambiguous},
-          {"ambiguous_fraction", ambiguousFraction()},
-          {"explained_by", byReason(explainedBy)},
-          {"unexplained_by", widenings(unexplainedBy, widenBy)}};
+  nlohmann::json record = {{"pixels", pixels},
+                           {"identical", identical},
+                           {"explained", explained},
+                           {"unexplained", unexplained},
+                           {"ambiguous", ambiguous},
+                           {"ambiguous_fraction", ambiguousFraction()},
+                           {"explained_by", byReason(explainedBy)},
+                           {"unexplained_by", widenings(unexplainedBy, widenBy)}};
+  addWidths(record, widths);
+  return record;
 }
 
 std::string ComparisonTotals::line() const {
-  char text[240];
+  char text[320];
   std::snprintf(text, sizeof text,
                 "%llu of %llu pixels identical, %llu explained, %llu unexplained; ambiguous "
-                "fraction %.4f",
+                "fraction %.4f, colour width %.4f/255, %.4f levels, %.4f pages",
                 static_cast<unsigned long long>(identical), static_cast<unsigned long long>(pixels),
                 static_cast<unsigned long long>(explained),
-                static_cast<unsigned long long>(unexplained), ambiguousFraction());
+                static_cast<unsigned long long>(unexplained), ambiguousFraction(),
+                widths.meanColorWidth(), widths.meanLevels(), widths.meanPages());
   return text;
 }
 
-nlohmann::json comparisonJson(const oracle::Comparison& c) {
-  return {{"model", c.model},
-          {"pixels", c.pixels},
-          {"identical", c.identical},
-          {"explained", c.explained},
-          {"unexplained", c.unexplained},
-          {"ambiguous", c.ambiguous},
-          {"ambiguous_fraction", fraction(c.ambiguous, c.pixels)},
-          {"explained_by", byReason(c.explainedBy)},
-          {"unexplained_by", widenings(c.unexplainedBy, c.widenBy)},
-          {"needbuffer_mismatched", c.needMismatched},
-          {"max_color_difference", c.maxColorDifference},
-          {"mean_color_difference", c.meanColorDifference}};
+nlohmann::json comparisonJson(const oracle::Comparison& c, const reference::SetWidths& widths) {
+  nlohmann::json record = {{"model", c.model},
+                           {"pixels", c.pixels},
+                           {"identical", c.identical},
+                           {"explained", c.explained},
+                           {"unexplained", c.unexplained},
+                           {"ambiguous", c.ambiguous},
+                           {"ambiguous_fraction", fraction(c.ambiguous, c.pixels)},
+                           {"explained_by", byReason(c.explainedBy)},
+                           {"unexplained_by", widenings(c.unexplainedBy, c.widenBy)},
+                           {"needbuffer_mismatched", c.needMismatched},
+                           {"max_color_difference", c.maxColorDifference},
+                           {"mean_color_difference", c.meanColorDifference}};
+  addWidths(record, widths);
+  return record;
+}
+
+std::vector<std::pair<std::string, std::string>> widthProperties(
+    const oracle::Comparison& c, const reference::SetWidths& widths) {
+  return {{"ambiguous_fraction", number(fraction(c.ambiguous, c.pixels))},
+          {"covered", std::to_string(widths.covered)},
+          {"mean_color_width", number(widths.meanColorWidth())},
+          {"mean_candidate_levels", number(widths.meanLevels())},
+          {"mean_candidate_pages", number(widths.meanPages())}};
 }
 
 void printComparison(const std::string& name, const std::string& detail,
-                     const oracle::Comparison& c) {
+                     const oracle::Comparison& c, const reference::SetWidths& widths) {
   std::printf(
       "  %-12s %-28s %8llu pixels: %8llu identical, %6llu explained, %6llu unexplained, "
-      "ambiguous %.4f; colour max %d, mean %.4f\n",
+      "ambiguous %.4f (width %.4f/255, %.4f levels, %.4f pages); colour max %d, mean %.4f\n",
       name.c_str(), detail.c_str(), static_cast<unsigned long long>(c.pixels),
       static_cast<unsigned long long>(c.identical), static_cast<unsigned long long>(c.explained),
       static_cast<unsigned long long>(c.unexplained), fraction(c.ambiguous, c.pixels),
-      c.maxColorDifference, c.meanColorDifference);
+      widths.meanColorWidth(), widths.meanLevels(), widths.meanPages(), c.maxColorDifference,
+      c.meanColorDifference);
   for (int r = 0; r < oracle::kReasons; ++r)
     if (c.unexplainedBy[static_cast<size_t>(r)] != 0)
       std::printf("  %-12s %-28s %8llu unexplained pixels need %s widened by %g %s\n", "", "",

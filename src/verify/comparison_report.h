@@ -1,14 +1,19 @@
 #pragma once
 // How `vt crosscheck` reports comparisons with the oracle (<vt/oracle/compare.h>), for rendered
 // scenes and for captures alike: one printed line and one JSON record per frame, difference
-// images, and the totals.
+// images, and the totals. Beside the ambiguous fraction each reports how tight the verdict is: the
+// mean colour width, candidate levels and candidate pages of the covered pixels' result sets
+// (reference::SetWidths, reference/frame_comparison.h, defines them).
 
 #include <array>
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "reference/frame_comparison.h"
 #include "vt/oracle/compare.h"
 
 namespace vt {
@@ -17,22 +22,28 @@ struct ComparisonTotals {
   uint64_t pixels = 0, identical = 0, explained = 0, unexplained = 0, ambiguous = 0;
   std::array<uint64_t, oracle::kReasons> explainedBy{}, unexplainedBy{};
   std::array<double, oracle::kReasons> widenBy{};
+  reference::SetWidths widths;
 
-  void add(const oracle::Comparison& c);
+  void add(const oracle::Comparison& c, const reference::SetWidths& frameWidths);
   double ambiguousFraction() const;
   nlohmann::json json() const;
   // "<identical> of <pixels> pixels identical, <explained> explained, <unexplained> unexplained;
-  // ambiguous fraction <f>"
+  // ambiguous fraction <f>, colour width <w>/255, <l> levels, <p> pages"
   std::string line() const;
 };
 
-// The counts, by reason, the needbuffer mismatches and the colour differences.
-nlohmann::json comparisonJson(const oracle::Comparison& c);
+// The counts, by reason, the needbuffer mismatches, the colour differences and the set widths.
+nlohmann::json comparisonJson(const oracle::Comparison& c, const reference::SetWidths& widths);
 
 // "  <name> <detail> <pixels> pixels: ... identical, ... explained, ... unexplained, ambiguous
-// ...; colour max M, mean D", then one line per parameter that would have to widen.
+// ... (width W/255, L levels, P pages); colour max M, mean D", then one line per parameter that
+// would have to widen.
 void printComparison(const std::string& name, const std::string& detail,
-                     const oracle::Comparison& c);
+                     const oracle::Comparison& c, const reference::SetWidths& widths);
+
+// The set widths as JUnit-style (name, value) properties, the ambiguous fraction among them.
+std::vector<std::pair<std::string, std::string>> widthProperties(
+    const oracle::Comparison& c, const reference::SetWidths& widths);
 
 // <stem>-color-difference.png and <stem>-classes.png in `folder`.
 void writeComparisonImages(const std::filesystem::path& folder, const std::string& stem,

@@ -12,6 +12,7 @@
 #include "render/precision_model_file.h"
 #include "verify/comparison_report.h"
 #include "verify/junit_report.h"
+#include "verify/oracle_conversions.h"
 #include "vt/oracle.h"
 
 namespace vt {
@@ -93,7 +94,7 @@ CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options) {
   for (const std::filesystem::path& manifest : manifests) {
     const std::string name = manifest.stem().string();
     const auto start = Clock::now();
-    JUnitCase testCase{name, 0.0, JUnitCase::Outcome::kPassed, "", ""};
+    JUnitCase testCase{name, 0.0, JUnitCase::Outcome::kPassed, "", "", {}};
     try {
       const oracle::Capture capture = oracle::readCapture(manifest);
       std::unique_ptr<oracle::Texture>& texture = textures[capture.texture];
@@ -112,6 +113,7 @@ CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options) {
               ? oracle::checkCapture(capture, *texture, judge.profile, options.threads)
               : oracle::checkCapture(capture, *texture, judge.file, options.threads);
       const oracle::Comparison& c = check.comparison;
+      const reference::SetWidths widths = verdictWidths(check.oracle);
       const oracle::Viewport v = capture.scene.viewport;
       writeComparisonImages(folder, name, v, c);
       nlohmann::json mismatches = nlohmann::json::array();
@@ -127,11 +129,12 @@ CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options) {
           {"needbuffer_encoding", oracle::toString(capture.needEncoding)},
           {"filtering", oracle::toString(capture.filtering)},
           {"sampling", oracle::toString(capture.sampling)}};
-      frame.update(comparisonJson(c));
+      frame.update(comparisonJson(c, widths));
       frame["unexplained_pixels"] = mismatches;
       frames.push_back(frame);
-      totals.add(c);
-      printComparison(name, c.model, c);
+      totals.add(c, widths);
+      printComparison(name, c.model, c, widths);
+      testCase.properties = widthProperties(c, widths);
       if (!c.passed()) {
         testCase.outcome = JUnitCase::Outcome::kFailed;
         testCase.message = std::to_string(c.unexplained) + " unexplained pixels under " + c.model +

@@ -117,12 +117,13 @@ ScenesCheck crosscheckScenes(const ScenesCheckOptions& options) {
       const Frame frame = gl->render(mesh, settings);
       const oracle::Comparison c =
           oracle::compare(expected, frame.color, oracle::flatNeed(frame.need));
+      const reference::SetWidths widths = verdictWidths(expected);
       writeComparisonImages(folder, scene.name + "-" + mode.name, publicMesh.viewport, c);
       nlohmann::json record = {{"scene", scene.name}, {"mode", mode.name}};
-      record.update(comparisonJson(c));
+      record.update(comparisonJson(c, widths));
       summary["frames"].push_back(record);
-      check.totals.add(c);
-      printComparison(scene.name, mode.name, c);
+      check.totals.add(c, widths);
+      printComparison(scene.name, mode.name, c, widths);
     }
   }
   summary["totals"] = check.totals.json();

@@ -66,12 +66,27 @@ void writeJUnitReport(const std::filesystem::path& file, const std::string& name
   for (const JUnitCase& c : cases) {
     xml.append("    <testcase classname=\"").append(escapeXml(name)).append("\" name=\"");
     xml.append(escapeXml(c.name)).append("\" time=\"").append(number(c.seconds)).append("\"");
-    if (c.outcome == JUnitCase::Outcome::kPassed) {
+    if (c.outcome == JUnitCase::Outcome::kPassed && c.properties.empty()) {
       xml.append("/>\n");
       continue;
     }
+    xml.append(">\n");
+    if (!c.properties.empty()) {
+      xml.append("      <properties>\n");
+      for (const auto& [property, value] : c.properties)
+        xml.append("        <property name=\"")
+            .append(escapeXml(property))
+            .append("\" value=\"")
+            .append(escapeXml(value))
+            .append("\"/>\n");
+      xml.append("      </properties>\n");
+    }
+    if (c.outcome == JUnitCase::Outcome::kPassed) {
+      xml.append("    </testcase>\n");
+      continue;
+    }
     const char* tag = c.outcome == JUnitCase::Outcome::kFailed ? "failure" : "error";
-    xml.append(">\n      <").append(tag).append(" message=\"").append(escapeXml(c.message));
+    xml.append("      <").append(tag).append(" message=\"").append(escapeXml(c.message));
     xml.append("\" type=\"")
         .append(c.outcome == JUnitCase::Outcome::kFailed ? "mismatch" : "input");
     xml.append("\">").append(escapeXml(c.details)).append("</").append(tag).append(">\n");

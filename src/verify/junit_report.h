@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vt {
@@ -15,6 +16,8 @@ struct JUnitCase {
   enum class Outcome { kPassed, kFailed, kError } outcome = Outcome::kPassed;
   std::string message;  // one line, for failures and errors
   std::string details;  // the body of <failure> or <error>
+  // <properties> of the test case (name, value), as Jenkins' and pytest's JUnit XML write them.
+  std::vector<std::pair<std::string, std::string>> properties;
 };
 
 // Writes the suite `name` through a temporary file renamed into place.

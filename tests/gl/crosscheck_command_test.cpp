@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -35,7 +36,8 @@ TEST(CrosscheckCommand, EveryScenePassesAndTheSummaryRecordsTheSettings) {
       {"crosscheck", (dir / "t.vt").string(), "--size", "160x100", "-o", (dir / "out").string()},
       dir.path());
   ASSERT_EQ(result.exitCode, 0) << result.out << result.err;
-  EXPECT_THAT(result.out, HasSubstr("0 unexplained; ambiguous fraction 0.0000: passed"));
+  EXPECT_THAT(result.out, HasSubstr("0 unexplained; ambiguous fraction 0.0000, colour width "
+                                    "0.0000/255, 1.0000 levels, 1.0000 pages: passed"));
   std::ifstream in(dir / "out" / "summary.json");
   const auto summary = nlohmann::json::parse(in);
   EXPECT_EQ(summary["passed"], true);
@@ -46,6 +48,13 @@ TEST(CrosscheckCommand, EveryScenePassesAndTheSummaryRecordsTheSettings) {
   if (summary["gl_renderer"].get<std::string>().find("llvmpipe") != std::string::npos &&
       summary["model"] == "llvmpipe") {
     EXPECT_EQ(summary["totals"]["identical"], summary["totals"]["pixels"]);
+  }
+  // A pinned model's verdict is one value per pixel: in every frame, width 0, one level, one page.
+  for (const nlohmann::json& frame : summary["frames"]) {
+    EXPECT_GT(frame["covered"].get<uint64_t>(), 0u) << frame["scene"];
+    EXPECT_EQ(frame["mean_color_width"].get<double>(), 0.0) << frame["scene"];
+    EXPECT_EQ(frame["mean_candidate_levels"].get<double>(), 1.0) << frame["scene"];
+    EXPECT_EQ(frame["mean_candidate_pages"].get<double>(), 1.0) << frame["scene"];
   }
   EXPECT_TRUE(
       std::filesystem::exists(dir / "out" / "horizon-texelfetch-trilinear-need32-classes.png"));
@@ -64,7 +73,8 @@ TEST(CrosscheckCommand, Q3dm6ishFlythroughPasses) {
        out + "/q3dm6ish.path.json", "--every", "48", "-o", (dir / "cc").string()},
       dir.path());
   ASSERT_EQ(result.exitCode, 0) << result.out << result.err;
-  EXPECT_THAT(result.out, HasSubstr("0 unexplained; ambiguous fraction 0.0000: passed"));
+  EXPECT_THAT(result.out, HasSubstr("0 unexplained; ambiguous fraction 0.0000, colour width "
+                                    "0.0000/255, 1.0000 levels, 1.0000 pages: passed"));
   std::ifstream in(dir / "cc" / "summary.json");
   const auto summary = nlohmann::json::parse(in);
   EXPECT_EQ(summary["frames"].size(), 40u);  // 40 keyframes 24 apart: 20 frames, two modes
@@ -129,6 +139,21 @@ TEST(CrosscheckCommand, LlvmpipeLiesInsideEveryGl45Set) {
   EXPECT_GT(summary["totals"]["ambiguous_fraction"].get<double>(), 0.2);
   EXPECT_LT(summary["totals"]["identical"].get<uint64_t>(),
             summary["totals"]["pixels"].get<uint64_t>());
+  // How much: every frame's covered pixels admit more than one colour on average, at most the
+  // whole range (the terrain's sets admit every colour: README, the vt crosscheck item).
+  for (const nlohmann::json& record : summary["frames"]) {
+    const double width = record["mean_color_width"].get<double>();
+    EXPECT_GT(width, 0.0) << record["scene"] << " " << record["mode"];
+    EXPECT_TRUE(std::isfinite(width)) << record["scene"];
+    EXPECT_LE(width, 255.0) << record["scene"];
+    EXPECT_GE(record["mean_candidate_levels"].get<double>(), 1.0) << record["scene"];
+    EXPECT_GE(record["mean_candidate_pages"].get<double>(), 1.0) << record["scene"];
+    EXPECT_TRUE(std::isfinite(record["mean_candidate_pages"].get<double>())) << record["scene"];
+  }
+  EXPECT_GT(summary["totals"]["mean_color_width"].get<double>(), 0.0);
+  EXPECT_LT(summary["totals"]["mean_color_width"].get<double>(), 255.0);
+  EXPECT_GT(summary["totals"]["mean_candidate_levels"].get<double>(), 1.0);
+  EXPECT_GT(summary["totals"]["mean_candidate_pages"].get<double>(), 1.0);
 }
 
 // A second implementation judged under gl45: softpipe computes differently from the oracle in many
@@ -139,11 +164,10 @@ TEST(CrosscheckCommand, SoftpipeLiesInsideEveryGl45Set) {
   writeSyntheticTexture(dir / "t.vt",
                         {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, 0.45});
   useSoftpipe();
-  const auto result = test::runCommand(
-      VT_EXECUTABLE,
-      {"crosscheck", (dir / "t.vt").string(), "--size", "160x100", "--model", "gl45", "-o",
-       (dir / "out").string()},
-      dir.path());
+  const auto result = test::runCommand(VT_EXECUTABLE,
+                                       {"crosscheck", (dir / "t.vt").string(), "--size", "160x100",
+                                        "--model", "gl45", "-o", (dir / "out").string()},
+                                       dir.path());
   std::cout << result.out;
   ASSERT_EQ(result.exitCode, 0) << result.out << result.err;
   std::ifstream in(dir / "out" / "summary.json");

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "shader/needbuffer.h"
+
 namespace vt::reference {
 namespace {
 
@@ -119,6 +121,75 @@ TEST(FrameComparison, AnAmbiguousPixelPassesOnlyValuesItsSetHolds) {
   EXPECT_EQ(c.widenBy[3], 1.0);
   EXPECT_EQ(c.unexplainedBy[2], 1u);
   EXPECT_EQ(c.widenBy[2], 2.0);  // two pages beyond (2, 2), the nearest alternative
+}
+
+// A triangle's alternative of levels lo..hi over (s, t) in [uvLo, uvHi], every channel in
+// [colour, colour].
+Alternative drawn(int lo, int hi, glm::vec2 uvLo, glm::vec2 uvHi, uint8_t colour) {
+  Alternative a;
+  a.triangle = 0;
+  a.levelLo = static_cast<uint8_t>(lo);
+  a.levelHi = static_cast<uint8_t>(hi);
+  a.uvLo = uvLo;
+  a.uvHi = uvHi;
+  a.colorLo = a.colorHi = a.filterLo = a.filterHi = glm::u8vec4(colour);
+  return a;
+}
+
+// The widths worked out by hand, one pixel at a time (SetWidths' definition in
+// frame_comparison.h).
+TEST(FrameComparison, SetWidthsOfHandBuiltSetsAreExact) {
+  // Pixel 0: red in [100, 103], the other channels one value; one page of level 3.
+  Alternative single = drawn(3, 3, {0.55f, 0.55f}, {0.56f, 0.56f}, 100);
+  single.colorHi.r = 103;
+  // Pixel 1: three triangles. Red [10, 20] u [15, 30] = 21 values, green 0 and 5 apart: 2 values;
+  // levels {3, 4} u {4, 5} u {3}. Level 3: pages x 0..2 of row 0 (a) and x 2..3 of rows 0..1 (c),
+  // 3 + 4 - 1 shared = 6; level 4: x 1..4 of row 1 (a) holds b's (4, 1): 4; level 5: b's (8, 3).
+  Alternative a = drawn(3, 4, {0.1f, 0.1f}, {0.3f, 0.1f}, 0);
+  a.colorLo.r = 10;
+  a.colorHi.r = 20;
+  Alternative b = drawn(4, 5, {0.25f, 0.1f}, {0.25f, 0.1f}, 0);
+  b.colorLo.r = 15;
+  b.colorHi.r = 30;
+  b.colorLo.g = b.colorHi.g = 5;
+  Alternative c = drawn(3, 3, {0.3f, 0.1f}, {0.4f, 0.2f}, 0);
+  c.colorLo.r = c.colorHi.r = 12;  // inside a's reds
+  // Pixel 2: only the clear alternative: not covered. Pixel 3: a triangle of colour 50 or the
+  // clear values: two values per channel, one level, one page.
+  const Alternative empty;
+  const ResultSets sets =
+      setsOf({{single}, {a, b, c}, {empty}, {drawn(2, 2, {0.3f, 0.3f}, {0.3f, 0.3f}, 50), empty}});
+
+  const SetWidths p0 = pixelSetWidths(sets, 0);
+  EXPECT_EQ(p0.covered, 1u);
+  EXPECT_EQ(p0.colorWidthSum, 0.75);  // (3 + 0 + 0 + 0) / 4
+  EXPECT_EQ(p0.levelSum, 1u);
+  EXPECT_EQ(p0.pageSum, 1u);
+  const SetWidths p1 = pixelSetWidths(sets, 1);
+  EXPECT_EQ(p1.colorWidthSum, 5.25);  // (20 + 1 + 0 + 0) / 4
+  EXPECT_EQ(p1.levelSum, 3u);
+  EXPECT_EQ(p1.pageSum, 11u);  // 6 + 4 + 1
+  EXPECT_EQ(pixelSetWidths(sets, 2).covered, 0u);
+  const SetWidths p3 = pixelSetWidths(sets, 3);
+  EXPECT_EQ(p3.colorWidthSum, 1.0);
+  EXPECT_EQ(p3.pageSum, 1u);
+
+  const SetWidths frame = setWidths(sets, {}, false);
+  EXPECT_EQ(frame.covered, 3u);
+  EXPECT_DOUBLE_EQ(frame.meanColorWidth(), 7.0 / 3.0);  // (0.75 + 5.25 + 1) / 3 covered pixels
+  EXPECT_DOUBLE_EQ(frame.meanLevels(), 5.0 / 3.0);
+  EXPECT_DOUBLE_EQ(frame.meanPages(), 13.0 / 3.0);
+}
+
+// Under a pinned model (no sets) every pixel the oracle covers admits its one value.
+TEST(FrameComparison, SetWidthsOfAPinnedFrameAreZeroWidthOneLevelOnePage) {
+  Frame oracle = smallFrame();
+  oracle.need[5] = needClearValue(false);
+  const SetWidths widths = setWidths(oracle.sets, oracle.need, false);
+  EXPECT_EQ(widths.covered, 7u);
+  EXPECT_EQ(widths.meanColorWidth(), 0.0);
+  EXPECT_EQ(widths.meanLevels(), 1.0);
+  EXPECT_EQ(widths.meanPages(), 1.0);
 }
 
 TEST(FrameComparison, RejectsFramesOfDifferentSizes) {
