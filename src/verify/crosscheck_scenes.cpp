@@ -7,9 +7,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "calibrate/fingerprint.h"
 #include "common/posix_file.h"
 #include "format/virtual_texture_reader.h"
 #include "gl/headless_context.h"
+#include "render/arithmetic_points.h"
 #include "render/backend.h"
 #include "render/precision_model.h"
 #include "render/precision_model_file.h"
@@ -30,14 +32,16 @@ struct Mode {
   bool exactFilter, trilinear, need8;
 };
 
-// The model file handed to the oracle's API by its name: a measured model that auto found, or
+// The model file handed to the oracle's API by its name: a measured model that auto chose, or
 // the file named; none for the shipped models, which travel as a profile.
-std::string modelFileFor(const std::string& model, const std::string& renderer) {
-  if (model == "auto") {
+std::string modelFileFor(const std::string& option, const PrecisionModel& chosen,
+                         const std::string& renderer) {
+  if (option == "auto") {
+    if (isModelName(chosen.name)) return "";
     const std::optional<std::filesystem::path> measured = measuredModelFile(renderer);
     return measured ? measured->string() : "";
   }
-  return isModelName(model) ? "" : model;
+  return isModelName(option) ? "" : option;
 }
 
 }  // namespace
@@ -72,13 +76,17 @@ ScenesCheck crosscheckScenes(const ScenesCheckOptions& options) {
   ScenesCheck check{context.renderer(), context.version(), "", {}};
   RenderSettings settings;
   settings.viewport = options.viewport;
-  const PrecisionModel model = resolveModel(options.model, check.renderer);
+  // auto: a pinned model only where its fingerprint reproduces here (calibrate/fingerprint.h).
+  std::string note;
+  const PrecisionModel model =
+      calibrate::resolveModelHere(options.model, check.renderer, &note);
+  if (!note.empty()) std::cerr << "vt crosscheck: " << note << "\n";
   if (const std::string warning = calibrationMismatch(model, check.renderer, check.version);
       !warning.empty())
     std::cerr << "vt crosscheck: " << warning << "\n";
   applyModel(settings, model);
   check.model = settings.model->name;
-  const std::string modelFile = modelFileFor(options.model, check.renderer);
+  const std::string modelFile = modelFileFor(options.model, model, check.renderer);
 
   const VirtualTextureReader reader(options.texture);
   // Uploaded for GL, and the same pages in the same frames prepared for the oracle's API.
