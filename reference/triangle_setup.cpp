@@ -228,10 +228,10 @@ SpanEdge spanEdge(const WindowVertex& from, const WindowVertex& to, float startX
   return e;
 }
 
-// softpipe's plane through values at vmin, vmid and vmax (tri_linear_coeff), with a0 its value at
-// the centre of pixel (0, 0).
-Plane softpipePlane(float aMin, float aMid, float aMax, const SpanEdge& ebot, const SpanEdge& emaj,
-                    float ooa, const WindowVertex& vmin) {
+// The plane through values at vmin, vmid and vmax over the sorted edges (softpipe's
+// tri_linear_coeff), with a0 its value at the centre of pixel (0, 0).
+Plane lowestVertexPlane(float aMin, float aMid, float aMax, const SpanEdge& ebot,
+                        const SpanEdge& emaj, float ooa, const WindowVertex& vmin) {
   const float botda = aMid - aMin, majda = aMax - aMin;
   const float a = ebot.dy * majda - botda * emaj.dy;
   const float b = emaj.dx * botda - majda * ebot.dx;
@@ -287,7 +287,7 @@ void lowestVertexPlanes(const WindowVertex& v0, const WindowVertex& v1, const Wi
   const SortedTriangle s = sortedTriangle(v0, v1, v2);
   const WindowVertex &vmin = *s.vmin, &vmid = *s.vmid, &vmax = *s.vmax;
   const auto plane = [&](float aMin, float aMid, float aMax) {
-    return softpipePlane(aMin, aMid, aMax, s.ebot, s.emaj, s.ooa, vmin);
+    return lowestVertexPlane(aMin, aMid, aMax, s.ebot, s.emaj, s.ooa, vmin);
   };
   out.z = plane(vmin.z, vmid.z, vmax.z);
   out.oneOverW = plane(vmin.oow, vmid.oow, vmax.oow);

@@ -32,7 +32,7 @@ vt::PrecisionModel internalModel(Profile profile) { return vt::namedModel(toStri
 Profile parseProfile(const std::string& name) {
   for (const auto& [value, text] : kProfileNames)
     if (name == text) return value;
-  throw Error("unknown precision model '" + name + "' (exact, llvmpipe, softpipe or gl45)");
+  throw Error("unknown precision model '" + name + "' (" + vt::kModelNames + ")");
 }
 
 Profile publicProfile(const vt::PrecisionModel& model) { return parseProfile(model.name); }

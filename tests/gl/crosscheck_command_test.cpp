@@ -83,6 +83,27 @@ TEST(CrosscheckCommand, Q3dm6ishFlythroughPasses) {
     EXPECT_EQ(summary["totals"]["identical"], summary["totals"]["pixels"]);
   }
 
+  // The same map on llvmpipe generated without FMA, an implementation no code of the oracle
+  // names: under the model `vt calibrate` measures there, every pixel identical and nothing
+  // ambiguous.
+  ::setenv("GALLIUM_OVERRIDE_CPU_CAPS", "sse4.1", 1);
+  const auto calibrated = test::runCommand(
+      VT_EXECUTABLE, {"calibrate", "-o", (dir / "variant.json").string()}, dir.path());
+  ASSERT_EQ(calibrated.exitCode, 0) << calibrated.err;
+  const auto variant =
+      test::runCommand(VT_EXECUTABLE,
+                       {"crosscheck", (dir / "q3.vt").string(), "--mesh", out + "/q3dm6ish.obj",
+                        "--path", out + "/q3dm6ish.path.json", "--every", "192", "--model",
+                        (dir / "variant.json").string(), "-o", (dir / "variant").string()},
+                       dir.path());
+  ::unsetenv("GALLIUM_OVERRIDE_CPU_CAPS");
+  ASSERT_EQ(variant.exitCode, 0) << variant.out << variant.err;
+  std::ifstream variantIn(dir / "variant" / "summary.json");
+  const auto variantSummary = nlohmann::json::parse(variantIn);
+  EXPECT_EQ(variantSummary["model"], "calibrated");
+  EXPECT_EQ(variantSummary["totals"]["identical"], variantSummary["totals"]["pixels"]);
+  EXPECT_EQ(variantSummary["totals"]["ambiguous_fraction"].get<double>(), 0.0);
+
   // The same map on softpipe under gl45, every 192nd frame: nothing unexplained.
   useSoftpipe();
   const auto soft =
