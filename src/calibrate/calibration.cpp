@@ -148,14 +148,7 @@ Calibration calibrate() {
   m.renderer = c.renderer;
   m.glVersion = c.version;
   m.arithmetic = raster.arithmetic;
-  if (raster.coveragePinned) {
-    m.subpixelBits = raster.arithmetic.coverage.subpixelBits;
-    m.fillRulePinned = true;
-  } else if (raster.subpixelBits > 0) {
-    // Coverage is not the oracle's, but vertices move at most 2^-bits pixel: the result sets'
-    // corner boxes shrink from gl45's 2^-4 to that; ties stay free.
-    m.subpixelBits = raster.subpixelBits;
-  }
+  setCoverageBounds(m, raster.coveragePinned, raster.subpixelBits);
   m.attributeUlps = raster.attributeUlps;
   m.depthUlps = raster.depthUlps;
   m.depthRoundsToNearest = raster.z24Pinned && raster.depth.pinned;

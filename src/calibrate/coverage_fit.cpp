@@ -115,6 +115,27 @@ bool covers(const CoverageHypothesis& h, const CoverageProbe& probe, int px, int
   return v && coversSetUp(h, *v, px, py);
 }
 
+std::optional<Coverage> coverageMember(const CoverageHypothesis& h) {
+  vt::SnapRounding rounding = vt::SnapRounding::kHalfEven;
+  switch (h.rounding) {
+    case SnapRounding::kNone:
+      return std::nullopt;
+    case SnapRounding::kHalfUp:
+      rounding = vt::SnapRounding::kHalfUp;
+      break;
+    case SnapRounding::kFloor:
+      rounding = vt::SnapRounding::kFloor;
+      break;
+    case SnapRounding::kCeil:
+      rounding = vt::SnapRounding::kCeil;
+      break;
+    case SnapRounding::kHalfEven:
+      break;
+  }
+  return Coverage{CoverageRule::kSnappedEdges, h.subpixelBits, rounding, h.leftEdgesIn,
+                  h.bottomEdgesIn};
+}
+
 std::vector<CoverageProbe> coverageProbes(unsigned seed, Viewport viewport) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);

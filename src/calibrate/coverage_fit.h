@@ -15,9 +15,11 @@
 #include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "render/arithmetic.h"
 #include "scene/clip_space_mesh.h"
 
 namespace vt::calibrate {
@@ -40,6 +42,10 @@ struct CoverageHypothesis {
 
 // In words, e.g. "8 sub-pixel bits, round half to even, centres on left and bottom edges inside".
 std::string describe(const CoverageHypothesis& hypothesis);
+
+// The member of the arithmetic's coverage family a hypothesis is (render/arithmetic.h); none for
+// unsnapped vertices, which the family draws as float scanline spans instead.
+std::optional<Coverage> coverageMember(const CoverageHypothesis& hypothesis);
 
 // Every hypothesis the fit tries: 1 to 14 bits with each rounding, and no snapping, each with the
 // four tie rules.

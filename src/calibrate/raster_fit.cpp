@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <random>
 #include <type_traits>
 
@@ -85,19 +86,6 @@ void compare(const RasterReadback& gl, const Frame& oracle, Counts& c) {
   }
 }
 
-vt::SnapRounding roundingOf(calibrate::SnapRounding rounding) {
-  switch (rounding) {
-    case calibrate::SnapRounding::kHalfUp:
-      return vt::SnapRounding::kHalfUp;
-    case calibrate::SnapRounding::kFloor:
-      return vt::SnapRounding::kFloor;
-    case calibrate::SnapRounding::kCeil:
-      return vt::SnapRounding::kCeil;
-    default:
-      return vt::SnapRounding::kHalfEven;
-  }
-}
-
 }  // namespace
 
 std::string nameOf(const Coverage& c) {
@@ -158,9 +146,8 @@ GridResult fitGrid() {
   std::vector<CoverageHypothesis> hypotheses = fit.consistent;
   if (hypotheses.empty()) hypotheses.push_back(fit.closest);
   for (const CoverageHypothesis& h : hypotheses) {
-    if (h.rounding == calibrate::SnapRounding::kNone || result.candidates.size() >= 4) continue;
-    result.candidates.push_back({CoverageRule::kSnappedEdges, h.subpixelBits,
-                                 roundingOf(h.rounding), h.leftEdgesIn, h.bottomEdgesIn});
+    const std::optional<Coverage> member = coverageMember(h);
+    if (member && result.candidates.size() < 4) result.candidates.push_back(*member);
   }
   Coverage spans;
   spans.rule = CoverageRule::kScanlineSpans;
@@ -381,12 +368,7 @@ RasterFits fitRasterization(const Arithmetic& base) {
   if (!reproduced) {
     PrecisionModel bounds = gl45Model();
     bounds.arithmetic = chosen.arithmetic;
-    if (result.coveragePinned) {
-      bounds.subpixelBits = chosen.arithmetic.coverage.subpixelBits;
-      bounds.fillRulePinned = true;
-    } else if (grid.coarsestBits > 0) {
-      bounds.subpixelBits = grid.coarsestBits;
-    }
+    setCoverageBounds(bounds, result.coveragePinned, grid.coarsestBits);
     bounds.attributeUlps = bounds.depthUlps = 0;
     SetResiduals r = setResiduals(bounds, drawn, texture, viewport);
     result.attributeUlps = r.attributeUlps;
@@ -478,6 +460,17 @@ RasterFits fitRasterization(const Arithmetic& base) {
                 " (" + z24.memberSummary() + " depths)";
   result.fits.push_back(z24);
   return result;
+}
+
+void setCoverageBounds(PrecisionModel& m, bool coveragePinned, int gridBits) {
+  if (coveragePinned) {
+    m.subpixelBits = m.arithmetic.coverage.subpixelBits;
+    m.fillRulePinned = true;
+  } else if (gridBits > 0) {
+    // Coverage is not the oracle's, but vertices move at most 2^-bits pixel: the result sets'
+    // corner boxes shrink from gl45's 2^-4 to that; ties stay free.
+    m.subpixelBits = gridBits;
+  }
 }
 
 std::string rasterMemberOf(const std::string& family, const Arithmetic& a) {

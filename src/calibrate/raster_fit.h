@@ -22,6 +22,7 @@
 
 #include "calibrate/family_fit.h"
 #include "render/arithmetic.h"
+#include "render/precision_model.h"
 
 namespace vt::calibrate {
 
@@ -44,6 +45,11 @@ struct RasterFits {
 std::string rasterMemberOf(const std::string& family, const Arithmetic& a);
 // A coverage member's name in the evidence, e.g. "8_bits_half_even_left_bottom".
 std::string nameOf(const Coverage& coverage);
+
+// Coverage in a model whose arithmetic is set: the arithmetic's own where its coverage was
+// reproduced (`coveragePinned`), else ties free on the coarsest grid coverage alone allows
+// (`gridBits`, 0: none, gl45's stays).
+void setCoverageBounds(PrecisionModel& model, bool coveragePinned, int gridBits);
 
 // Draws the probes on the current GL context. `base`: the shader members already fitted (log2,
 // denormals, ...), which the oracle draws with.

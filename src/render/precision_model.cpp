@@ -36,6 +36,7 @@ PrecisionModel pinnedModel(const Arithmetic& arithmetic, const std::string& name
   PrecisionModel m;
   m.name = name;
   m.arithmetic = arithmetic;
+  m.subpixelBits = arithmetic.coverage.subpixelBits;
   m.sources = everyParameterFrom(source);
   return m;
 }

@@ -34,8 +34,9 @@ struct PrecisionModel {
   // The oracle's own arithmetic, the centre of every set.
   Arithmetic arithmetic;
 
-  // Rasterization. Vertices are snapped to 2^-subpixelBits pixel; with 8 bits and a pinned fill
-  // rule coverage is the oracle's (rule 4), bit for bit.
+  // Rasterization. With the fill rule pinned, coverage is the arithmetic's own, bit for bit, and
+  // subpixelBits is its grid; free, vertices may move by 2^-subpixelBits pixel and a centre on an
+  // edge may go either way.
   int subpixelBits = 8;
   bool fillRulePinned = true;  // false: a centre on an edge may belong to either triangle
   // Depth: error of the interpolated window z beyond vertex snapping, in units of 2^-23 of the
@@ -77,7 +78,8 @@ struct PrecisionModel {
   // Every parameter pinned but the denormal mode: each pixel's set is the oracle's value with
   // denormals flushed and its value with them kept (reference/renderer.cpp computes both).
   bool onlyDenormalsFree() const;
-  bool coveragePinned() const { return subpixelBits == 8 && fillRulePinned; }
+  // Coverage is the arithmetic's own (its grid, rounding and tie rule, or its spans).
+  bool coveragePinned() const { return fillRulePinned; }
   bool operator==(const PrecisionModel&) const = default;
 };
 

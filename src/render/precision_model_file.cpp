@@ -189,6 +189,11 @@ PrecisionModel readModelFile(const std::filesystem::path& file) {
       throw InputError(file, "field calibration.gl_version is missing or not a string");
     m.glVersion = calibration.at("gl_version").get<std::string>();
   }
+  if (m.fillRulePinned && m.arithmetic.coverage.rule == CoverageRule::kSnappedEdges &&
+      m.subpixelBits != m.arithmetic.coverage.subpixelBits)
+    throw InputError(file, "field subpixel_bits is " + std::to_string(m.subpixelBits) +
+                               " but the pinned coverage snaps to " +
+                               std::to_string(m.arithmetic.coverage.subpixelBits) + " bits");
   if (!m.filterPinned && m.subTexelBits == 0)
     throw InputError(file, "field sub_texel_bits is 0 for a bounded filter");
   // A model wider than the specification would pass a non-conformant implementation.

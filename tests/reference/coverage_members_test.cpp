@@ -13,29 +13,16 @@
 namespace vt::reference {
 namespace {
 
-vt::SnapRounding memberRounding(calibrate::SnapRounding rounding) {
-  switch (rounding) {
-    case calibrate::SnapRounding::kHalfUp:
-      return vt::SnapRounding::kHalfUp;
-    case calibrate::SnapRounding::kFloor:
-      return vt::SnapRounding::kFloor;
-    case calibrate::SnapRounding::kCeil:
-      return vt::SnapRounding::kCeil;
-    default:
-      return vt::SnapRounding::kHalfEven;
-  }
-}
-
 TEST(CoverageMembers, TheOracleCoversAsEveryHypothesisOfTheFitSays) {
   const Viewport viewport{256, 128};
   const std::vector<calibrate::CoverageProbe> probes = calibrate::coverageProbes(5, viewport);
   const ClipSpaceMesh mesh = calibrate::coverageMesh(probes, viewport);
   int members = 0;
   for (const calibrate::CoverageHypothesis& h : calibrate::coverageHypotheses()) {
-    if (h.rounding == calibrate::SnapRounding::kNone) continue;  // not a member: unsnapped
+    const std::optional<Coverage> member = calibrate::coverageMember(h);
+    if (!member) continue;  // unsnapped: drawn as spans, not by edge functions
     Arithmetic arithmetic = arithmeticPoint("exact");
-    arithmetic.coverage = {CoverageRule::kSnappedEdges, h.subpixelBits, memberRounding(h.rounding),
-                           h.leftEdgesIn, h.bottomEdgesIn};
+    arithmetic.coverage = *member;
     const std::vector<SetupTriangle> triangles = setupTriangles(mesh, viewport, arithmetic);
     std::vector<std::vector<const SetupTriangle*>> byProbe(probes.size());
     for (const SetupTriangle& t : triangles) byProbe.at(t.primitive).push_back(&t);

@@ -48,6 +48,7 @@ TEST(PrecisionModelFile, RoundTripsEveryParameter) {
   measured.renderer = "softpipe";
   measured.subpixelBits = 16;
   measured.fillRulePinned = true;
+  measured.arithmetic.coverage.subpixelBits = 16;  // a pinned fill rule is the arithmetic's grid
   measured.filterPinned = true;
   measured.arithmetic.filter.fusedLerp = true;
   measured.sources["filter"] = "probe draws";
@@ -101,6 +102,9 @@ TEST(PrecisionModelFile, RefusesMalformedFilesNamingTheField) {
   refused(j,
           "allows GL_LINEAR error in units of 1/255 5.000000 beyond the specification's "
           "4.000000 (GL 4.5 core, section 8.14.2");
+  j = nlohmann::json::parse(modelJson(llvmpipeModel()));
+  j["subpixel_bits"] = 6;
+  refused(j, "field subpixel_bits is 6 but the pinned coverage snaps to 8 bits");
   j = good;
   j["depth_ulps"] = 85;
   refused(j, "allows depth error in ulps 85.000000 beyond the specification's 84.000000");
