@@ -12,6 +12,9 @@
 //                                      member reproduces; bounded by what was measured
 //   LP_PERF=no_linear                  GL_LINEAR sampled as nearest: breaks section 8.14.2
 //   LP_PERF=no_depth                   no depth test: breaks section 17.3
+//   4-bit GL_LINEAR weights            every textureLod replaced, through Mesa's own shader
+//                                      replacement (MESA_SHADER_READ_PATH), by a filter whose
+//                                      weights have 4 fractional bits: beyond dEQP's 7 (8.14.2)
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -151,6 +154,70 @@ TEST_F(ArithmeticVariant, NoDepthTestIsRefusedNamingTheRule) {
   const test::CommandResult calibration = calibrate({{"LP_PERF", "no_depth"}});
   expectRefused(calibration, dir_ / "model.json", "depth test (GL 4.5 core, section 17.3");
   EXPECT_THAT(calibration.err, HasSubstr("pixels of the overlap show a far quad"));
+}
+
+// Every fragment shader of `dump` that samples with textureLod, rewritten so that it samples
+// through a filter with weights of 4 fractional bits, into `replace` under the same name (Mesa
+// reads a replacement by the SHA-1 of the source it replaces).
+int writeFourBitFilterShaders(const std::filesystem::path& dump,
+                              const std::filesystem::path& replace) {
+  const std::string filter = R"(
+vec4 vtFourBitLinear(sampler2D s, vec2 u, float lod) {
+  ivec2 size = textureSize(s, 0);
+  vec2 x = u * vec2(size) - 0.5;
+  vec2 base = floor(x);
+  vec2 f = floor((x - base) * 16.0) / 16.0;
+  ivec2 i = ivec2(base), m = size - 1;
+  vec4 c00 = texelFetch(s, clamp(i, ivec2(0), m), 0);
+  vec4 c10 = texelFetch(s, clamp(i + ivec2(1, 0), ivec2(0), m), 0);
+  vec4 c01 = texelFetch(s, clamp(i + ivec2(0, 1), ivec2(0), m), 0);
+  vec4 c11 = texelFetch(s, clamp(i + ivec2(1, 1), ivec2(0), m), 0);
+  return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
+}
+)";
+  std::filesystem::create_directories(replace);
+  int rewritten = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dump)) {
+    if (entry.path().filename().string().rfind("FS_", 0) != 0) continue;
+    std::string source = test::slurp(entry.path());
+    if (source.find("textureLod(") == std::string::npos) continue;
+    // After the directives at the top (#version), the filter; then every textureLod through it.
+    std::istringstream lines(source);
+    std::string line, head, body;
+    bool inHead = true;
+    while (std::getline(lines, line)) {
+      inHead = inHead && (line.empty() || line[0] == '#');
+      (inHead ? head : body) += line + "\n";
+    }
+    for (size_t at = body.find("textureLod("); at != std::string::npos;
+         at = body.find("textureLod(", at))
+      body.replace(at, std::string("textureLod(").size(), "vtFourBitLinear(");
+    std::ofstream(replace / entry.path().filename()) << head << filter << body;
+    ++rewritten;
+  }
+  return rewritten;
+}
+
+// A test-only implementation: llvmpipe whose GL_LINEAR has 4-bit weights. `vt calibrate` refuses
+// it naming GL_LINEAR and section 8.14.2; the crosscheck under llvmpipe's pinned model catches it
+// (under gl45 the named scenes' colour sets are wider than its error: README).
+TEST_F(ArithmeticVariant, FourBitFilterWeightsAreRefusedNamingTheRule) {
+  const std::filesystem::path dump = dir_ / "dump", replace = dir_ / "replace";
+  std::filesystem::create_directories(dump);
+  const Environment dumping = {{"MESA_SHADER_DUMP_PATH", dump.string()}};
+  ASSERT_EQ(calibrate(dumping).exitCode, 0);
+  crosscheck(dumping, "llvmpipe");
+  std::filesystem::remove(dir_ / "model.json");
+  ASSERT_GE(writeFourBitFilterShaders(dump, replace), 2);  // the probes' and the renderer's
+  const Environment fourBit = {{"MESA_SHADER_READ_PATH", replace.string()}};
+  const test::CommandResult calibration = calibrate(fourBit);
+  expectRefused(calibration, dir_ / "model.json", "GL_LINEAR");
+  EXPECT_THAT(calibration.err, HasSubstr("section 8.14.2"));
+  const test::CommandResult caught =
+      run(fourBit, {"crosscheck", (dir_ / "t.vt").string(), "--size", "160x100", "--model",
+                    "llvmpipe", "-o", (dir_ / "four-bit").string()});
+  EXPECT_EQ(caught.exitCode, 1) << caught.out;
+  EXPECT_THAT(caught.out, HasSubstr("need filter widened"));
 }
 
 // On the implementation the shipped model was written from, `auto` confirms it by its
