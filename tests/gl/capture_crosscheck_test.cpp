@@ -71,6 +71,15 @@ TEST(CaptureCrosscheck, GlCapturesMatchTheOracleAndOneChangedNeedPixelIsReported
                          6));
   const nlohmann::json manifest = readJson(dir / "captures" / "frame0040.json");
   EXPECT_FALSE(manifest["cache"]["all_resident"].get<bool>());
+  // The flight fingerprinted its driver (calibrate/fingerprint.h) and recorded the shipped model
+  // it reproduced; `--model auto` judged the captures under it, never by the renderer's name.
+  if (manifest["renderer"].get<std::string>().find("llvmpipe") != std::string::npos &&
+      __builtin_cpu_supports("fma")) {
+    EXPECT_EQ(manifest["fingerprint"], "llvmpipe");
+    const nlohmann::json summary = readJson(dir / "check" / "summary.json");
+    EXPECT_EQ(summary["frames"][0]["model"], "llvmpipe");
+    EXPECT_EQ(summary["frames"][0]["model_from"], "fingerprint");
+  }
   EXPECT_EQ(manifest["cache"]["pages"].size(), 36u);  // every frame of 6 x 6 taken
 
   // Change the needbuffer of one pixel whose result set is one value.
