@@ -306,6 +306,8 @@ TEST(OracleApi, MalformedOrInconsistentCapturesAreRefusedWithTheFileNamed) {
   edited([](J& j, F) { j["colour"] = "x.png"; }, "unknown field \"colour\"");
   edited([](J& j, F) { j["model"] = 7; }, "\"model\" is not a string");
   edited([](J& j, F) { j["model"] = ""; }, "\"model\" is an empty file name");
+  edited([](J& j, F) { j["fingerprint"] = "nvidia"; },
+         "\"fingerprint\" is not a shipped pinned model (exact, llvmpipe, softpipe)");
   edited([](J& j, F) { j["texture"]["identity"] = "xyz"; }, "not 16 hexadecimal digits");
   edited([](J& j, F) { j["geometry"]["vertices"] = "../../etc/passwd"; }, "without \"..\"");
   edited([](J& j, F) { j["geometry"]["index_count"] = 7; }, "holds");
