@@ -281,10 +281,9 @@ SortedTriangle sortedTriangle(const WindowVertex& v0, const WindowVertex& v1,
   return s;
 }
 
-// The planes from the lowest vertex over the sorted edges (softpipe-arithmetic.md, 3.1).
-void lowestVertexPlanes(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
-                        SetupTriangle& out) {
-  const SortedTriangle s = sortedTriangle(v0, v1, v2);
+// The planes from the lowest vertex over the sorted edges (softpipe-arithmetic.md, 3.1). They
+// read emaj's dx and dy only, which advancing it to the top half leaves as they were.
+void lowestVertexPlanes(const SortedTriangle& s, SetupTriangle& out) {
   const WindowVertex &vmin = *s.vmin, &vmid = *s.vmid, &vmax = *s.vmax;
   const auto plane = [&](float aMin, float aMid, float aMax) {
     return lowestVertexPlane(aMin, aMid, aMax, s.ebot, s.emaj, s.ooa, vmin);
@@ -298,7 +297,7 @@ void lowestVertexPlanes(const WindowVertex& v0, const WindowVertex& v1, const Wi
 void setupPlanes(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
                  PlaneSetup setup, SetupTriangle& out) {
   if (setup == PlaneSetup::kLowestVertex)
-    lowestVertexPlanes(v0, v1, v2, out);
+    lowestVertexPlanes(sortedTriangle(v0, v1, v2), out);
   else
     firstVertexPlanes(v0, v1, v2, out);
 }
@@ -335,9 +334,10 @@ bool setupSpans(const WindowVertex& v0, const WindowVertex& v1, const WindowVert
   out.scanline = true;
   out.width = viewport.width;
 
-  // The lowest-vertex planes read emaj's dx and dy only, which the advance above leaves as they
-  // were.
-  setupPlanes(v0, v1, v2, arithmetic.planeSetup, out);
+  if (arithmetic.planeSetup == PlaneSetup::kLowestVertex)
+    lowestVertexPlanes(sorted, out);  // the sort and edges made above
+  else
+    firstVertexPlanes(v0, v1, v2, out);
   out.corners = {cornerOf(v0), cornerOf(v1), cornerOf(v2)};
 
   // The pixels the spans cover inside the viewport bound the candidates exactly.

@@ -102,8 +102,7 @@ std::vector<std::string> nonConformance(const PrecisionModel& m,
                                         const std::vector<ParameterFit>& fits) {
   std::vector<std::string> lines;
   const auto fit = [&](const std::string& parameter) -> const ParameterFit& {
-    return *std::find_if(fits.begin(), fits.end(),
-                         [&](const ParameterFit& f) { return f.parameter == parameter; });
+    return fitNamed(fits, parameter);
   };
   if (const ParameterFit& depth = fit("depth_test"); !depth.pinned)
     lines.push_back(
@@ -177,12 +176,8 @@ Calibration calibrate() {
                                ? m.sources[parameter] + " (not pinned by " + by + fit.finding + ")"
                                : by + fit.finding;
   };
-  const auto fitOf = [&](const char* parameter) -> const ParameterFit& {
-    return *std::find_if(c.fits.begin(), c.fits.end(),
-                         [&](const ParameterFit& f) { return f.parameter == parameter; });
-  };
-  source("subpixel_bits", fitOf("subpixel_bits"));
-  source("fill_rule", fitOf("coverage"));
+  source("subpixel_bits", fitNamed(c.fits, "subpixel_bits"));
+  source("fill_rule", fitNamed(c.fits, "coverage"));
   source("attributes", raster.attributes);
   source("depth", raster.depth);
   source("log2", math.log2);

@@ -1,5 +1,7 @@
 #include "calibrate/family_fit.h"
 
+#include <stdexcept>
+
 namespace vt::calibrate {
 
 size_t ParameterFit::choose() {
@@ -21,6 +23,12 @@ std::string ParameterFit::memberSummary() const {
   for (const MemberResult& m : members)
     text += (text.empty() ? "" : ", ") + m.member + " " + differ(m.mismatches, probes);
   return text;
+}
+
+const ParameterFit& fitNamed(const std::vector<ParameterFit>& fits, const std::string& parameter) {
+  for (const ParameterFit& fit : fits)
+    if (fit.parameter == parameter) return fit;
+  throw std::logic_error("calibration: no fit of " + parameter);
 }
 
 std::string differ(uint64_t mismatches, uint64_t probes) {

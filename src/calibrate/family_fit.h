@@ -48,6 +48,10 @@ struct ParameterFit {
   std::string memberSummary() const;
 };
 
+// The fit of `parameter` among `fits`; throws std::logic_error when there is none (a calibration
+// always fits every parameter it names).
+const ParameterFit& fitNamed(const std::vector<ParameterFit>& fits, const std::string& parameter);
+
 // "k of n values differ".
 std::string differ(uint64_t mismatches, uint64_t probes);
 

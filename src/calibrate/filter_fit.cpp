@@ -59,10 +59,15 @@ std::vector<Sampled> probes() {
   return result;
 }
 
-template <class Fetch8>
-bool reproduces(const glm::vec4& got, const Fetch8& fetch8, glm::vec2 u, glm::ivec2 size,
-                const Filter& filter, UnormConversion conversion) {
-  const glm::vec4 expected = reference::sampleLinearAt(fetch8, u, size, filter, conversion);
+}  // namespace
+
+bool reproducesSample(const ShaderProbe& probe, size_t i, const glm::vec4& got,
+                      const Filter& filter, UnormConversion conversion) {
+  const auto fetch8 = [&](glm::ivec2 t) {
+    return probe.texels[static_cast<size_t>(t.y * probe.textureSize.x + t.x)];
+  };
+  const glm::vec4 expected = reference::sampleLinearAt(fetch8, glm::vec2(probe.inputs[i]),
+                                                       probe.textureSize, filter, conversion);
   for (int c = 0; c < 4; ++c) {
     if (filter.weights == FilterWeights::kFixedPoint8) {
       // A whole number of 1/255: how it becomes a float (k / 255 or k * (1 / 255)) does not reach
@@ -77,6 +82,8 @@ bool reproduces(const glm::vec4& got, const Fetch8& fetch8, glm::vec2 u, glm::iv
   }
   return true;
 }
+
+namespace {
 
 // Bilinear filtering at normalized u with positions rounded to 2^-bits texel and real-valued
 // weights and lerps, in units of 1/255.
@@ -119,14 +126,9 @@ FilterFit fitFilter(UnormConversion conversion) {
   for (const Sampled& s : sampled) result.fit.probes += s.out.size();
   for (const NamedFilter& member : filterMembers()) {
     uint64_t missed = 0;
-    for (const Sampled& s : sampled) {
-      const auto fetch8 = [&](glm::ivec2 t) {
-        return s.probe.texels[static_cast<size_t>(t.y * s.probe.textureSize.x + t.x)];
-      };
+    for (const Sampled& s : sampled)
       for (size_t i = 0; i < s.out.size(); ++i)
-        missed += !reproduces(s.out[i], fetch8, glm::vec2(s.probe.inputs[i]), s.probe.textureSize,
-                              member.filter, conversion);
-    }
+        missed += !reproducesSample(s.probe, i, s.out[i], member.filter, conversion);
     result.fit.members.push_back({member.name, missed});
   }
   result.filter = filterMembers()[result.fit.choose()].filter;

@@ -10,6 +10,8 @@
 // is bounded by the sub-texel grid (4 to 12 bits) whose real-valued bilinear filter leaves the
 // smallest largest error, and that error (in units of 1/255).
 
+#include <glm/glm.hpp>
+
 #include "calibrate/family_fit.h"
 #include "render/arithmetic.h"
 
@@ -25,6 +27,12 @@ struct FilterFit {
 // Draws the probes on the current GL context. `conversion`: the texel-value member already
 // fitted (the float members convert texels with it).
 FilterFit fitFilter(UnormConversion conversion);
+
+struct ShaderProbe;
+// Whether sample i of a GL_LINEAR probe (`probe.inputs[i].xy` the coordinate, `probe.texels` the
+// texture) came back as `got` from the member `filter`, converting texels as `conversion` says.
+bool reproducesSample(const ShaderProbe& probe, size_t i, const glm::vec4& got,
+                      const Filter& filter, UnormConversion conversion);
 
 // The family's members in order, with their names as model files and evidence write them.
 struct NamedFilter {

@@ -1,61 +1,24 @@
 #include "calibrate/raster_fit.h"
 
-#include <stdlib.h>
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <filesystem>
 #include <limits>
 #include <optional>
 #include <random>
 #include <type_traits>
 
-#include "build/synthetic_texture.h"
 #include "calibrate/coverage_fit.h"
 #include "calibrate/float_bits.h"
 #include "calibrate/probe_draws.h"
-#include "format/virtual_texture_reader.h"
+#include "calibrate/probe_texture.h"
 #include "reference/renderer.h"
 #include "render/precision_model.h"
 
 namespace vt::calibrate {
-namespace {
+namespace {}  // namespace
 
-// A scratch folder for the oracle's texture, removed with it.
-class ScratchFolder {
- public:
-  ScratchFolder() {
-    std::string pattern = (std::filesystem::temp_directory_path() / "vt-calibrate-XXXXXX").string();
-    if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot make a scratch folder");
-    path_ = pattern;
-  }
-  ~ScratchFolder() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
-
-// What one combination of members misses of one implementation's readbacks.
-struct Counts {
-  uint64_t pixels = 0, coverage = 0, shared = 0, attributes = 0, depth = 0;
-  double attributeUlps = 0, depthUlps = 0;  // residuals in the precision model's units
-  bool reproduces() const { return coverage == 0 && attributes == 0 && depth == 0; }
-  uint64_t total() const { return coverage + attributes + depth; }
-};
-
-// The error of `got` against `own` beyond the model's absolute 2^-23, relative to `size`, in
-// units of 2^-23 (the widening of reference/result_set_builder.cpp).
-double residual(double got, double own, double size) {
-  return std::max(0.0, std::fabs(got - own) - kFloatUlp) /
-         (kFloatUlp * std::max(std::fabs(size), 0x1p-126));
-}
-
-void compare(const RasterReadback& gl, const Frame& oracle, Counts& c) {
+void compareRaster(const RasterReadback& gl, const Frame& oracle, RasterCounts& c) {
   for (size_t i = 0; i < oracle.triangle.size(); ++i) {
     ++c.pixels;
     if (gl.triangle[i] != oracle.triangle[i]) {
@@ -65,28 +28,13 @@ void compare(const RasterReadback& gl, const Frame& oracle, Counts& c) {
     if (gl.triangle[i] < 0) continue;
     ++c.shared;
     bool differs = false;
-    for (int k = 0; k < 2; ++k) {
-      const float own = oracle.uv[i][k];
-      differs |= !sameBits(gl.uv[i][k], own);
-      c.attributeUlps = std::max(c.attributeUlps, residual(gl.uv[i][k], own, own));
-    }
-    for (int k = 0; k < 4; ++k) {
-      const float own = oracle.derivatives[i][k];
-      differs |= !sameBits(gl.derivatives[i][k], own);
-      // A fine derivative is the difference of two values, each within the relative error.
-      const double size = 2.0 * std::fabs(oracle.uv[i][k % 2]) + std::fabs(own);
-      c.attributeUlps = std::max(c.attributeUlps, residual(gl.derivatives[i][k], own, size));
-    }
+    for (int k = 0; k < 2; ++k) differs |= !sameBits(gl.uv[i][k], oracle.uv[i][k]);
+    for (int k = 0; k < 4; ++k)
+      differs |= !sameBits(gl.derivatives[i][k], oracle.derivatives[i][k]);
     c.attributes += differs;
-    if (!sameBits(gl.depth[i], oracle.depth[i])) {
-      ++c.depth;
-      // Window z and the terms it is summed from lie in [0, 1]: units of 2^-23 of that range.
-      c.depthUlps = std::max(c.depthUlps, residual(gl.depth[i], oracle.depth[i], 1.0));
-    }
+    c.depth += !sameBits(gl.depth[i], oracle.depth[i]);
   }
 }
-
-}  // namespace
 
 std::string nameOf(const Coverage& c) {
   if (c.rule == CoverageRule::kScanlineSpans) return "scanline_spans";
@@ -220,7 +168,7 @@ SetResiduals setResiduals(const PrecisionModel& model,
 // One combination of the rasterization members.
 struct Combination {
   Arithmetic arithmetic;
-  Counts counts;
+  RasterCounts counts;
 };
 
 }  // namespace
@@ -230,12 +178,8 @@ RasterFits fitRasterization(const Arithmetic& base) {
   GridResult grid = fitGrid();
   result.subpixelBits = grid.coarsestBits;
 
-  const ScratchFolder folder;
-  writeSyntheticTexture(
-      folder.path() / "t.vt",
-      {{.pageSize = 16, .border = 2, .levelCount = 4, .channels = 4}, std::nullopt});
-  const VirtualTextureReader reader(folder.path() / "t.vt");
-  const reference::ResidentTexture texture(reader);
+  const ProbeTexture probeTexture(4);
+  const reference::ResidentTexture& texture = probeTexture.texture();
   const Viewport viewport{160, 120};
   const auto draw = [&](const ClipSpaceMesh& mesh, const Arithmetic& arithmetic,
                         DepthFormat format) {
@@ -268,12 +212,12 @@ RasterFits fitRasterization(const Arithmetic& base) {
     const ClipSpaceMesh mesh = seed < 4 ? randomTriangles(seed, 120) : nearPlaneTriangles(seed, 60);
     const RasterReadback gl = drawTriangles(mesh, viewport);
     for (Combination& c : combinations)
-      compare(gl, draw(mesh, c.arithmetic, DepthFormat::kDepth32F), c.counts);
+      compareRaster(gl, draw(mesh, c.arithmetic, DepthFormat::kDepth32F), c.counts);
     drawn.emplace_back(mesh, gl);
   }
 
   // The combination taken: the first that reproduces everything, else the closest.
-  const auto closer = [](const Counts& a, const Counts& b) {
+  const auto closer = [](const RasterCounts& a, const RasterCounts& b) {
     if (a.coverage != b.coverage) return a.coverage < b.coverage;
     if (a.attributes != b.attributes) return a.attributes < b.attributes;
     return a.depth < b.depth;
@@ -364,7 +308,7 @@ RasterFits fitRasterization(const Arithmetic& base) {
   // The residuals of the combination taken: none when it reproduces everything; else measured
   // against the result sets of the model it leaves (render/result_set.h), which already allow
   // what vertices moved within the sub-pixel grid explain.
-  const Counts& c = chosen.counts;
+  const RasterCounts& c = chosen.counts;
   if (!reproduced) {
     PrecisionModel bounds = gl45Model();
     bounds.arithmetic = chosen.arithmetic;
@@ -383,8 +327,13 @@ RasterFits fitRasterization(const Arithmetic& base) {
         bounds.depthUlps = ulps;
         return setResiduals(bounds, drawn, texture, viewport).unexplainedOwners == 0;
       };
-      while (hi < gl45 && !explains(hi)) lo = hi, hi = std::min(2 * hi, gl45);
-      if (!explains(hi)) {
+      bool explained = explains(hi);
+      while (!explained && hi < gl45) {
+        lo = hi;
+        hi = std::min(2 * hi, gl45);
+        explained = explains(hi);
+      }
+      if (!explained) {
         // Not even gl45's bound admits them. The depth rule itself is probed on its own
         // (calibration.h, depth test); these pixels are where the oracle's sets are narrower
         // than the specification (a limit of the interval arithmetic of

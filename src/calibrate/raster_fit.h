@@ -21,10 +21,23 @@
 // vertices moved within the sub-pixel grid explain is not counted twice.
 
 #include "calibrate/family_fit.h"
+#include "calibrate/probe_draws.h"
 #include "render/arithmetic.h"
+#include "render/frame.h"
 #include "render/precision_model.h"
 
 namespace vt::calibrate {
+
+// What an arithmetic's frame misses of an implementation's readbacks of the same probes: pixels
+// showing another triangle, pixels of the same triangle whose texture coordinates or fine
+// derivatives differ in a bit, and those whose depth does.
+struct RasterCounts {
+  uint64_t pixels = 0, coverage = 0, shared = 0, attributes = 0, depth = 0;
+  bool reproduces() const { return coverage == 0 && attributes == 0 && depth == 0; }
+  uint64_t total() const { return coverage + attributes + depth; }
+};
+// Adds what `oracle` (drawn with debug channels) misses of `gl` to `counts`.
+void compareRaster(const RasterReadback& gl, const Frame& oracle, RasterCounts& counts);
 
 struct RasterFits {
   std::vector<ParameterFit> fits;  // coverage, subpixel_bits, viewport, plane_setup,

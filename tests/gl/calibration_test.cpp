@@ -40,11 +40,7 @@ void useSoftpipe() {
 }
 
 const calibrate::ParameterFit& fitOf(const calibrate::Calibration& c, const std::string& name) {
-  const auto fit =
-      std::find_if(c.fits.begin(), c.fits.end(),
-                   [&](const calibrate::ParameterFit& f) { return f.parameter == name; });
-  if (fit == c.fits.end()) throw std::runtime_error("no fit of " + name);
-  return *fit;
+  return calibrate::fitNamed(c.fits, name);
 }
 
 // The calibrated arithmetic against a hand-written point, family by family: every family the
