@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "reference/interval.h"
+#include "reference/perturbed_triangle.h"
 #include "shader/shader_cpp.h"
 
 namespace vt::reference {
@@ -56,6 +57,14 @@ CornerBoxes cornerBoxes(const SetupTriangle& t, double radius, Viewport viewport
   return b;
 }
 
+// The largest radius of the boxes: what PerturbedTriangle lets every corner move by.
+double largestRadius(const CornerBoxes& b) {
+  double r = 0;
+  for (size_t i = 0; i < 3; ++i)
+    r = std::max({r, b.x[i].width() / 2, b.y[i].width() / 2});
+  return r;
+}
+
 // Barycentric coordinates as affine functions of the window position: lambda_i(p) = e_i(p) / a
 // with e_i the edge function opposite corner i and a twice the signed area (the same sign, so
 // lambda does not depend on the orientation).
@@ -83,6 +92,16 @@ Barycentrics barycentrics(const CornerBoxes& b, double cx, double cy) {
   }
   return r;
 }
+
+// Whether a set-up triangle covers a pixel centre: 2 surely, 1 possibly, 0 not. A piece of a
+// clipped fan that is possible only because the centre may lie on the far side of edges shared
+// with its neighbours (openFanEdges, bit i: the edge opposite corner i) is surely inside the mesh
+// triangle's own edges (boundarySure); appendResultSet decides the fan's union from its pieces.
+struct PieceCoverage {
+  int cover = 0;
+  uint8_t openFanEdges = 0;
+  bool boundarySure = true;
+};
 
 // An interpolated plane: value at a pixel and change per pixel in x and y.
 struct PlaneRange {
@@ -134,22 +153,34 @@ class Builder {
         -shading.needScaleLog2);
   }
 
-  // Coverage of candidate t at the centre of (px, py): 2 sure, 1 possible, 0 impossible.
-  int coverage(const SetupTriangle& t, int px, int py) const {
-    if (model_.coveragePinned()) return t.covers(px, py) ? 2 : 0;
-    const Barycentrics l = barycentrics(
-        cornerBoxes(t, std::ldexp(1.0, -model_.subpixelBits), viewport_), px + 0.5, py + 0.5);
-    if (l.degenerate) return 1;
-    bool sure = true;
-    for (size_t i = 0; i < 3; ++i) {
-      // An edge inside a clipped fan separates two pieces of the same triangle: the shared-edge
-      // rule gives its pixels to one of them, so it decides nothing about the triangle's
-      // coverage.
-      if (!(t.outerEdges & (1u << i))) continue;
-      if (l.atCentre[i].hi < 0) return 0;
-      sure = sure && l.atCentre[i].lo > 0;
+  // Coverage of candidate t at the centre of (px, py).
+  PieceCoverage coverage(const SetupTriangle& t, int px, int py) const {
+    if (model_.coveragePinned()) return {t.covers(px, py) ? 2 : 0};
+    const CornerBoxes boxes = cornerBoxes(t, snapRadius(), viewport_);
+    const PerturbedTriangle perturbed(t, largestRadius(boxes));
+    std::array<Interval, 3> lambda;
+    if (perturbed.bounded()) {
+      for (size_t i = 0; i < 3; ++i) lambda[i] = perturbed.barycentric(i, px + 0.5, py + 0.5);
+    } else {
+      const Barycentrics l = barycentrics(boxes, px + 0.5, py + 0.5);
+      if (l.degenerate) return {1};
+      lambda = l.atCentre;
     }
-    return sure ? 2 : 1;
+    PieceCoverage c{2};
+    for (size_t i = 0; i < 3; ++i) {
+      // Surely outside any edge: not this piece. Beyond an edge inside a clipped fan lies the
+      // fan's next piece, a candidate of its own with the same planes.
+      if (lambda[i].hi < 0) return {0};
+      if (lambda[i].lo > 0) continue;
+      // On the centre's side or not: the tie rule decides on an edge of the mesh triangle; on an
+      // edge inside the fan the pixel is this piece's or its neighbour's (appendResultSet).
+      c.cover = 1;
+      if (t.fanNeighbour[i] != 0)
+        c.openFanEdges = static_cast<uint8_t>(c.openFanEdges | (1u << i));
+      else
+        c.boundarySure = false;
+    }
+    return c;
   }
 
   // Window depth of candidate t at (px, py) as the depth test compares it.
@@ -158,11 +189,14 @@ class Builder {
         model_.coveragePinned() && model_.depthUlps == 0 && model_.depthRoundsToNearest;
     const double own = windowDepth(t, px, py, model_.arithmetic);
     if (pinned) return Interval::point(own);
-    const Barycentrics l = barycentrics(
-        cornerBoxes(t, std::ldexp(1.0, -model_.subpixelBits), viewport_), px + 0.5, py + 0.5);
+    const CornerBoxes boxes = cornerBoxes(t, snapRadius(), viewport_);
+    const PerturbedTriangle perturbed(t, largestRadius(boxes));
+    const Barycentrics l =
+        perturbed.bounded() ? Barycentrics{} : barycentrics(boxes, px + 0.5, py + 0.5);
     Interval z = Interval::everything();
-    if (!l.degenerate) {
-      z = interpolate(l, t.corners[0].z, t.corners[1].z, t.corners[2].z).value;
+    if (perturbed.bounded() || !l.degenerate) {
+      z = perturbed.bounded() ? perturbed.depth(px + 0.5, py + 0.5)
+                          : interpolate(l, t.corners[0].z, t.corners[1].z, t.corners[2].z).value;
       // depthUlps counts units of 2^-23 of the depth range [0, 1] (precision_model.h): the error
       // of a plane evaluation scales with its terms, not with the value they sum to.
       z = widen(z, 0, (model_.depthUlps + 1) * kFloatUlp);
@@ -193,15 +227,44 @@ class Builder {
       dtdy = Interval::point(dy.y);
       if (!std::isfinite(here.x) || !std::isfinite(here.y)) f.everything = true;
     } else {
-      const double radius = std::ldexp(1.0, -model_.subpixelBits);
-      const Barycentrics l = barycentrics(cornerBoxes(t, radius, viewport_), px + 0.5, py + 0.5);
-      if (l.degenerate) {
+      const CornerBoxes boxes = cornerBoxes(t, snapRadius(), viewport_);
+      const PerturbedTriangle perturbed(t, largestRadius(boxes));
+      const Barycentrics l =
+          perturbed.bounded() ? Barycentrics{} : barycentrics(boxes, px + 0.5, py + 0.5);
+      const double relative = model_.attributeUlps * kFloatUlp;
+      // Each of a step's two values differs by `relative` of its size; their difference by the
+      // sum.
+      const auto floatStep = [&](Interval v, double scale) {
+        const double size = 2 * (scale + v.magnitude()) + v.magnitude();
+        return widen(v, 0, (relative + kFloatUlp) * size);
+      };
+      if (perturbed.bounded()) {
+        const AffinePlane s =
+            perturbed.attribute({t.corners[0].sw, t.corners[1].sw, t.corners[2].sw});
+        const AffinePlane tt =
+            perturbed.attribute({t.corners[0].tw, t.corners[1].tw, t.corners[2].tw});
+        const double cx = px + 0.5, cy = py + 0.5, lx = qx + 0.5, by = qy + 0.5;
+        // The model's float error is relative to the size of the terms the evaluation sums
+        // (perturbed_triangle.h), at least the value's.
+        const double sScale = perturbed.ratioScale(s, cx, cy),
+                     tScale = perturbed.ratioScale(tt, cx, cy);
+        const Interval sHere = perturbed.ratio(s, cx, cy), tHere = perturbed.ratio(tt, cx, cy);
+        f.s = widen(sHere, 0, relative * std::max(sScale, sHere.magnitude()) + kFloatUlp);
+        f.t = widen(tHere, 0, relative * std::max(tScale, tHere.magnitude()) + kFloatUlp);
+        // Fine derivatives: from the left pixel of the quad row, from the lower of its column.
+        dsdx = floatStep(perturbed.ratioStep(s, lx, cy, 0), std::max(sScale, sHere.magnitude()));
+        dtdx = floatStep(perturbed.ratioStep(tt, lx, cy, 0), std::max(tScale, tHere.magnitude()));
+        dsdy = floatStep(perturbed.ratioStep(s, cx, by, 1), std::max(sScale, sHere.magnitude()));
+        dtdy = floatStep(perturbed.ratioStep(tt, cx, by, 1), std::max(tScale, tHere.magnitude()));
+        if (!f.s.finite() || !f.t.finite() || !dsdx.finite() || !dtdx.finite() ||
+            !dsdy.finite() || !dtdy.finite())
+          f.everything = true;
+      } else if (l.degenerate) {
         f.everything = true;
       } else {
         const PlaneRange w = interpolate(l, t.corners[0].oow, t.corners[1].oow, t.corners[2].oow);
         const PlaneRange s = interpolate(l, t.corners[0].sw, t.corners[1].sw, t.corners[2].sw);
         const PlaneRange tt = interpolate(l, t.corners[0].tw, t.corners[1].tw, t.corners[2].tw);
-        const double relative = model_.attributeUlps * kFloatUlp;
         f.s = widen(ratio(s.value, w.value), relative, kFloatUlp);
         f.t = widen(ratio(tt.value, w.value), relative, kFloatUlp);
         // Fine derivatives: the left pixel of the quad row, the lower of the quad column.
@@ -252,7 +315,10 @@ class Builder {
     store(colour, a.colorLo, a.colorHi);
     if (index == oracle.index) {
       // The filter's and the conversion's share alone: from the oracle's (s, t) and LOD.
-      const Colour narrow = shade(Interval::point(oracle.uv.x), Interval::point(oracle.uv.y),
+      // (s, t) as the shader samples them: clamped to [0, 1] like f.s and f.t above (the
+      // oracle's own are the interpolated values, past 1 on a quad whose coordinates run past).
+      const Colour narrow = shade(clamp(Interval::point(oracle.uv.x), 0, 1),
+                                  clamp(Interval::point(oracle.uv.y), 0, 1),
                                   Interval::point(oracle.lod));
       store(narrow, a.filterLo, a.filterHi);
       // The oracle's own value is in both (its arithmetic is one the model allows).
@@ -272,6 +338,9 @@ class Builder {
   }
 
  private:
+  // How far the model lets a vertex lie from its float window position: its snapping.
+  double snapRadius() const { return std::ldexp(1.0, -model_.subpixelBits); }
+
   Interval lodRange(Interval dsdx, Interval dtdx, Interval dsdy, Interval dtdy) const {
     // e_max^2 = max(|dUV/dx|^2, |dUV/dy|^2): three correctly rounded operations per term and the
     // model's arithmetic error (GLSL 4.50: + - * correctly rounded).
@@ -280,13 +349,14 @@ class Builder {
     const Interval ey = widen(square(dsdy) + square(dtdy), ops);
     Interval e = widen(sqrt(max(ex, ey)), kRounding + model_.sqrtUlps * kFloatUlp);
     e = e * finestSide_;  // a power of two: exact
+    const double L = shading_.finestLevel;
+    // log2 of zero (all four derivatives zero) is undefined (GLSL 4.50, section 8.2): any level.
+    if (!(e.lo > 0) || !e.finite()) return {0, L};
     Interval d = log2(e);
     // The interval's log2 is double precision; the model's lies within the GLSL table or within
     // the model's own wider bound.
     d = widen(d, std::max(model_.log2Ulps, kGlslLog2Ulps) * kFloatUlp,
               std::max(model_.log2AbsoluteError, kGlslLog2AbsoluteError));
-    const double L = shading_.finestLevel;
-    if (std::isnan(d.lo) || std::isnan(d.hi)) return {0, L};
     const Interval clamped = clamp(d, 0, L);
     return widen(Interval{L - clamped.hi, L - clamped.lo}, 0, L * kRounding);
   }
@@ -346,6 +416,8 @@ class Builder {
                           std::min(s.hi, px == last ? 1.0 : (px + 1) / scale)};
         const Interval pt{std::max(t.lo, py / scale),
                           std::min(t.hi, py == last ? 1.0 : (py + 1) / scale)};
+        // A box reaching no texel of this page (s or t outside [0, 1]) adds nothing.
+        if (!(ps.lo <= ps.hi) || !(pt.lo <= pt.hi)) continue;
         c = hull(c, samplePage(ps, pt, glm::ivec2(px, py), m));
       }
     return c;
@@ -482,6 +554,66 @@ class Builder {
   double finestSide_ = 1;
 };
 
+// A fan piece whose centre is surely inside the mesh triangle's edges and may lie beyond edges it
+// shares with neighbours surely covers the mesh triangle when each such neighbour is a candidate
+// of the same kind: walking across the open edges from piece to piece ends in the piece that holds
+// the centre (the fan turns one way around its first vertex), whatever the vertices' moves.
+template <typename Candidate>
+void surelyCoveredByTheirFans(const std::vector<SetupTriangle>& triangles,
+                              std::vector<Candidate>& list) {
+  const auto fanOf = [&](const Candidate& c) -> const SetupTriangle& {
+    return triangles[static_cast<size_t>(c.index)];
+  };
+  // Whether the fan of set-up triangle `index` has a triangle at fanIndex `position`, or the fan
+  // ends before it (then true: nothing to cross to). A fan's triangles are adjacent in the list.
+  const auto setUp = [&](int32_t index, int64_t position) {
+    const uint32_t primitive = triangles[static_cast<size_t>(index)].primitive;
+    int64_t last = -1;
+    for (int64_t j = index; j >= 0 && triangles[static_cast<size_t>(j)].primitive == primitive; --j)
+      if (triangles[static_cast<size_t>(j)].fanIndex == position) return true;
+    for (size_t j = static_cast<size_t>(index);
+         j < triangles.size() && triangles[j].primitive == primitive; ++j) {
+      if (triangles[j].fanIndex == position) return true;
+      last = std::max<int64_t>(last, triangles[j].fanIndex);
+    }
+    return position > last;
+  };
+  std::vector<char> member(list.size());
+  bool any = false;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const PieceCoverage& p = list[i].piece;
+    member[i] = p.cover == 2 || (p.boundarySure && p.openFanEdges != 0);
+    any = any || (member[i] && p.cover == 1);
+  }
+  if (!any) return;
+  // Drop members with an open edge whose neighbour is no member, until none is left to drop.
+  for (bool dropped = true; dropped;) {
+    dropped = false;
+    for (size_t i = 0; i < list.size(); ++i) {
+      if (!member[i] || list[i].piece.cover == 2) continue;
+      const SetupTriangle& t = fanOf(list[i]);
+      for (size_t e = 0; e < 3 && member[i]; ++e) {
+        if (!(list[i].piece.openFanEdges & (1u << e))) continue;
+        // The neighbour across the edge; a piece that set-up dropped (no area, or no pixel
+        // centre) is crossed to the one after it.
+        const int step = t.fanNeighbour[e];
+        int64_t next = int64_t{t.fanIndex} + step;
+        while (next >= 0 && !setUp(list[i].index, next)) next += step;
+        bool found = false;
+        for (size_t j = 0; j < list.size() && !found; ++j)
+          found = member[j] && fanOf(list[j]).primitive == t.primitive &&
+                  int64_t{fanOf(list[j]).fanIndex} == next;
+        if (!found) {
+          member[i] = 0;
+          dropped = true;
+        }
+      }
+    }
+  }
+  for (size_t i = 0; i < list.size(); ++i)
+    if (member[i]) list[i].cover = 2;
+}
+
 }  // namespace
 
 void appendResultSet(const PrecisionModel& model, const SetShading& shading,
@@ -492,19 +624,21 @@ void appendResultSet(const PrecisionModel& model, const SetShading& shading,
   Builder builder(model, shading, viewport, source);
   struct Candidate {
     int32_t index;
-    int cover;
+    PieceCoverage piece;
     Interval z;
+    int cover;  // of the mesh triangle: the piece's, or 2 where its fan surely covers
   };
   std::vector<Candidate> list;
   list.reserve(candidates.size());
   for (int32_t index : candidates) {
     const SetupTriangle& t = triangles[static_cast<size_t>(index)];
-    const int cover = builder.coverage(t, px, py);
-    if (cover == 0) continue;
+    const PieceCoverage piece = builder.coverage(t, px, py);
+    if (piece.cover == 0) continue;
     const Interval z = builder.depth(t, px, py, depthFormat);
     if (!(z.lo < 1.0)) continue;  // never passes GL_LESS against the cleared 1.0
-    list.push_back({index, cover, z});
+    list.push_back({index, piece, z, piece.cover});
   }
+  surelyCoveredByTheirFans(triangles, list);
   const auto surelyBeats = [](const Candidate& d, const Candidate& c) {
     if (d.cover != 2 || !(d.z.hi < 1.0)) return false;
     // Points: the pinned depth test, where the earlier drawn triangle wins a tie.

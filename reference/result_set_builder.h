@@ -4,10 +4,13 @@
 // over the model's parameters (interval.h):
 //   - the vertices: each within 2^-subpixelBits pixel of its float window position (snapping to
 //     the model's sub-pixel grid), hence the barycentric coordinates at the pixel centre, the
-//     coverage (sure, possible, impossible) and the window depth;
-//   - (s, t) at the pixel and at the other three pixels of its 2x2 quad (helpers included), as
-//     the perspective-correct ratio of two interpolated planes; fine derivatives from the same
-//     interpolated planes (so their errors stay correlated, as on the hardware);
+//     coverage (sure, possible, impossible) and the window depth: by the affine map between the
+//     moved and the nominal triangle (perturbed_triangle.h), which keeps these bounds first-order
+//     tight; interval arithmetic over the corners only for triangles too small for it;
+//   - (s, t) at the pixel, as the perspective-correct ratio of two interpolated planes, and the
+//     fine derivatives over its 2x2 quad (helpers included) as differences of the same moved
+//     planes (so their errors stay correlated, as on the hardware), each widened by the model's
+//     float error of the evaluation;
 //   - the LOD through sqrt and log2 with the model's errors, hence the needed levels;
 //   - per channel the colour: the bilinear filter over every texel position (s, t) can reach on
 //     every level the LOD can blend, each page looked up in the indirection table, widened by the

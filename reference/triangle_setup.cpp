@@ -182,8 +182,7 @@ bool setupEdges(WindowVertex v0, WindowVertex v1, WindowVertex v2, Viewport view
   if (area == 0) return false;
   if (area < 0) {
     std::swap(v0, v1);
-    const uint8_t e = out.outerEdges;
-    out.outerEdges = static_cast<uint8_t>((e & 4u) | ((e & 1u) << 1) | ((e & 2u) >> 1));
+    std::swap(out.fanNeighbour[0], out.fanNeighbour[1]);  // edge i is opposite corner i
   }
   setupPlanes(v0, v1, v2, arithmetic.planeSetup, out);
   const Coverage& coverage = arithmetic.coverage;
@@ -410,11 +409,11 @@ void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport,
     triangle.primitive = static_cast<uint32_t>(k);
     triangle.fanIndex = static_cast<uint32_t>(i - 2);
     const bool fan = any != 0;
-    // Corners (p[i-1], p[i], p[0]): the edge p[i-1] p[i] is the polygon's, p[i] p[0] only for the
-    // last triangle, p[0] p[i-1] only for the first.
+    // Corners (p[i-1], p[i], p[0]): the edge p[i-1] p[i] is the polygon's; p[i] p[0] is shared
+    // with the next triangle but for the last, p[0] p[i-1] with the previous but for the first.
     if (fan)
-      triangle.outerEdges =
-          static_cast<uint8_t>(4u | (i + 1 == polygon.size() ? 1u : 0u) | (i == 2 ? 2u : 0u));
+      triangle.fanNeighbour = {static_cast<int8_t>(i + 1 == polygon.size() ? 0 : 1),
+                               static_cast<int8_t>(i == 2 ? 0 : -1), 0};
     const WindowVertex a = toWindow(polygon[fan ? i - 1 : 0], viewport, arithmetic);
     const WindowVertex b = toWindow(polygon[fan ? i : 1], viewport, arithmetic);
     const WindowVertex c = toWindow(polygon[fan ? 0 : 2], viewport, arithmetic);

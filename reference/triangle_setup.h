@@ -93,9 +93,10 @@ struct SetupTriangle {
   Plane z;                                       // window z, not perspective-divided
   int minX = 0, minY = 0, maxX = -1, maxY = -1;  // pixels whose centres may be covered
   std::array<WindowCorner, 3> corners;           // in the oriented order of the edges
-  // Bit i: the edge opposite corner i lies on the mesh triangle's boundary. Edges between two
-  // triangles of a clipped fan are not: the shared-edge rule gives their pixels to one of the two.
-  uint8_t outerEdges = 7;
+  // Per edge (opposite corner i): 0 on the mesh triangle's boundary; +1 or -1 inside a clipped
+  // fan, shared with the triangle of fanIndex + 1 or - 1 (the shared-edge rule gives its pixels
+  // to one of the two).
+  std::array<int8_t, 3> fanNeighbour{};
   // Scanline coverage instead of `edges`; a row of both halves takes the top half's span unless it
   // is empty (the order softpipe writes them).
   bool scanline = false;

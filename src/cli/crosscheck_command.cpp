@@ -60,9 +60,9 @@ void addCrosscheckCommand(CLI::App& app) {
       ->add_option(
           "--model,--profile", o->profile,
           "Precision model the other renderer is judged under: exact, llvmpipe, softpipe, gl45, or "
-          "a model file (.json); auto: with --captures the model file a capture names, else it "
-          "follows GL_RENDERER (a capture's renderer): a measured model of it, else llvmpipe for "
-          "llvmpipe with FMA, softpipe for softpipe, gl45 otherwise")
+          "a model file (.json); auto: with --captures the model file a capture names, else a "
+          "measured model of its renderer, else the shipped model its fingerprint names; for "
+          "scenes a measured or shipped model whose fingerprint reproduces here; gl45 otherwise")
       ->capture_default_str();
   command->add_option("-o,--output", o->output, "Folder for summary.json and difference images")
       ->capture_default_str();

@@ -77,7 +77,8 @@ void addGoldenCommand(CLI::App& app) {
       ->add_option(
           "--model", c->model,
           "With --backend gl: the precision model (exact, llvmpipe, softpipe, gl45 or a model "
-          "file); auto follows GL_RENDERER")
+          "file); auto: a measured or shipped model whose fingerprint reproduces here, else "
+          "gl45")
       ->capture_default_str();
   check->add_option("-o,--output", c->output, "Folder for check.json and difference images")
       ->capture_default_str();

@@ -45,8 +45,10 @@ struct PrecisionModel {
   double depthUlps = 0;
   bool depthRoundsToNearest = true;
 
-  // Attribute interpolation: relative error of each interpolated attribute beyond what vertex
-  // snapping explains, in units of 2^-23 (0: the oracle's plane evaluation, bit for bit).
+  // Attribute interpolation: error of each interpolated attribute beyond what vertex snapping
+  // explains, in units of 2^-23 relative to the size of the terms its float evaluation sums (at
+  // least its value; reference/perturbed_triangle.h), 0: the oracle's plane evaluation, bit for
+  // bit. `vt calibrate` measures it relative to the value, which is never smaller.
   double attributeUlps = 0;
 
   // Shader arithmetic of the manual LOD (all `precise`): log2 pinned to the arithmetic's member,

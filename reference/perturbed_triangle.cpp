@@ -1,0 +1,154 @@
+#include "reference/perturbed_triangle.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace vt::reference {
+namespace {
+
+// The rounding of a double evaluation, absolute, from the magnitudes of its terms (perturbed_
+// triangle.h: far below every radius the bounds carry).
+constexpr double kDoubleSlack = 0x1p-40;
+
+double slack(const AffinePlane& p, const WindowBox& box) {
+  return kDoubleSlack *
+         (std::fabs(p.a0) + std::fabs(p.ax) * box.x.magnitude() + std::fabs(p.ay) * box.y.magnitude());
+}
+
+WindowBox grown(const WindowBox& box, double by) {
+  return {{box.x.lo - by, box.x.hi + by}, {box.y.lo - by, box.y.hi + by}};
+}
+
+}  // namespace
+
+PerturbedTriangle::PerturbedTriangle(const SetupTriangle& t, double radius) : radius_(radius) {
+  std::array<double, 3> x, y;
+  for (size_t i = 0; i < 3; ++i) {
+    x[i] = cornerX_[i] = t.corners[i].x;
+    y[i] = cornerY_[i] = t.corners[i].y;
+  }
+  // Differences and products of floats are exact in double; the area rounds once.
+  const double area = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+  if (!std::isfinite(area) || area == 0) return;
+  double g = 0, gx = 0, gy = 0;
+  for (size_t i = 0; i < 3; ++i) {
+    const size_t j = (i + 1) % 3, k = (i + 2) % 3;
+    // lambda_i(p) = ((x_k - x_j) (p_y - y_j) - (y_k - y_j) (p_x - x_j)) / area
+    lambda_[i].ax = -(y[k] - y[j]) / area;
+    lambda_[i].ay = (x[k] - x[j]) / area;
+    lambda_[i].a0 = ((y[k] - y[j]) * x[j] - (x[k] - x[j]) * y[j]) / area;
+    gx += std::fabs(lambda_[i].ax);
+    gy += std::fabs(lambda_[i].ay);
+  }
+  g = gx + gy;
+  if (!std::isfinite(g) || !(radius * g < 0.5)) return;
+  shrink_ = 1 / (1 - radius * g);
+  stepRadius_ = {radius * gx * shrink_, radius * gy * shrink_};
+  z_ = attribute({t.corners[0].z, t.corners[1].z, t.corners[2].z});
+  oneOverW_ = attribute({t.corners[0].oow, t.corners[1].oow, t.corners[2].oow});
+  bounded_ = std::isfinite(z_.a0) && std::isfinite(oneOverW_.a0);
+}
+
+AffinePlane PerturbedTriangle::attribute(const std::array<float, 3>& values) const {
+  AffinePlane p;
+  for (size_t i = 0; i < 3; ++i) {
+    p.a0 += values[i] * lambda_[i].a0;
+    p.ax += values[i] * lambda_[i].ax;
+    p.ay += values[i] * lambda_[i].ay;
+  }
+  return p;
+}
+
+double PerturbedTriangle::terms(const AffinePlane& p, double cx, double cy) const {
+  double largest = std::fabs(p.a0) + std::fabs(p.ax * cx) + std::fabs(p.ay * cy);
+  for (size_t i = 0; i < 3; ++i)
+    largest = std::max(largest, std::fabs(p.at(cornerX_[i], cornerY_[i])) +
+                                    std::fabs(p.ax * (cx - cornerX_[i])) +
+                                    std::fabs(p.ay * (cy - cornerY_[i])));
+  return largest;
+}
+
+double PerturbedTriangle::ratioScale(const AffinePlane& numerator, double cx, double cy) const {
+  const double w = std::fabs(oneOverW_.at(cx, cy));
+  const double value = std::fabs(numerator.at(cx, cy)) / w;
+  return (terms(numerator, cx, cy) + value * terms(oneOverW_, cx, cy)) / w;
+}
+
+WindowBox PerturbedTriangle::sourceBox(double cx, double cy) const {
+  double sum = 0;
+  for (const AffinePlane& l : lambda_) sum += std::fabs(l.at(cx, cy));
+  const WindowBox centre{Interval::point(cx), Interval::point(cy)};
+  double rounding = 0;
+  for (const AffinePlane& l : lambda_) rounding += slack(l, centre);
+  return grown(centre, radius_ * (sum + rounding) * shrink_);
+}
+
+Interval PerturbedTriangle::affineOver(const AffinePlane& p, const WindowBox& box) const {
+  // Each variable once: interval evaluation of an affine function is exact.
+  const Interval v = Interval::point(p.a0) + box.x * p.ax + box.y * p.ay;
+  return widen(v, 0, slack(p, box));
+}
+
+Interval PerturbedTriangle::barycentric(size_t i, double cx, double cy) const {
+  return affineOver(lambda_[i], sourceBox(cx, cy));
+}
+
+Interval PerturbedTriangle::depth(double cx, double cy) const {
+  return affineOver(z_, sourceBox(cx, cy));
+}
+
+Interval PerturbedTriangle::ratio(const AffinePlane& numerator, double cx, double cy) const {
+  const WindowBox box = sourceBox(cx, cy);
+  const Interval w = affineOver(oneOverW_, box);
+  if (w.containsZero()) return Interval::everything();
+  // A ratio of two affine functions is monotonic along every line where its denominator keeps its
+  // sign: over a box its bounds lie at the corners.
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (double x : {box.x.lo, box.x.hi})
+    for (double y : {box.y.lo, box.y.hi}) {
+      const double v = numerator.at(x, y) / oneOverW_.at(x, y);
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  const double wMin = std::min(std::fabs(w.lo), std::fabs(w.hi));
+  const double rounding = (slack(numerator, box) + std::max(std::fabs(lo), std::fabs(hi)) *
+                                                       slack(oneOverW_, box)) / wMin;
+  return widen({lo, hi}, kDoubleSlack, rounding);
+}
+
+std::array<Interval, 2> PerturbedTriangle::ratioGradient(const AffinePlane& n,
+                                                         const WindowBox& box) const {
+  const AffinePlane& w = oneOverW_;
+  const Interval wRange = affineOver(w, box);
+  if (wRange.containsZero()) return {Interval::everything(), Interval::everything()};
+  const Interval w2 = square(wRange);
+  // d/dx (n / w) = ((nx w0 - n0 wx) + (nx wy - ny wx) y) / w^2, and alike for y.
+  const double cross = n.ax * w.ay - n.ay * w.ax;
+  const Interval numX = Interval::point(n.ax * w.a0 - n.a0 * w.ax) + box.y * cross;
+  const Interval numY = Interval::point(n.ay * w.a0 - n.a0 * w.ay) - box.x * cross;
+  const double termsX = std::fabs(n.ax * w.a0) + std::fabs(n.a0 * w.ax) +
+                        (std::fabs(n.ax * w.ay) + std::fabs(n.ay * w.ax)) * box.y.magnitude();
+  const double termsY = std::fabs(n.ay * w.a0) + std::fabs(n.a0 * w.ay) +
+                        (std::fabs(n.ax * w.ay) + std::fabs(n.ay * w.ax)) * box.x.magnitude();
+  return {widen(widen(numX, 0, kDoubleSlack * termsX) / w2, kDoubleSlack),
+          widen(widen(numY, 0, kDoubleSlack * termsY) / w2, kDoubleSlack)};
+}
+
+Interval PerturbedTriangle::ratioStep(const AffinePlane& numerator, double cx, double cy,
+                                      int axis) const {
+  const WindowBox from = sourceBox(cx, cy);
+  // q in `from`, the step's far end at q + e_axis + eps: the box around both ends.
+  WindowBox around = from;
+  (axis == 0 ? around.x.hi : around.y.hi) += 1;
+  around = grown(around, stepRadius_[static_cast<size_t>(axis)]);
+  const std::array<Interval, 2> gradient = ratioGradient(numerator, around);
+  if (!gradient[0].finite() || !gradient[1].finite()) return Interval::everything();
+  // n/w(q + e) - n/w(q) by the mean-value theorem along the step; plus n/w(q + e + eps) -
+  // n/w(q + e), within the gradient's magnitude times eps.
+  const double moved = (gradient[0].magnitude() + gradient[1].magnitude()) *
+                       stepRadius_[static_cast<size_t>(axis)];
+  return widen(gradient[static_cast<size_t>(axis)], 0, moved);
+}
+
+}  // namespace vt::reference

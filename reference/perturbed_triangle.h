@@ -1,0 +1,94 @@
+#pragma once
+// Bounds on what a triangle's interpolated values can be when each of its corners may lie anywhere
+// within `radius` (in x and in y) of its nominal window position: the snapping of a precision model
+// that does not pin the sub-pixel grid (result_set_builder.h).
+//
+// The bounds are exact to first order instead of interval arithmetic over the corners (whose
+// barycentrics, ratios and differences of correlated values lose orders of magnitude). They rest on
+// one identity. Let c_j be the nominal corners, c'_j the moved ones, lambda and lambda' the
+// barycentric coordinates of the two triangles, and phi the affine map with phi(c'_j) = c_j. Affine
+// maps keep barycentric coordinates, so lambda'(p) = lambda(phi(p)), and every value interpolated
+// from per-corner data (window z linearly, s/w, t/w and 1/w alike, hence s = (s/w) / (1/w)) of the
+// moved triangle at p is the nominal triangle's value at phi(p). With
+//   phi(p) - p = sum_j lambda'_j(p) (c_j - c'_j),     |c_j - c'_j| <= r per axis,
+// phi(p) lies within r * sum_j |lambda'_j(p)| of p, and |lambda'_j(p)| <= |lambda_j(p)| +
+// |grad lambda_j|_1 |phi(p) - p| gives, with G = sum_j |grad lambda_j|_1 of the nominal triangle,
+//   |phi(p) - p| <= rho0(p) = r * sum_j |lambda_j(p)| / (1 - r G).
+// A step by one pixel along axis a moves phi by that pixel plus
+//   phi(p + e_a) - phi(p) - e_a = sum_j (d lambda'_j / d a) (c_j - c'_j),
+// each component within rho1_a = r * sum_j |d lambda_j / d a| / (1 - r G) (the same argument on the
+// gradients). A triangle with r G >= 1/2 (smaller than about a pixel's eighth per radius) gets no
+// bounds here: the caller falls back to interval arithmetic.
+//
+// A fine derivative of the moved triangle is then the nominal value's difference between two
+// points q and q + e_a + eps, q in the box around p, |eps| <= rho1_a: the mean-value theorem bounds
+// it by the nominal gradient over a box a little larger than one pixel. The nominal planes are
+// computed in double from the float corners; each bound is widened by 2^-40 of the magnitudes of
+// the terms it sums, which covers their rounding (a few units of 2^-53 each) many times over.
+
+#include <array>
+
+#include "reference/interval.h"
+#include "reference/triangle_setup.h"
+
+namespace vt::reference {
+
+// v(x, y) = a0 + ax x + ay y in window coordinates (pixel centres at + 0.5).
+struct AffinePlane {
+  double a0 = 0, ax = 0, ay = 0;
+  double at(double x, double y) const { return a0 + ax * x + ay * y; }
+};
+
+// An axis-aligned box of window positions.
+struct WindowBox {
+  Interval x, y;
+};
+
+class PerturbedTriangle {
+ public:
+  // `radius`: how far each corner may lie from its nominal position, per axis.
+  PerturbedTriangle(const SetupTriangle& t, double radius);
+
+  // False when the triangle is too small for first-order bounds (r G >= 1/2) or degenerate.
+  bool bounded() const { return bounded_; }
+
+  // Where phi(p) lies for the pixel centre p = (cx, cy).
+  WindowBox sourceBox(double cx, double cy) const;
+
+  // lambda'_i at the centre: the barycentric coordinate of the moved triangle.
+  Interval barycentric(size_t i, double cx, double cy) const;
+  // Window z of the moved triangle at the centre.
+  Interval depth(double cx, double cy) const;
+
+  // A perspective-correct attribute (numerator plane over 1/w) at the centre, and its fine
+  // derivative along x (axis 0) or y (axis 1): from the centre (cx, cy) to the next pixel's.
+  // Everything where 1/w may vanish.
+  Interval ratio(const AffinePlane& numerator, double cx, double cy) const;
+  Interval ratioStep(const AffinePlane& numerator, double cx, double cy, int axis) const;
+
+  // The plane through the corners' s/w (or t/w).
+  AffinePlane attribute(const std::array<float, 3>& values) const;
+
+  // The size of the terms an implementation sums to evaluate numerator / (1/w) at the centre in
+  // float: (T(n) + |n / w| T(1/w)) / |1/w|, with T(plane) = |a(o)| + |ax (x - ox)| + |ay (y - oy)|
+  // for the plane's origin o at the window's origin or at a corner, whichever is larger. A
+  // float evaluation errs relative to this, not to the value, which cancellation makes small
+  // (near a horizon, 1/w is a small difference of large terms).
+  double ratioScale(const AffinePlane& numerator, double cx, double cy) const;
+
+ private:
+  Interval affineOver(const AffinePlane& plane, const WindowBox& box) const;
+  // The gradient of numerator / (1/w) over a box, per axis.
+  std::array<Interval, 2> ratioGradient(const AffinePlane& numerator, const WindowBox& box) const;
+
+  double terms(const AffinePlane& plane, double cx, double cy) const;
+
+  std::array<AffinePlane, 3> lambda_;
+  std::array<double, 3> cornerX_{}, cornerY_{};
+  AffinePlane z_, oneOverW_;
+  double radius_ = 0, shrink_ = 1;  // shrink_ = 1 / (1 - r G)
+  std::array<double, 2> stepRadius_{};  // rho1 per axis
+  bool bounded_ = false;
+};
+
+}  // namespace vt::reference
