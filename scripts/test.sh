@@ -58,7 +58,7 @@ run_suite build ''
 # The sanitizer builds compile at -O1, as the sanitizers' documentation advises: the builds are
 # most of CI's time, and -O1 keeps the stack traces readable.
 sanitizer_optimization="-O1 -DNDEBUG"
-sanitizer_exclude='^(Q3dm6ish|GoldenBackend\.TheGlPathPassesQ3dm6ish|CaptureCrosscheck\.Q3dm6ish|CrosscheckCommand\.Q3dm6ish|OpenArena/StoryboardPaths\.|OpenArenaMap\.OursWastes|CrashConsistency\.|DemoCommand\.|PlantedBugs\.|PlantedBugsOnAVariant\.|ArithmeticVariant\.|LlvmpipeVariant\.|Calibration\.(Softpipe|IsDeterministic)|CalibrateCommand\.|CaptureCrosscheck\.RedRaised|Chapter4\.)'
+sanitizer_exclude='^(Q3dm6ish|GoldenBackend\.TheGlPathPassesQ3dm6ish|CaptureCrosscheck\.Q3dm6ish|CrosscheckCommand\.Q3dm6ish|OpenArena/StoryboardPaths\.|OpenArenaMap\.OursWastes|CrashConsistency\.|DemoCommand\.|PlantedBugs\.|PlantedBugsOnAVariant\.|ArithmeticVariant\.|LlvmpipeVariant\.|Calibration\.(Softpipe|IsDeterministic)|CalibrateCommand\.|CaptureCrosscheck\.RedRaised|Chapter4\.|VtCapture\.Probes)'
 
 if ((sanitizers)); then
   # libFuzzer on every input parser, 60 s each, two at a time (seeds from the Release vt above).

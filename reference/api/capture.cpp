@@ -145,6 +145,13 @@ std::vector<T> flipRows(std::span<const T> rows, size_t height) {
 std::vector<uint8_t> readRgbaImage(const fs::path& folder, const std::string& name,
                                    Viewport viewport, const fs::path& manifest) {
   requireRelativeName(name, manifest);
+  if (name.ends_with(".rgba8")) {
+    // Raw: four bytes per pixel, rows top to bottom (written without an image library).
+    const size_t pixels = static_cast<size_t>(viewport.width) * static_cast<size_t>(viewport.height);
+    const std::vector<std::byte> bytes = readDataFile(folder, name, pixels * 4, manifest);
+    const auto* first = reinterpret_cast<const uint8_t*>(bytes.data());
+    return flipRows<uint8_t>(std::span(first, bytes.size()), static_cast<size_t>(viewport.height));
+  }
   const Image8 image = readImage8(folder / name, static_cast<int>(kMaxViewportSide));
   if (image.width != viewport.width || image.height != viewport.height || image.channels != 4)
     throw captureError(

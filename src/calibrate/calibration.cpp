@@ -15,11 +15,6 @@
 namespace vt::calibrate {
 namespace {
 
-std::string glString(GLenum name) {
-  const GLubyte* text = glGetString(name);
-  return text ? reinterpret_cast<const char*>(text) : "";
-}
-
 // Colour conversion: floats between two unorm8 values written to an RGBA8 target.
 ParameterFit fitColourConversion() {
   ShaderProbe probe;
@@ -125,9 +120,10 @@ std::vector<std::string> nonConformance(const PrecisionModel& m,
 
 Calibration calibrate() {
   Calibration c;
-  c.renderer = glString(GL_RENDERER);
-  c.version = glString(GL_VERSION);
-  c.vendor = glString(GL_VENDOR);
+  const ProbeIdentity identity = probeIdentity();
+  c.renderer = identity.renderer;
+  c.version = identity.version;
+  c.vendor = identity.vendor;
   const ShaderMathFits math = fitShaderMath();
   const FilterFit filter = fitFilter(math.conversion);
   const ParameterFit colour = fitColourConversion();

@@ -118,15 +118,46 @@ std::vector<Texel> drawProbe(const ShaderProbe& probe, GLenum format, GLenum rea
   return result;
 }
 
+thread_local ProbeDrawer* currentDrawer = nullptr;
+
+std::string glString(GLenum name) {
+  const GLubyte* text = glGetString(name);
+  return text ? reinterpret_cast<const char*>(text) : "";
+}
+
 }  // namespace
 
-std::vector<glm::vec4> runShaderProbe(const ShaderProbe& probe) {
+UsingProbeDrawer::UsingProbeDrawer(ProbeDrawer& drawer) : previous_(currentDrawer) {
+  currentDrawer = &drawer;
+}
+UsingProbeDrawer::~UsingProbeDrawer() { currentDrawer = previous_; }
+
+std::vector<glm::vec4> drawShaderProbeHere(const ShaderProbe& probe) {
   return drawProbe<glm::vec4>(probe, GL_RGBA32F, GL_RGBA, GL_FLOAT, "vec4");
 }
 
-std::vector<glm::u8vec4> runColourProbe(const ShaderProbe& probe) {
+std::vector<glm::u8vec4> drawColourProbeHere(const ShaderProbe& probe) {
   return drawProbe<glm::u8vec4>(probe, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, "vec4");
 }
+
+ProbeIdentity identityHere() {
+  return {glString(GL_RENDERER), glString(GL_VERSION), glString(GL_VENDOR)};
+}
+
+std::vector<glm::vec4> runShaderProbe(const ShaderProbe& probe) {
+  return currentDrawer ? currentDrawer->shader(probe) : drawShaderProbeHere(probe);
+}
+
+std::vector<glm::u8vec4> runColourProbe(const ShaderProbe& probe) {
+  return currentDrawer ? currentDrawer->colour(probe) : drawColourProbeHere(probe);
+}
+
+RasterReadback drawTriangles(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format) {
+  return currentDrawer ? currentDrawer->triangles(mesh, viewport, format)
+                       : drawTrianglesHere(mesh, viewport, format);
+}
+
+ProbeIdentity probeIdentity() { return currentDrawer ? currentDrawer->identity() : identityHere(); }
 
 // Random triangles of all sizes, perspective, overlapping, some crossing the near plane and the
 // frustum's sides, some slivers and a coplanar duplicate of the first.
@@ -154,7 +185,8 @@ ClipSpaceMesh randomTriangles(unsigned seed, int triangles) {
   return mesh;
 }
 
-RasterReadback drawTriangles(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format) {
+RasterReadback drawTrianglesHere(const ClipSpaceMesh& mesh, Viewport viewport,
+                                 DepthFormat format) {
   static const char* kVertex = R"(#version 450 core
 layout(location = 0) in vec4 aClipPosition;
 layout(location = 1) in vec2 aUV;

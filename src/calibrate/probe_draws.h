@@ -52,4 +52,41 @@ ClipSpaceMesh randomTriangles(unsigned seed, int triangles);
 RasterReadback drawTriangles(const ClipSpaceMesh& mesh, Viewport viewport,
                              DepthFormat format = DepthFormat::kDepth32F);
 
+// The implementation's names (GL_RENDERER, GL_VERSION, GL_VENDOR).
+struct ProbeIdentity {
+  std::string renderer, version, vendor;
+};
+ProbeIdentity probeIdentity();
+
+// Where runShaderProbe, runColourProbe, drawTriangles and probeIdentity go: to the current
+// context (no drawer set), or to a drawer that records them or replays draws recorded elsewhere
+// (calibrate/recorded_probes.h). One drawer at a time, set by UsingProbeDrawer on the calling
+// thread.
+class ProbeDrawer {
+ public:
+  virtual ~ProbeDrawer() = default;
+  virtual std::vector<glm::vec4> shader(const ShaderProbe& probe) = 0;
+  virtual std::vector<glm::u8vec4> colour(const ShaderProbe& probe) = 0;
+  virtual RasterReadback triangles(const ClipSpaceMesh& mesh, Viewport viewport,
+                                   DepthFormat format) = 0;
+  virtual ProbeIdentity identity() = 0;
+};
+
+class UsingProbeDrawer {
+ public:
+  explicit UsingProbeDrawer(ProbeDrawer& drawer);
+  ~UsingProbeDrawer();
+  UsingProbeDrawer(const UsingProbeDrawer&) = delete;
+  UsingProbeDrawer& operator=(const UsingProbeDrawer&) = delete;
+
+ private:
+  ProbeDrawer* previous_;
+};
+
+// The draws on the current context, whatever drawer is set.
+std::vector<glm::vec4> drawShaderProbeHere(const ShaderProbe& probe);
+std::vector<glm::u8vec4> drawColourProbeHere(const ShaderProbe& probe);
+RasterReadback drawTrianglesHere(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format);
+ProbeIdentity identityHere();
+
 }  // namespace vt::calibrate

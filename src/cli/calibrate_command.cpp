@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "calibrate/calibration.h"
+#include "calibrate/recorded_probes.h"
 #include "cli/commands.h"
 #include "common/output_path.h"
 #include "common/posix_file.h"
@@ -17,7 +18,7 @@ namespace vt {
 
 void addCalibrateCommand(CLI::App& app) {
   struct Options {
-    std::string output;
+    std::string output, probes, recordProbes;
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand(
@@ -25,10 +26,33 @@ void addCalibrateCommand(CLI::App& app) {
       "Measure this OpenGL implementation's precision model by probe draws and write it as a "
       "model file");
   command->add_option("-o,--output", options->output, "Model file to write (default: print it)");
+  command
+      ->add_option("--probes", options->probes,
+                   "Fit the model from probes drawn elsewhere (vt-capture probes' output folder) "
+                   "instead of drawing them here; needs no OpenGL")
+      ->check(CLI::ExistingDirectory);
+  command->add_option("--record-probes", options->recordProbes,
+                      "Also write every probe draw (request and result) into this folder, for "
+                      "vt-capture to draw again on another machine");
+  command->get_option("--probes")->excludes("--record-probes");
   command->callback([options] {
-    if (!options->output.empty()) requireOutputFile(options->output, {});
-    const HeadlessContext context;
-    const calibrate::Calibration calibration = calibrate::calibrate();
+    if (!options->output.empty()) requireOutputFile(options->output, {options->probes});
+    const calibrate::Calibration calibration = [&] {
+      if (!options->probes.empty()) {
+        calibrate::RecordedProbeDrawer replay(options->probes);
+        const calibrate::UsingProbeDrawer using_(replay);
+        return calibrate::calibrate();
+      }
+      const HeadlessContext context;
+      if (options->recordProbes.empty()) return calibrate::calibrate();
+      TemporaryFolder staging(options->recordProbes, "probes.json");
+      calibrate::RecordingProbeDrawer record(staging.path());
+      const calibrate::UsingProbeDrawer using_(record);
+      calibrate::Calibration c = calibrate::calibrate();
+      record.finish();
+      staging.commit();
+      return c;
+    }();
     const auto evidence = [&](std::ostream& out) {
       for (const calibrate::ParameterFit& fit : calibration.fits)
         out << "  " << fit.parameter << (fit.pinned ? " [pinned]" : " [bounded]") << ": "

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <sstream>
 #include <stdexcept>
 
 #include "scene/box_room.h"
@@ -140,6 +142,27 @@ NamedScene testScene(const std::string& name) {
   for (const std::string& known : testSceneNames())
     names.append(names.empty() ? "" : ", ").append(known);
   throw std::invalid_argument("scene '" + name + "' is not one of " + names);
+}
+
+std::vector<NamedScene> flythroughViews(const Mesh& mesh, const CameraPath& path, int every) {
+  std::vector<NamedScene> views;
+  for (int frame = 0; frame < path.frameCount(); frame += every) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame%04d", frame);
+    views.push_back({name, mesh, path.at(frame)});
+  }
+  return views;
+}
+
+std::vector<NamedScene> namedSceneViews(const std::string& list) {
+  std::vector<NamedScene> views;
+  if (list == "all") {
+    for (const std::string& name : testSceneNames()) views.push_back(testScene(name));
+    return views;
+  }
+  std::stringstream names(list);
+  for (std::string name; std::getline(names, name, ',');) views.push_back(testScene(name));
+  return views;
 }
 
 }  // namespace vt

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "scene/camera.h"
+#include "scene/camera_path.h"
 #include "scene/mesh.h"
 
 namespace vt {
@@ -30,5 +31,11 @@ struct NamedScene {
 std::vector<std::string> testSceneNames();
 // Throws std::invalid_argument for an unknown name.
 NamedScene testScene(const std::string& name);
+
+// The test scenes of a comma-separated list of names, or every one for "all".
+std::vector<NamedScene> namedSceneViews(const std::string& list);
+
+// Every `every`-th frame of `path` through `mesh`, named frame0000, frame0008, ...
+std::vector<NamedScene> flythroughViews(const Mesh& mesh, const CameraPath& path, int every);
 
 }  // namespace vt

@@ -13,6 +13,7 @@
 #include "gl/headless_context.h"
 #include "render/arithmetic_points.h"
 #include "render/backend.h"
+#include "render/check_modes.h"
 #include "render/precision_model.h"
 #include "render/precision_model_file.h"
 #include "scene/clip_space_mesh.h"
@@ -27,11 +28,6 @@ std::string environment(const char* name) {
   return value ? value : "";
 }
 
-struct Mode {
-  const char* name;
-  bool exactFilter, trilinear, need8;
-};
-
 // The model file handed to the oracle's API by its name: a measured model that auto chose, or
 // the file named; none for the shipped models, which travel as a profile.
 std::string modelFileFor(const std::string& option, const PrecisionModel& chosen,
@@ -45,27 +41,6 @@ std::string modelFileFor(const std::string& option, const PrecisionModel& chosen
 }
 
 }  // namespace
-
-std::vector<NamedScene> flythroughViews(const Mesh& mesh, const CameraPath& path, int every) {
-  std::vector<NamedScene> views;
-  for (int frame = 0; frame < path.frameCount(); frame += every) {
-    char name[32];
-    std::snprintf(name, sizeof name, "frame%04d", frame);
-    views.push_back({name, mesh, path.at(frame)});
-  }
-  return views;
-}
-
-std::vector<NamedScene> namedSceneViews(const std::string& list) {
-  std::vector<NamedScene> views;
-  if (list == "all") {
-    for (const std::string& name : testSceneNames()) views.push_back(testScene(name));
-    return views;
-  }
-  std::stringstream names(list);
-  for (std::string name; std::getline(names, name, ',');) views.push_back(testScene(name));
-  return views;
-}
 
 ScenesCheck crosscheckScenes(const ScenesCheckOptions& options) {
   TemporaryFolder staging(options.output, "summary.json");
@@ -95,9 +70,7 @@ ScenesCheck crosscheckScenes(const ScenesCheckOptions& options) {
   const oracle::Texture texture = oracle::Texture::open(options.texture);
   const oracle::PreparedCache prepared(texture, publicCacheState(cache));
 
-  std::vector<Mode> modes = {{"texelfetch-trilinear-need32", true, true, false},
-                             {"linear-bilinear-need8", false, false, true}};
-  if (!need8Encodes(reader.description().finestLevel())) modes.pop_back();
+  const std::vector<CheckMode> modes = checkModes(reader.description().finestLevel());
 
   nlohmann::json summary;
   summary["gl_renderer"] = check.renderer;
@@ -116,10 +89,8 @@ ScenesCheck crosscheckScenes(const ScenesCheckOptions& options) {
   for (const NamedScene& scene : options.views) {
     const ClipSpaceMesh mesh = toClipSpace(scene.mesh, scene.camera, settings.viewport);
     const oracle::Scene publicMesh = oracle::publicScene(mesh, settings.viewport);
-    for (const Mode& mode : modes) {
-      settings.exactFilter = mode.exactFilter;
-      settings.trilinear = mode.trilinear;
-      settings.need8 = mode.need8;
+    for (const CheckMode& mode : modes) {
+      applyMode(settings, mode);
       const oracle::Frame expected =
           oracle::render(texture, publicMesh, prepared, publicRenderOptions(settings, modelFile));
       const Frame frame = gl->render(mesh, settings);

@@ -39,10 +39,4 @@ struct ScenesCheck {
 // llvmpipe's results depend on it; the summary records it with the other settings that do.
 ScenesCheck crosscheckScenes(const ScenesCheckOptions& options);
 
-// Every `every`-th frame of `path` through `mesh`, named frame0000, frame0008, ...
-std::vector<NamedScene> flythroughViews(const Mesh& mesh, const CameraPath& path, int every);
-
-// The test scenes of a comma-separated list of names, or every one for "all".
-std::vector<NamedScene> namedSceneViews(const std::string& list);
-
 }  // namespace vt

@@ -1,0 +1,85 @@
+#include "calibrate/recorded_probes.h"
+
+#include "capture/probe_files.h"
+#include "common/error.h"
+
+namespace vt::calibrate {
+namespace {
+
+using capture::ProbeRequest;
+using capture::ProbeResult;
+
+ProbeRequest shaderRequest(ProbeRequest::Kind kind, const ShaderProbe& probe) {
+  ProbeRequest r;
+  r.kind = kind;
+  r.shader = probe;
+  return r;
+}
+
+ProbeRequest trianglesRequest(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format) {
+  ProbeRequest r;
+  r.kind = ProbeRequest::Kind::kTriangles;
+  r.mesh = mesh;
+  r.viewport = viewport;
+  r.depth = format;
+  return r;
+}
+
+ProbeResult record(const std::filesystem::path& folder, size_t& next, const ProbeRequest& r) {
+  ProbeResult result = capture::drawHere(r);
+  capture::writeProbeRequest(folder, next, r);
+  capture::writeProbeResult(folder, next, r, result);
+  ++next;
+  return result;
+}
+
+ProbeResult replay(const std::filesystem::path& folder, size_t count, size_t& next,
+                   const ProbeRequest& r) {
+  if (next >= count)
+    throw InputError(folder, "holds " + std::to_string(count) +
+                                 " probe draws; this vt calibrate asks for more (drawn for "
+                                 "another version?)");
+  const ProbeRequest recorded = capture::readProbeRequest(folder, next);
+  if (!capture::sameRequest(recorded, r))
+    throw InputError(folder, "probe draw " + std::to_string(next) +
+                                 " is not the one this vt calibrate asks for (drawn for another "
+                                 "version?)");
+  return capture::readProbeResult(folder, next++, r);
+}
+
+}  // namespace
+
+RecordingProbeDrawer::RecordingProbeDrawer(std::filesystem::path folder)
+    : folder_(std::move(folder)) {}
+
+std::vector<glm::vec4> RecordingProbeDrawer::shader(const ShaderProbe& probe) {
+  return record(folder_, next_, shaderRequest(ProbeRequest::Kind::kShader, probe)).values;
+}
+std::vector<glm::u8vec4> RecordingProbeDrawer::colour(const ShaderProbe& probe) {
+  return record(folder_, next_, shaderRequest(ProbeRequest::Kind::kColour, probe)).bytes;
+}
+RasterReadback RecordingProbeDrawer::triangles(const ClipSpaceMesh& mesh, Viewport viewport,
+                                               DepthFormat format) {
+  return record(folder_, next_, trianglesRequest(mesh, viewport, format)).raster;
+}
+void RecordingProbeDrawer::finish() { capture::writeProbeFolder(folder_, {next_, identityHere()}); }
+
+RecordedProbeDrawer::RecordedProbeDrawer(std::filesystem::path folder)
+    : folder_(std::move(folder)) {
+  const capture::ProbeFolder description = capture::readProbeFolder(folder_);
+  count_ = description.count;
+  identity_ = description.identity;
+}
+
+std::vector<glm::vec4> RecordedProbeDrawer::shader(const ShaderProbe& probe) {
+  return replay(folder_, count_, next_, shaderRequest(ProbeRequest::Kind::kShader, probe)).values;
+}
+std::vector<glm::u8vec4> RecordedProbeDrawer::colour(const ShaderProbe& probe) {
+  return replay(folder_, count_, next_, shaderRequest(ProbeRequest::Kind::kColour, probe)).bytes;
+}
+RasterReadback RecordedProbeDrawer::triangles(const ClipSpaceMesh& mesh, Viewport viewport,
+                                              DepthFormat format) {
+  return replay(folder_, count_, next_, trianglesRequest(mesh, viewport, format)).raster;
+}
+
+}  // namespace vt::calibrate

@@ -1,0 +1,47 @@
+#pragma once
+// The calibration's draws recorded into a folder or replayed from one (capture/probe_files.h):
+// `vt calibrate --record-probes DIR` draws here and records every request with its result;
+// `vt-capture probes DIR -o OUT` draws those requests on another machine's implementation; `vt
+// calibrate --probes OUT` fits the model from what it drew, without a GL context. The draws are
+// asked in a fixed order (no probe depends on a fit), so the replay answers the i-th draw with the
+// i-th record after checking that the two requests are the same, bit for bit.
+
+#include <filesystem>
+
+#include "calibrate/probe_draws.h"
+
+namespace vt::calibrate {
+
+class RecordingProbeDrawer : public ProbeDrawer {
+ public:
+  explicit RecordingProbeDrawer(std::filesystem::path folder);
+  std::vector<glm::vec4> shader(const ShaderProbe& probe) override;
+  std::vector<glm::u8vec4> colour(const ShaderProbe& probe) override;
+  RasterReadback triangles(const ClipSpaceMesh& mesh, Viewport viewport,
+                           DepthFormat format) override;
+  ProbeIdentity identity() override { return identityHere(); }
+  // Writes probes.json with the number of draws recorded.
+  void finish();
+
+ private:
+  std::filesystem::path folder_;
+  size_t next_ = 0;
+};
+
+class RecordedProbeDrawer : public ProbeDrawer {
+ public:
+  // Reads probes.json; throws InputError naming the file when the folder is not a probe folder.
+  explicit RecordedProbeDrawer(std::filesystem::path folder);
+  std::vector<glm::vec4> shader(const ShaderProbe& probe) override;
+  std::vector<glm::u8vec4> colour(const ShaderProbe& probe) override;
+  RasterReadback triangles(const ClipSpaceMesh& mesh, Viewport viewport,
+                           DepthFormat format) override;
+  ProbeIdentity identity() override { return identity_; }
+
+ private:
+  std::filesystem::path folder_;
+  size_t count_ = 0, next_ = 0;
+  ProbeIdentity identity_;
+};
+
+}  // namespace vt::calibrate

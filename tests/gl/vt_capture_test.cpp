@@ -1,0 +1,145 @@
+// vt-capture, the GPU-side program: it links none of the oracle's libraries, its captures judge
+// bit for bit under the llvmpipe model on llvmpipe, and the probes it draws give `vt calibrate
+// --probes` the same model file as `vt calibrate` drawing them itself. Damaged probe folders are
+// refused with the file named.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "build/synthetic_texture.h"
+#include "cli/run_command.h"
+#include "gl/headless_context.h"
+#include "test_support.h"
+
+namespace vt {
+namespace {
+
+using ::testing::HasSubstr;
+
+class VtCapture : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ::setenv("LP_NUM_THREADS", "2", 1);
+    writeSyntheticTexture(dir_ / "t.vt",
+                          {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, 0.45});
+  }
+  test::CommandResult vt(const std::vector<std::string>& args) {
+    return test::runCommand(VT_EXECUTABLE, args, dir_.path());
+  }
+  test::CommandResult capture(const std::vector<std::string>& args) {
+    return test::runCommand(VT_CAPTURE_EXECUTABLE, args, dir_.path());
+  }
+  bool llvmpipeWithFma() {
+    const HeadlessContext context;
+    return context.renderer().find("llvmpipe") != std::string::npos &&
+           __builtin_cpu_supports("fma");
+  }
+  test::ScratchDirectory dir_;
+};
+
+// ldd's libraries of vt-capture: the C library's own, libepoxy (which opens EGL and GL by name at
+// run time) and xxhash; no C++ runtime (linked statically), image library, Embree, TBB or libzip.
+TEST_F(VtCapture, LinksOnlyWhatDrawingNeeds) {
+  const test::CommandResult ldd = test::runCommand("/usr/bin/ldd", {VT_CAPTURE_EXECUTABLE},
+                                                   dir_.path());
+  ASSERT_EQ(ldd.exitCode, 0) << ldd.err;
+  if (ldd.out.find("libasan") != std::string::npos || ldd.out.find("libtsan") != std::string::npos)
+    GTEST_SKIP() << "a sanitizer build: its runtime brings its own libraries";
+  const std::vector<std::string> allowed = {"linux-vdso", "ld-linux", "libc.so", "libm.so",
+                                            "libdl.so", "libpthread.so", "librt.so",
+                                            "libepoxy.so", "libxxhash.so"};
+  std::istringstream lines(ldd.out);
+  int libraries = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find_first_not_of(" \t") == std::string::npos) continue;
+    ++libraries;
+    bool ok = false;
+    for (const std::string& name : allowed) ok = ok || line.find(name) != std::string::npos;
+    EXPECT_TRUE(ok) << "vt-capture needs " << line;
+  }
+  EXPECT_GE(libraries, 3);
+}
+
+TEST_F(VtCapture, ItsCapturesJudgeBitExactUnderLlvmpipe) {
+  if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
+  const test::CommandResult drawn = capture({"scenes", (dir_ / "t.vt").string(), "--scenes",
+                                             "room,coplanar,crossing", "--size", "160x100", "-o",
+                                             (dir_ / "captures").string()});
+  ASSERT_EQ(drawn.exitCode, 0) << drawn.err;
+  for (const std::string model : {"llvmpipe", "gl45"}) {
+    const test::CommandResult judged =
+        vt({"crosscheck", "--captures", (dir_ / "captures").string(), "--model", model, "-o",
+            (dir_ / ("report-" + model)).string()});
+    EXPECT_EQ(judged.exitCode, 0) << model << "\n" << judged.out << judged.err;
+    std::ifstream in(dir_ / ("report-" + model) / "summary.json");
+    const auto summary = nlohmann::json::parse(in);
+    EXPECT_EQ(summary["totals"]["pixels"], 6u * 16000u) << model;  // 3 scenes, 2 modes
+    if (model == std::string("llvmpipe")) {
+      EXPECT_EQ(summary["totals"]["identical"], summary["totals"]["pixels"]);
+    }
+  }
+}
+
+TEST_F(VtCapture, ProbesDrawnByItGiveTheModelCalibrateMeasures) {
+  const test::CommandResult here =
+      vt({"calibrate", "--record-probes", (dir_ / "requests").string(), "-o",
+          (dir_ / "here.json").string()});
+  ASSERT_EQ(here.exitCode, 0) << here.err;
+  const test::CommandResult drawn =
+      capture({"probes", (dir_ / "requests").string(), "-o", (dir_ / "drawn").string()});
+  ASSERT_EQ(drawn.exitCode, 0) << drawn.err;
+  const test::CommandResult fitted = vt({"calibrate", "--probes", (dir_ / "drawn").string(),
+                                         "-o", (dir_ / "elsewhere.json").string()});
+  ASSERT_EQ(fitted.exitCode, 0) << fitted.err;
+  EXPECT_EQ(test::slurp(dir_ / "here.json"), test::slurp(dir_ / "elsewhere.json"));
+
+  // A probe changed after it was drawn: not the draw this vt calibrate asks for.
+  {
+    std::fstream inputs(dir_ / "drawn" / "probe-0000.inputs.f32",
+                        std::ios::in | std::ios::out | std::ios::binary);
+    inputs.seekp(0);
+    inputs.put('\x7f');
+  }
+  const test::CommandResult changed = vt({"calibrate", "--probes", (dir_ / "drawn").string(),
+                                          "-o", (dir_ / "changed.json").string()});
+  EXPECT_EQ(changed.exitCode, 1);
+  EXPECT_THAT(changed.err, HasSubstr("probe draw 0 is not the one this vt calibrate asks for"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "changed.json"));
+
+  // A result cut short.
+  std::filesystem::resize_file(dir_ / "requests" / "probe-0001.result", 100);
+  std::filesystem::copy_file(dir_ / "requests" / "probe-0001.result",
+                             dir_ / "drawn" / "probe-0001.result",
+                             std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::copy_file(dir_ / "requests" / "probe-0000.inputs.f32",
+                             dir_ / "drawn" / "probe-0000.inputs.f32",
+                             std::filesystem::copy_options::overwrite_existing);
+  const test::CommandResult cut = vt({"calibrate", "--probes", (dir_ / "drawn").string(), "-o",
+                                      (dir_ / "cut.json").string()});
+  EXPECT_EQ(cut.exitCode, 1);
+  EXPECT_THAT(cut.err, HasSubstr("probe-0001.result"));
+}
+
+TEST_F(VtCapture, BadArgumentsAndInputs) {
+  const test::CommandResult none = capture({});
+  EXPECT_EQ(none.exitCode, 2);
+  const test::CommandResult size = capture(
+      {"scenes", (dir_ / "t.vt").string(), "--size", "0x5", "-o", (dir_ / "o").string()});
+  EXPECT_EQ(size.exitCode, 2);
+  EXPECT_THAT(size.err, HasSubstr("Usage"));
+  std::filesystem::create_directories(dir_ / "empty");
+  const test::CommandResult empty =
+      capture({"probes", (dir_ / "empty").string(), "-o", (dir_ / "out").string()});
+  EXPECT_EQ(empty.exitCode, 1);
+  EXPECT_THAT(empty.err, HasSubstr("holds no probe request"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out"));
+  const test::CommandResult scene = capture({"scenes", (dir_ / "t.vt").string(), "--scenes",
+                                             "nowhere", "-o", (dir_ / "o").string()});
+  EXPECT_EQ(scene.exitCode, 1);
+  EXPECT_THAT(scene.err, HasSubstr("nowhere"));
+}
+
+}  // namespace
+}  // namespace vt
