@@ -69,6 +69,21 @@ std::vector<NamedScene> views(const ViewOptions& o) {
   return flythroughViews(loadObjMesh(o.mesh), CameraPath::load(o.path), o.every);
 }
 
+// Calls `draw(view, mesh, mode, settings)` for every view in every mode at `viewport`.
+template <typename Draw>
+void forEachDraw(const std::vector<NamedScene>& list, Viewport viewport, uint32_t finestLevel,
+                 Draw&& draw) {
+  for (const NamedScene& view : list) {
+    const ClipSpaceMesh mesh = toClipSpace(view.mesh, view.camera, viewport);
+    for (const CheckMode& mode : checkModes(finestLevel)) {
+      RenderSettings settings;
+      settings.viewport = viewport;
+      applyMode(settings, mode);
+      draw(view, mesh, mode, settings);
+    }
+  }
+}
+
 void probes(const std::string& requests, const std::string& output) {
   const size_t count = countProbeRequests(requests);
   if (count == 0) throw InputError(requests, "holds no probe request (probe-0000.json)");
@@ -98,21 +113,17 @@ void scenes(const ViewOptions& o, const std::string& textureName, const std::str
   const std::string file =
       textureName.empty() ? std::filesystem::absolute(o.texture).string() : textureName;
   nlohmann::ordered_json manifests = nlohmann::ordered_json::array();
-  for (const NamedScene& view : list) {
-    const ClipSpaceMesh mesh = toClipSpace(view.mesh, view.camera, viewport);
-    for (const CheckMode& mode : checkModes(reader.description().finestLevel())) {
-      RenderSettings settings;
-      settings.viewport = viewport;
-      applyMode(settings, mode);
-      const Frame frame = gl.render(mesh, settings);
-      const std::string name = view.name + "-" + mode.name + ".json";
-      writeCapturedFrame(staging.path() / name,
-                         {context.renderer(), file, reader.identity(), &mesh, &cache, mode.need8,
-                          mode.trilinear, mode.exactFilter, &frame,
-                          nlohmann::json{{"gl_version", context.version()}}});
-      manifests.push_back(name);
-    }
-  }
+  forEachDraw(list, viewport, reader.description().finestLevel(),
+              [&](const NamedScene& view, const ClipSpaceMesh& mesh, const CheckMode& mode,
+                  const RenderSettings& settings) {
+                const Frame frame = gl.render(mesh, settings);
+                const std::string name = view.name + "-" + mode.name + ".json";
+                writeCapturedFrame(staging.path() / name,
+                                   {context.renderer(), file, reader.identity(), &mesh, &cache,
+                                    mode.need8, mode.trilinear, mode.exactFilter, &frame,
+                                    nlohmann::json{{"gl_version", context.version()}}});
+                manifests.push_back(name);
+              });
   const nlohmann::ordered_json summary = {{"renderer", context.renderer()},
                                           {"gl_version", context.version()},
                                           {"captures", manifests}};
@@ -141,41 +152,37 @@ void timings(const ViewOptions& o, const std::vector<std::string>& sizes, int re
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   for (const std::string& size : sizes) {
     const Viewport viewport = parseSize(size);
-    for (const NamedScene& view : list) {
-      const ClipSpaceMesh mesh = toClipSpace(view.mesh, view.camera, viewport);
-      for (const CheckMode& mode : checkModes(reader.description().finestLevel())) {
-        RenderSettings settings;
-        settings.viewport = viewport;
-        applyMode(settings, mode);
-        gl.draw(mesh, settings);  // warm-up: shaders compiled, targets allocated
-        std::vector<double> gpu, wall;
-        for (int r = 0; r < repeats; ++r) {
-          const auto start = std::chrono::steady_clock::now();
-          glBeginQuery(GL_TIME_ELAPSED, query);
-          gl.draw(mesh, settings);  // uploads the mesh, draws, glFinish
-          glEndQuery(GL_TIME_ELAPSED);
-          GLuint64 nanoseconds = 0;
-          glGetQueryObjectui64v(query, GL_QUERY_RESULT, &nanoseconds);
-          wall.push_back(
-              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                  .count());
-          gpu.push_back(static_cast<double>(nanoseconds) / 1e6);
-        }
-        rows.push_back({{"size", size},
-                        {"view", view.name},
-                        {"mode", mode.name},
-                        {"gpu_ms_median", median(gpu)},
-                        {"gpu_ms_min", gpu.front()},
-                        {"gpu_ms_max", gpu.back()},
-                        {"wall_ms_median", median(wall)},
-                        {"wall_ms_min", wall.front()},
-                        {"wall_ms_max", wall.back()}});
-        std::cout << size << " " << view.name << " " << mode.name << ": GPU "
-                  << rows.back()["gpu_ms_median"].get<double>() << " ms, wall "
-                  << rows.back()["wall_ms_median"].get<double>() << " ms (median of " << repeats
-                  << ")\n";
-      }
-    }
+    forEachDraw(list, viewport, reader.description().finestLevel(),
+                [&](const NamedScene& view, const ClipSpaceMesh& mesh, const CheckMode& mode,
+                    const RenderSettings& settings) {
+                  gl.draw(mesh, settings);  // warm-up: shaders compiled, targets allocated
+                  std::vector<double> gpu, wall;
+                  for (int r = 0; r < repeats; ++r) {
+                    const auto start = std::chrono::steady_clock::now();
+                    glBeginQuery(GL_TIME_ELAPSED, query);
+                    gl.draw(mesh, settings);  // uploads the mesh, draws, glFinish
+                    glEndQuery(GL_TIME_ELAPSED);
+                    GLuint64 nanoseconds = 0;
+                    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &nanoseconds);
+                    wall.push_back(std::chrono::duration<double, std::milli>(
+                                       std::chrono::steady_clock::now() - start)
+                                       .count());
+                    gpu.push_back(static_cast<double>(nanoseconds) / 1e6);
+                  }
+                  const double gpuMedian = median(gpu), wallMedian = median(wall);
+                  rows.push_back({{"size", size},
+                                  {"view", view.name},
+                                  {"mode", mode.name},
+                                  {"gpu_ms_median", gpuMedian},
+                                  {"gpu_ms_min", gpu.front()},
+                                  {"gpu_ms_max", gpu.back()},
+                                  {"wall_ms_median", wallMedian},
+                                  {"wall_ms_min", wall.front()},
+                                  {"wall_ms_max", wall.back()}});
+                  std::cout << size << " " << view.name << " " << mode.name << ": GPU "
+                            << gpuMedian << " ms, wall " << wallMedian << " ms (median of "
+                            << repeats << ")\n";
+                });
   }
   glDeleteQueries(1, &query);
   const nlohmann::ordered_json report = {{"renderer", context.renderer()},
