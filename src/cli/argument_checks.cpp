@@ -48,6 +48,19 @@ CLI::Validator pageSizeArgument() {
       "POWER_OF_TWO");
 }
 
+CLI::Validator textureSideArgument() {
+  return validatorFrom(
+      [](const std::string& text) {
+        long long side = 0;
+        if (!wholeNumber(text, side) || side < 1 || side > (4096LL << 15) ||
+            std::popcount(static_cast<unsigned long long>(side)) != 1)
+          throw std::invalid_argument("side '" + text +
+                                      "' is not a power of two in [1, 2^27] (page size times "
+                                      "2^L, L <= 15)");
+      },
+      "POWER_OF_TWO");
+}
+
 CLI::Validator heuristicArgument(bool list) {
   return validatorFrom(
       [list](const std::string& text) {

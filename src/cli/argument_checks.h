@@ -16,6 +16,10 @@ CLI::Validator workerCount();
 // A page size: a power of two in [1, 4096] (the file format's range).
 CLI::Validator pageSizeArgument();
 
+// A texture's finest side: a power of two up to the largest page size times 2^15 (the format's
+// limits); whether it fits the page size is checked once that is known.
+CLI::Validator textureSideArgument();
+
 // A page-priority heuristic ("pixelsum*distance"), or with `list` a comma-separated list of them.
 CLI::Validator heuristicArgument(bool list = false);
 

@@ -7,6 +7,8 @@
 #include "cli/argument_checks.h"
 #include "cli/commands.h"
 #include "common/output_path.h"
+#include "format/page_address.h"
+#include "format/texture_description.h"
 
 namespace vt {
 
@@ -27,10 +29,14 @@ void addBuildCommand(CLI::App& app) {
   command->add_option("-o,--output", options->output, "Virtual-texture file to write")->required();
   command->add_option("--page-size", options->pageSize, "Page size P, a power of two (128)")
       ->check(pageSizeArgument());
-  command->add_option("--border", options->border, "Border B in texels, B < P (4)");
-  command->add_option("--side", options->side,
-                      "Finest level side, P * 2^L (the smallest that holds the images)");
-  command->add_option("--channels", options->channels, "Channels 1..4 (the images' most)");
+  command->add_option("--border", options->border, "Border B in texels, B < P (4)")
+      ->check(CLI::Range(0u, kMaxPageSize - 1));
+  command
+      ->add_option("--side", options->side,
+                   "Finest level side, P * 2^L (the smallest that holds the images)")
+      ->check(textureSideArgument());
+  command->add_option("--channels", options->channels, "Channels 1..4 (the images' most)")
+      ->check(CLI::Range(1u, kMaxChannels));
   command
       ->add_option("--color-space", options->colorSpace,
                    "srgb: filter colour in linear light (default); linear: as stored")
@@ -48,6 +54,20 @@ void addBuildCommand(CLI::App& app) {
     if (!options->colorSpace.empty()) overrides.colorSpace = parseColorSpace(options->colorSpace);
     if (!options->filter.empty()) overrides.filter = parseMipFilter(options->filter);
     const std::filesystem::path input = options->input;
+    // Arguments against each other, and against the page size of an image's layout (128 unless
+    // given); a layout file's own page size is checked with the file.
+    if (options->pageSize || input.extension() != ".json") {
+      const uint32_t pageSize = options->pageSize.value_or(128);
+      if (options->border && *options->border >= pageSize)
+        throw CLI::ValidationError("--border", std::to_string(*options->border) +
+                                                   " is not smaller than the page size " +
+                                                   std::to_string(pageSize));
+      if (options->side && (*options->side < pageSize || *options->side > (uint64_t{pageSize} << kMaxLevel)))
+        throw CLI::ValidationError("--side", std::to_string(*options->side) +
+                                                 " is not the page size " +
+                                                 std::to_string(pageSize) + " times 2^L, L <= " +
+                                                 std::to_string(kMaxLevel));
+    }
     requireOutputFile(options->output, {input});
     const Layout layout = input.extension() == ".json" ? readLayout(input, overrides)
                                                        : singleImageLayout(input, overrides);

@@ -2,8 +2,10 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "common/error.h"
 #include "common/input_file.h"
@@ -71,6 +73,40 @@ std::optional<ImageHeader> readImageHeader(const std::filesystem::path& path, st
   }
   const OIIO::ImageSpec& spec = input->spec();
   return ImageHeader{spec.width, spec.height, spec.nchannels};
+}
+
+std::optional<ImageHeader> readDecodableImageHeader(const std::filesystem::path& path,
+                                                    std::string* error) {
+  const std::optional<ImageHeader> header = readImageHeader(path, error);
+  if (!header || header->width <= 0 || header->height <= 0 || header->channels <= 0)
+    return header;
+  auto input = OIIO::ImageInput::open(path.string());
+  if (!input) {
+    if (error) *error = OIIO::geterror();
+    return std::nullopt;
+  }
+  const OIIO::ImageSpec& spec = input->spec();
+  // One row (of tiles) at a time: memory for a row, never for the size the header claims.
+  const int rows = spec.tile_height > 0 ? spec.tile_height : 1;
+  std::vector<unsigned char> buffer(static_cast<size_t>(spec.width) * static_cast<size_t>(rows) *
+                                    static_cast<size_t>(spec.nchannels));
+  for (int y = 0; y < spec.height; y += rows) {
+    const int end = std::min(spec.height, y + rows);
+    const bool ok =
+        spec.tile_width > 0
+            ? input->read_tiles(0, 0, 0, spec.width, y, end, 0, 1, 0, spec.nchannels,
+                                OIIO::TypeDesc::UINT8, buffer.data())
+            : input->read_scanline(y, 0, OIIO::TypeDesc::UINT8, buffer.data());
+    if (!ok) {
+      const std::string reason = input->geterror();
+      if (error)
+        *error = "its header claims " + std::to_string(spec.width) + " x " +
+                 std::to_string(spec.height) + " pixels, but row " + std::to_string(y) +
+                 " does not decode" + (reason.empty() ? "" : ": " + reason);
+      return std::nullopt;
+    }
+  }
+  return header;
 }
 
 }  // namespace vt

@@ -37,4 +37,10 @@ struct ImageHeader {
 std::optional<ImageHeader> readImageHeader(const std::filesystem::path& path,
                                            std::string* error = nullptr);
 
+// The same, believed only as far as the pixels decode: every row is decoded, one at a time (a
+// header claiming 100000 x 100000 pixels of a file that holds none is nothing, with the row that
+// failed in `error`). For images a command sizes its output by.
+std::optional<ImageHeader> readDecodableImageHeader(const std::filesystem::path& path,
+                                                    std::string* error = nullptr);
+
 }  // namespace vt

@@ -94,7 +94,7 @@ class MaterialTextures {
  private:
   void probe(const std::filesystem::path& image, SourceTexture& texture) {
     const std::optional<ImageHeader> header =
-        source_.imageHeader ? source_.imageHeader(image) : readImageHeader(image);
+        source_.imageHeader ? source_.imageHeader(image) : readDecodableImageHeader(image);
     if (!header || header->width <= 0 || header->height <= 0) {
       scene_.warnings.push_back("material " + texture.name + ": " + image.string() +
                                 " is not a readable image, drawn as a checker");

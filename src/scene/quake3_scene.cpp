@@ -133,7 +133,7 @@ class SourceImages {
       std::filesystem::create_directories(path.parent_path());
       writeFileAtomically(path, std::as_bytes(std::span(bytes)));
     }
-    const std::optional<ImageHeader> header = readImageHeader(path);
+    const std::optional<ImageHeader> header = readDecodableImageHeader(path);
     if (!header || header->width <= 0 || header->height <= 0) {
       scene_->warnings.push_back("texture " + texture.name + ": " + files_.describe(resolved.file) +
                                  " is not a readable image");

@@ -119,6 +119,14 @@ TEST_F(VtCommand, BadArgumentValuesPrintTheUsageAndExitTwo) {
       {{"eval", "a.vt", "--cache-frames", "0"}, "'0' is not a whole number from 1"},
       {{"render", "a.vt", "--size", "4294967360x64"}, "'4294967360x64' is not WIDTHxHEIGHT"},
       {{"render", "a.vt", "--size", "64x-64"}, "is not WIDTHxHEIGHT"},
+      {{"build", "image.png", "-o", "x.vt", "--border", "99999"}, "--border: Value 99999"},
+      {{"build", "image.png", "-o", "x.vt", "--border", "200"},
+       "--border: 200 is not smaller than the page size 128"},
+      {{"build", "image.png", "-o", "x.vt", "--side", "1099511627776"},
+       "side '1099511627776' is not a power of two"},
+      {{"build", "image.png", "-o", "x.vt", "--page-size", "256", "--side", "128"},
+       "--side: 128 is not the page size 256 times 2^L"},
+      {{"build", "image.png", "-o", "x.vt", "--channels", "17"}, "--channels: Value 17"},
   };
   for (const auto& [args, message] : cases) {
     const auto result = vt(args);

@@ -132,6 +132,25 @@ TEST_F(ObjScene, IndexOutOfRangeIsAnError) {
   EXPECT_THAT(loadError("fart.obj"), AllOf(HasSubstr("fart.obj"), HasSubstr("index out of range")));
 }
 
+// A map whose header claims 65535 x 65535 texels and whose file holds no pixel is believed only
+// as far as it decodes: the checker, not a texture area for four billion texels.
+TEST_F(ObjScene, AMapWhoseHeaderLiesAboutItsSizeIsDrawnAsTheChecker) {
+  // TGA, uncompressed true colour, 32 bits per pixel, 65535 x 65535, and nothing after the header.
+  const unsigned char header[18] = {0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0xff, 0xff, 0xff, 0xff,
+                                    32, 8};
+  std::ofstream(dir_ / "liar.tga", std::ios::binary)
+      .write(reinterpret_cast<const char*>(header), sizeof header);
+  writeText("scene.mtl", "newmtl liar\nmap_Kd liar.tga\n");
+  writeText("scene.obj", std::string("mtllib scene.mtl\n") + kSquareVertices +
+                             "usemtl liar\nf 1/1 2/2 3/3\n");
+  const TexturedScene scene = load("scene.obj");
+  ASSERT_EQ(scene.textures.size(), 1u);
+  EXPECT_TRUE(scene.textures[0].missing);
+  EXPECT_EQ(scene.textures[0].width, kMissingTextureSide);
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_THAT(scene.warnings[0], HasSubstr("liar.tga is not a readable image"));
+}
+
 TEST_F(ObjScene, MaterialsWithoutAReadableMapAreDrawnAsTheCheckerWithAWarning) {
   writeImage("good.png", 16, 16);
   writeText("scene.mtl",
