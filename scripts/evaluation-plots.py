@@ -111,9 +111,12 @@ def shade_motions(axes, bands):
 
 def save(figure, stem, pyplot):
     """Writes STEM.svg and STEM.png and closes the figure. The SVG carries no date, so the same
-    data gives the same bytes."""
-    figure.savefig(stem + ".svg", metadata={"Date": None})
-    figure.savefig(stem + ".png", dpi=PNG_DPI)
+    data gives the same bytes. Each file is written under a temporary name and renamed into place,
+    so that a run killed while drawing never leaves a partial plot under its final name."""
+    for extension, options in (("svg", {"metadata": {"Date": None}}), ("png", {"dpi": PNG_DPI})):
+        temporary = stem + "." + extension + ".tmp"
+        figure.savefig(temporary, format=extension, **options)
+        os.replace(temporary, stem + "." + extension)
     pyplot.close(figure)
 
 
