@@ -90,8 +90,9 @@ Interval PerturbedTriangle::affineOver(const AffinePlane& p, const WindowBox& bo
   return widen(v, 0, slack(p, box));
 }
 
-Interval PerturbedTriangle::barycentric(size_t i, double cx, double cy) const {
-  return affineOver(lambda_[i], sourceBox(cx, cy));
+std::array<Interval, 3> PerturbedTriangle::barycentrics(double cx, double cy) const {
+  const WindowBox box = sourceBox(cx, cy);
+  return {affineOver(lambda_[0], box), affineOver(lambda_[1], box), affineOver(lambda_[2], box)};
 }
 
 Interval PerturbedTriangle::depth(double cx, double cy) const {

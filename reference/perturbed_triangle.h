@@ -55,8 +55,8 @@ class PerturbedTriangle {
   // Where phi(p) lies for the pixel centre p = (cx, cy).
   WindowBox sourceBox(double cx, double cy) const;
 
-  // lambda'_i at the centre: the barycentric coordinate of the moved triangle.
-  Interval barycentric(size_t i, double cx, double cy) const;
+  // lambda' at the centre: the barycentric coordinates of the moved triangle.
+  std::array<Interval, 3> barycentrics(double cx, double cy) const;
   // Window z of the moved triangle at the centre.
   Interval depth(double cx, double cy) const;
 

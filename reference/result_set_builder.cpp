@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 
 #include "reference/interval.h"
 #include "reference/perturbed_triangle.h"
@@ -93,6 +94,14 @@ Barycentrics barycentrics(const CornerBoxes& b, double cx, double cy) {
   return r;
 }
 
+// A candidate's corners as the model lets them move: boxes for the interval bounds, and the
+// first-order bounds where the triangle is large enough for them (perturbed_triangle.h). Made once
+// per candidate and pixel, for its coverage, depth and fragment.
+struct Snapped {
+  CornerBoxes boxes;
+  PerturbedTriangle perturbed;
+};
+
 // Whether a set-up triangle covers a pixel centre: 2 surely, 1 possibly, 0 not. A piece of a
 // clipped fan that is possible only because the centre may lie on the far side of edges shared
 // with its neighbours (openFanEdges, bit i: the edge opposite corner i) is surely inside the mesh
@@ -153,16 +162,26 @@ class Builder {
         -shading.needScaleLog2);
   }
 
-  // Coverage of candidate t at the centre of (px, py).
-  PieceCoverage coverage(const SetupTriangle& t, int px, int py) const {
-    if (model_.coveragePinned()) return {t.covers(px, py) ? 2 : 0};
+  // Whether the model lets vertices move at all (else coverage, depth and attributes are the
+  // oracle's own values and nothing needs a Snapped).
+  bool movesVertices() const {
+    return !model_.coveragePinned() || model_.depthUlps != 0 || !model_.depthRoundsToNearest ||
+           model_.attributeUlps != 0;
+  }
+
+  Snapped snapped(const SetupTriangle& t) const {
     const CornerBoxes boxes = cornerBoxes(t, snapRadius(), viewport_);
-    const PerturbedTriangle perturbed(t, largestRadius(boxes));
+    return {boxes, PerturbedTriangle(t, largestRadius(boxes))};
+  }
+
+  // Coverage of candidate t at the centre of (px, py); `s` is needed unless coverage is pinned.
+  PieceCoverage coverage(const SetupTriangle& t, const Snapped* s, int px, int py) const {
+    if (model_.coveragePinned()) return {t.covers(px, py) ? 2 : 0};
     std::array<Interval, 3> lambda;
-    if (perturbed.bounded()) {
-      for (size_t i = 0; i < 3; ++i) lambda[i] = perturbed.barycentric(i, px + 0.5, py + 0.5);
+    if (s->perturbed.bounded()) {
+      lambda = s->perturbed.barycentrics(px + 0.5, py + 0.5);
     } else {
-      const Barycentrics l = barycentrics(boxes, px + 0.5, py + 0.5);
+      const Barycentrics l = barycentrics(s->boxes, px + 0.5, py + 0.5);
       if (l.degenerate) return {1};
       lambda = l.atCentre;
     }
@@ -184,15 +203,15 @@ class Builder {
   }
 
   // Window depth of candidate t at (px, py) as the depth test compares it.
-  Interval depth(const SetupTriangle& t, int px, int py, DepthFormat format) const {
+  Interval depth(const SetupTriangle& t, const Snapped* s, int px, int py,
+                 DepthFormat format) const {
     const bool pinned =
         model_.coveragePinned() && model_.depthUlps == 0 && model_.depthRoundsToNearest;
     const double own = windowDepth(t, px, py, model_.arithmetic);
     if (pinned) return Interval::point(own);
-    const CornerBoxes boxes = cornerBoxes(t, snapRadius(), viewport_);
-    const PerturbedTriangle perturbed(t, largestRadius(boxes));
+    const PerturbedTriangle& perturbed = s->perturbed;
     const Barycentrics l =
-        perturbed.bounded() ? Barycentrics{} : barycentrics(boxes, px + 0.5, py + 0.5);
+        perturbed.bounded() ? Barycentrics{} : barycentrics(s->boxes, px + 0.5, py + 0.5);
     Interval z = Interval::everything();
     if (perturbed.bounded() || !l.degenerate) {
       z = perturbed.bounded() ? perturbed.depth(px + 0.5, py + 0.5)
@@ -207,7 +226,7 @@ class Builder {
     return clamp(z, 0, 1);
   }
 
-  FragmentRange fragment(const SetupTriangle& t, int px, int py) const {
+  FragmentRange fragment(const SetupTriangle& t, const Snapped* snapped, int px, int py) const {
     const int qx = px & ~1, qy = py & ~1;
     const int column = px - qx, row = py - qy;
     const bool attributesPinned = model_.attributeUlps == 0 && model_.coveragePinned();
@@ -227,10 +246,10 @@ class Builder {
       dtdy = Interval::point(dy.y);
       if (!std::isfinite(here.x) || !std::isfinite(here.y)) f.everything = true;
     } else {
-      const CornerBoxes boxes = cornerBoxes(t, snapRadius(), viewport_);
-      const PerturbedTriangle perturbed(t, largestRadius(boxes));
-      const Barycentrics l =
-          perturbed.bounded() ? Barycentrics{} : barycentrics(boxes, px + 0.5, py + 0.5);
+      const PerturbedTriangle& perturbed = snapped->perturbed;
+      const Barycentrics l = perturbed.bounded()
+                                 ? Barycentrics{}
+                                 : barycentrics(snapped->boxes, px + 0.5, py + 0.5);
       const double relative = model_.attributeUlps * kFloatUlp;
       // Each of a step's two values differs by `relative` of its size; their difference by the
       // sum.
@@ -624,6 +643,7 @@ void appendResultSet(const PrecisionModel& model, const SetShading& shading,
   Builder builder(model, shading, viewport, source);
   struct Candidate {
     int32_t index;
+    std::optional<Snapped> snapped;  // when the model moves vertices
     PieceCoverage piece;
     Interval z;
     int cover;  // of the mesh triangle: the piece's, or 2 where its fan surely covers
@@ -632,11 +652,14 @@ void appendResultSet(const PrecisionModel& model, const SetShading& shading,
   list.reserve(candidates.size());
   for (int32_t index : candidates) {
     const SetupTriangle& t = triangles[static_cast<size_t>(index)];
-    const PieceCoverage piece = builder.coverage(t, px, py);
+    std::optional<Snapped> snapped;
+    if (builder.movesVertices()) snapped = builder.snapped(t);
+    const Snapped* s = snapped ? &*snapped : nullptr;
+    const PieceCoverage piece = builder.coverage(t, s, px, py);
     if (piece.cover == 0) continue;
-    const Interval z = builder.depth(t, px, py, depthFormat);
+    const Interval z = builder.depth(t, s, px, py, depthFormat);
     if (!(z.lo < 1.0)) continue;  // never passes GL_LESS against the cleared 1.0
-    list.push_back({index, piece, z, piece.cover});
+    list.push_back({index, std::move(snapped), piece, z, piece.cover});
   }
   surelyCoveredByTheirFans(triangles, list);
   const auto surelyBeats = [](const Candidate& d, const Candidate& c) {
@@ -658,7 +681,8 @@ void appendResultSet(const PrecisionModel& model, const SetShading& shading,
       if (&d != &c && surelyBeats(d, c)) possible = false;
     if (!possible && c.index != oracle.index) continue;
     const SetupTriangle& t = triangles[static_cast<size_t>(c.index)];
-    Alternative a = builder.alternative(t, c.index, builder.fragment(t, px, py), oracle);
+    const Snapped* s = c.snapped ? &*c.snapped : nullptr;
+    Alternative a = builder.alternative(t, c.index, builder.fragment(t, s, px, py), oracle);
     if (c.index != oracle.index)
       a.reasons = (c.cover == 2 && own && own->cover == 2) ? kReasonDepth : kReasonCoverage;
     out.push_back(a);
@@ -666,7 +690,10 @@ void appendResultSet(const PrecisionModel& model, const SetShading& shading,
   if (oracle.index >= 0 && !own) {
     // The oracle's own triangle, should the bounds above have missed it.
     const SetupTriangle& t = triangles[static_cast<size_t>(oracle.index)];
-    out.push_back(builder.alternative(t, oracle.index, builder.fragment(t, px, py), oracle));
+    std::optional<Snapped> snapped;
+    if (builder.movesVertices()) snapped = builder.snapped(t);
+    out.push_back(builder.alternative(
+        t, oracle.index, builder.fragment(t, snapped ? &*snapped : nullptr, px, py), oracle));
   }
   if (mayBeEmpty || oracle.index < 0) {
     Alternative empty;

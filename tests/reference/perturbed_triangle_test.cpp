@@ -78,8 +78,7 @@ TEST(PerturbedTriangle, EveryMovedTriangleLiesInsideTheBounds) {
     for (int p = 0; p < 20; ++p) {
       // Pixels near the lower corner of the box: inside, on the edges and just outside.
       const double cx = std::floor(minX) + pixel(rng) + 0.5, cy = std::floor(minY) + pixel(rng) + 0.5;
-      const Interval lambda[3] = {bounds.barycentric(0, cx, cy), bounds.barycentric(1, cx, cy),
-                                  bounds.barycentric(2, cx, cy)};
+      const std::array<Interval, 3> lambda = bounds.barycentrics(cx, cy);
       const Interval z = bounds.depth(cx, cy), value = bounds.ratio(s, cx, cy);
       const Interval stepX = bounds.ratioStep(s, cx, cy, 0), stepY = bounds.ratioStep(s, cx, cy, 1);
       for (int m = 0; m < 16; ++m) {
