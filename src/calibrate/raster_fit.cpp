@@ -23,6 +23,7 @@ void compareRaster(const RasterReadback& gl, const Frame& oracle, RasterCounts& 
     ++c.pixels;
     if (gl.triangle[i] != oracle.triangle[i]) {
       ++c.coverage;
+      ++c.differing;
       continue;
     }
     if (gl.triangle[i] < 0) continue;
@@ -31,8 +32,10 @@ void compareRaster(const RasterReadback& gl, const Frame& oracle, RasterCounts& 
     for (int k = 0; k < 2; ++k) differs |= !sameBits(gl.uv[i][k], oracle.uv[i][k]);
     for (int k = 0; k < 4; ++k)
       differs |= !sameBits(gl.derivatives[i][k], oracle.derivatives[i][k]);
+    const bool depthDiffers = !sameBits(gl.depth[i], oracle.depth[i]);
     c.attributes += differs;
-    c.depth += !sameBits(gl.depth[i], oracle.depth[i]);
+    c.depth += depthDiffers;
+    c.differing += differs || depthDiffers;
   }
 }
 
@@ -234,6 +237,9 @@ RasterFits fitRasterization(const Arithmetic& base) {
   const std::string probe =
       "360 random triangles (slivers, perspective, near-plane clipping, a "
       "coplanar pair) and 60 cut just behind the near plane, at 160 x 120";
+  // What memberSummary counts for a rasterization family.
+  const std::string pixelsCounted =
+      " pixels, in coverage, coordinates or depth, with the member's best combination";
   const auto family = [&](const char* parameter, auto memberOf, auto nameOfMember,
                           const auto& members) {
     ParameterFit fit;
@@ -260,10 +266,10 @@ RasterFits fitRasterization(const Arithmetic& base) {
     fit.mismatches = reproduced ? 0 : chosen.counts.total();
     if (!reproduced)
       fit.finding = "no combination of members reproduces every probe; closest " + fit.chosen +
-                    " (" + fit.memberSummary() + " pixel values, fewest over the combinations)";
+                    " (" + fit.memberSummary() + pixelsCounted + ")";
     else if (reproducing.size() == 1)
       fit.finding = fit.chosen + ", bit for bit (" + fit.memberSummary() +
-                    " pixel values, fewest over the combinations)";
+                    pixelsCounted + ")";
     else
       fit.finding = std::to_string(reproducing.size()) +
                     " members reproduce every probe, which cannot tell them apart; the first, " +

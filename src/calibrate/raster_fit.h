@@ -33,8 +33,9 @@ namespace vt::calibrate {
 // derivatives differ in a bit, and those whose depth does.
 struct RasterCounts {
   uint64_t pixels = 0, coverage = 0, shared = 0, attributes = 0, depth = 0;
-  bool reproduces() const { return coverage == 0 && attributes == 0 && depth == 0; }
-  uint64_t total() const { return coverage + attributes + depth; }
+  uint64_t differing = 0;  // pixels that differ in any of coverage, attributes and depth
+  bool reproduces() const { return differing == 0; }
+  uint64_t total() const { return differing; }
 };
 // Adds what `oracle` (drawn with debug channels) misses of `gl` to `counts`.
 void compareRaster(const RasterReadback& gl, const Frame& oracle, RasterCounts& counts);
