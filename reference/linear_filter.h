@@ -46,8 +46,8 @@ inline vec4 unorm8ToFloat(const uint8_t* texel) {
 // GL_LINEAR at a texel position (centres at +0.5), clamp to edge, over a texture of `size`
 // texels, given as the shader hands it: divided by the size into [0, 1] first.
 //   8-bit weights (rule 9): s = round-half-even(u * (size * 256)) - 128, texel s >> 8, weight
-//     s & 255, each lerp a + ((f * (b - a) + 128) >> 8) on 8-bit values, in x on both rows, then
-//     in y.
+//     s & 255, each lerp a + ((f * (b - a) + 128) >> 8) on 8-bit values (or without the + 128:
+//     the product floored), in x on both rows, then in y.
 //   float weights: x = u * size - 0.5 (or one fma), texel floor(x), weight x - floor(x), texels
 //     converted as `conversion` says, lerps a + (b - a) * w (or fma(w, b - a, a)).
 // sampleLinearAt takes the normalized coordinate u itself.
@@ -66,7 +66,8 @@ vec4 sampleLinearAt(const Fetch8& fetch8, vec2 u, ivec2 size, const Filter& filt
       return fetch8(ivec2(std::clamp(position[0] + dx, 0, size.x - 1),
                           std::clamp(position[1] + dy, 0, size.y - 1)));
     };
-    const auto lerp = [](int a, int b, int f) { return a + ((f * (b - a) + 128) >> 8); };
+    const int half = filter.lerpRounding == LerpRounding::kNearest ? 128 : 0;
+    const auto lerp = [half](int a, int b, int f) { return a + ((f * (b - a) + half) >> 8); };
     const glm::u8vec4 c00 = at(0, 0), c10 = at(1, 0), c01 = at(0, 1), c11 = at(1, 1);
     vec4 result;
     for (int c = 0; c < 4; ++c) {

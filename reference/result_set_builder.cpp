@@ -467,7 +467,9 @@ class Builder {
         valueError = model_.filterErrorUnits;
       } else if (model_.arithmetic.filter.weights == FilterWeights::kFixedPoint8) {
         positionError += std::ldexp(1.0, -kFixedPointSubTexelBits);
-        valueError = 1.0;  // three lerps, each rounded to nearest: 0.5 + 0.5
+        // Three lerps, each rounded to nearest: 0.5 + 0.5; each floored: under 1 + 1.
+        valueError =
+            model_.arithmetic.filter.lerpRounding == LerpRounding::kNearest ? 1.0 : 2.0;
       }
     } else {
       valueError += model_.arithmeticUlps * kFloatUlp * 255 * 4;

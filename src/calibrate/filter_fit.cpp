@@ -109,6 +109,7 @@ glm::dvec4 snappedBilinear(const ShaderProbe& probe, glm::vec2 u, int bits) {
 const std::vector<NamedFilter>& filterMembers() {
   static const std::vector<NamedFilter> members = {
       {{FilterWeights::kFixedPoint8, false, false}, "fixed_point_8"},
+      {{FilterWeights::kFixedPoint8, false, false, LerpRounding::kFloor}, "fixed_point_8_floor"},
       {{FilterWeights::kFloat, false, false}, "float"},
       {{FilterWeights::kFloat, true, false}, "float_fused_lerp"},
       {{FilterWeights::kFloat, false, true}, "float_fused_position"},

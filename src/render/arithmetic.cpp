@@ -26,7 +26,8 @@ std::string describe(const Arithmetic& a) {
            (a.filter.weights == FilterWeights::kFloat
                 ? std::string(a.filter.fusedLerp ? ", fused lerp" : ", unfused lerp") +
                       (a.filter.fusedCoordinate ? ", fused position" : ", unfused position")
-                : std::string()));
+                : ", lerp products rounded to " +
+                      std::string(nameOf(kLerpRoundingNames, a.filter.lerpRounding))));
   line("texel_conversion", std::string(nameOf(kUnormConversionNames, a.texelConversion)));
   line("denormals", a.flushDenormals ? "flushed" : "kept");
   return text;

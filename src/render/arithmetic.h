@@ -35,7 +35,8 @@
 //                  multiply-adds (DESIGN 7, rule 8) or with products and sums, the C library's
 //                  log2f, or logf(x) * 1.442695f (softpipe-arithmetic.md, 5.2)
 //   GL_LINEAR      weights on 8 bits with fixed-point lerps a + ((f * (b - a) + 128) >> 8)
-//                  (DESIGN 7, rule 9), or float weights with lerps a + (b - a) * w rounded per
+//                  (DESIGN 7, rule 9) or with the product floored, a + ((f * (b - a)) >> 8)
+//                  (a multiply-high without rounding), or float weights with lerps a + (b - a) * w rounded per
 //                  operation or fma(w, b - a, a); the texel position u * size - 0.5 as a product
 //                  and a difference or one fma
 //   texel values   texelFetch of unorm8 k as k * (1 / 255) (DESIGN 7, rule 9) or k / 255
@@ -112,10 +113,17 @@ enum class FilterWeights { kFixedPoint8, kFloat };
 inline constexpr EnumNames<FilterWeights, 2> kFilterWeightsNames = {
     {{FilterWeights::kFixedPoint8, "fixed_point_8"}, {FilterWeights::kFloat, "float"}}};
 
+// kFixedPoint8: how a lerp's product f * (b - a) comes back to 8 bits.
+enum class LerpRounding { kNearest, kFloor };
+inline constexpr EnumNames<LerpRounding, 2> kLerpRoundingNames = {
+    {{LerpRounding::kNearest, "nearest"}, {LerpRounding::kFloor, "floor"}}};
+
 struct Filter {
   FilterWeights weights = FilterWeights::kFloat;
   bool fusedLerp = false;        // kFloat: fma(w, b - a, a) instead of a + (b - a) * w
   bool fusedCoordinate = false;  // kFloat: fma(u, size, -0.5) instead of u * size - 0.5
+  // kFixedPoint8: + 128 before >> 8 (kNearest) or >> 8 alone (kFloor)
+  LerpRounding lerpRounding = LerpRounding::kNearest;
   bool operator==(const Filter&) const = default;
 };
 

@@ -29,6 +29,7 @@ class Fields {
     return json_.at(field);
   }
   InputError failure(const std::string& text) const { return InputError(file_, text); }
+  bool has(const char* field) const { return json_.contains(field); }
   // The object in `field`, its fields named with it.
   Fields object(const char* field) const {
     const nlohmann::json& v = at(field);
@@ -104,6 +105,10 @@ Arithmetic readArithmetic(const Fields& f) {
   a.filter.weights = filter.named("weights", kFilterWeightsNames);
   a.filter.fusedLerp = filter.flag("fused_lerp");
   a.filter.fusedCoordinate = filter.flag("fused_coordinate");
+  // Absent from files written before the member existed, which all rounded to nearest.
+  a.filter.lerpRounding = filter.has("lerp_rounding")
+                              ? filter.named("lerp_rounding", kLerpRoundingNames)
+                              : LerpRounding::kNearest;
   a.texelConversion = f.named("texel_conversion", kUnormConversionNames);
   a.flushDenormals = f.choice("denormals", {"flushed", "kept"}) == "flushed";
   return a;
@@ -137,7 +142,8 @@ nlohmann::ordered_json arithmeticJson(const Arithmetic& a) {
           {"filter",
            {{"weights", nameOf(kFilterWeightsNames, a.filter.weights)},
             {"fused_lerp", a.filter.fusedLerp},
-            {"fused_coordinate", a.filter.fusedCoordinate}}},
+            {"fused_coordinate", a.filter.fusedCoordinate},
+            {"lerp_rounding", nameOf(kLerpRoundingNames, a.filter.lerpRounding)}}},
           {"texel_conversion", nameOf(kUnormConversionNames, a.texelConversion)},
           {"denormals", a.flushDenormals ? "flushed" : "kept"}};
 }

@@ -8,6 +8,10 @@
 //                                      and log2 polynomial
 //   GALLIVM_PERF=no_aos_sampling       GL_LINEAR in float with fused lerps
 //   both                               GL_LINEAR in float with unfused lerps, and no FMA
+//   GALLIUM_OVERRIDE_CPU_CAPS=sse2     llvmpipe generated for SSE2 alone: 8-bit GL_LINEAR whose
+//                                      lerp products are floored, not rounded
+//   DRAW_USE_LLVM=0                    vertices transformed by the draw module's C code: an
+//                                      unfused viewport beside fused planes and log2
 //   GALLIUM_NOSSE=1                    x87 code: expressions in extended precision, which no
 //                                      member reproduces; bounded by what was measured
 //   LP_PERF=no_linear                  GL_LINEAR sampled as nearest: breaks section 8.14.2
@@ -113,6 +117,21 @@ TEST_F(ArithmeticVariant, FloatFilteringWithoutFmaIsPinnedAndTheCrosscheckIsExac
   const PrecisionModel model = readModelFile(dir_ / "model.json");
   EXPECT_EQ(model.arithmetic.filter.weights, FilterWeights::kFloat);
   EXPECT_FALSE(model.arithmetic.filter.fusedLerp);
+}
+
+TEST_F(ArithmeticVariant, FlooredFixedPointLerpsArePinnedAndTheCrosscheckIsExact) {
+  expectPinnedAndExact({{"GALLIUM_OVERRIDE_CPU_CAPS", "sse2"}});
+  const PrecisionModel model = readModelFile(dir_ / "model.json");
+  EXPECT_EQ(model.arithmetic.filter.weights, FilterWeights::kFixedPoint8);
+  EXPECT_EQ(model.arithmetic.filter.lerpRounding, LerpRounding::kFloor);
+}
+
+TEST_F(ArithmeticVariant, VerticesOutsideTheJitArePinnedAndTheCrosscheckIsExact) {
+  // Without LLVM for vertices, llvmpipe offers OpenGL 3.3 unless told otherwise.
+  expectPinnedAndExact({{"DRAW_USE_LLVM", "0"},
+                        {"MESA_GL_VERSION_OVERRIDE", "4.5"},
+                        {"MESA_GLSL_VERSION_OVERRIDE", "450"}});
+  EXPECT_FALSE(readModelFile(dir_ / "model.json").arithmetic.fusedViewport);
 }
 
 // Extended precision is conformant (GLSL 4.50 section 4.7.1 allows more precision), but no

@@ -52,7 +52,11 @@ TEST(PrecisionModelFile, RoundTripsEveryParameter) {
   measured.filterPinned = true;
   measured.arithmetic.filter.fusedLerp = true;
   measured.sources["filter"] = "probe draws";
-  for (const PrecisionModel& m : {measured, llvmpipeModel(), softpipeModel(), exactModel()}) {
+  PrecisionModel floored = llvmpipeModel();
+  floored.name = "floored";
+  floored.arithmetic.filter.lerpRounding = LerpRounding::kFloor;
+  for (const PrecisionModel& m :
+       {measured, floored, llvmpipeModel(), softpipeModel(), exactModel()}) {
     std::ofstream(dir / "m.json") << modelJson(m);
     EXPECT_EQ(readModelFile(dir / "m.json"), m) << m.name;
     EXPECT_EQ(resolveModel((dir / "m.json").string(), "llvmpipe"), m);
@@ -65,6 +69,19 @@ TEST(PrecisionModelFile, RoundTripsEveryParameter) {
   // Without a context to fingerprint, a renderer's name is no evidence.
   EXPECT_EQ(resolveModel("auto", "softpipe"), gl45Model());
   EXPECT_EQ(resolveModel("auto", "an unknown GPU"), gl45Model());
+}
+
+// Files written before the fixed-point lerp's rounding was a choice all rounded to nearest.
+TEST(PrecisionModelFile, AFileWithoutTheLerpRoundingRoundsToNearest) {
+  test::ScratchDirectory dir;
+  PrecisionModel floored = llvmpipeModel();
+  floored.arithmetic.filter.lerpRounding = LerpRounding::kFloor;
+  nlohmann::json j = nlohmann::json::parse(modelJson(floored));
+  j["arithmetic"]["filter"].erase("lerp_rounding");
+  std::ofstream(dir / "old.json") << j.dump();
+  EXPECT_EQ(readModelFile(dir / "old.json").arithmetic.filter.lerpRounding,
+            LerpRounding::kNearest);
+  EXPECT_EQ(readModelFile(dir / "old.json"), llvmpipeModel());
 }
 
 TEST(PrecisionModelFile, RefusesMalformedFilesNamingTheField) {
@@ -97,6 +114,9 @@ TEST(PrecisionModelFile, RefusesMalformedFilesNamingTheField) {
   j = good;
   j["arithmetic"]["depth"].erase("z24");
   refused(j, "field arithmetic.depth.z24 is missing");
+  j = good;
+  j["arithmetic"]["filter"]["lerp_rounding"] = "up";
+  refused(j, "field arithmetic.filter.lerp_rounding is 'up', not one of nearest, floor");
   j = good;
   j["filter_error_units"] = 5;
   refused(j,
