@@ -26,10 +26,10 @@ ClipSpaceMesh screenQuad(float z = 0.0f) {
   return mesh;
 }
 
-// A fan of n triangles around an off-centre point, sharing edges, covering the whole viewport.
-ClipSpaceMesh fan(int n) {
+// A fan of n triangles around a point, sharing edges, covering the whole viewport.
+ClipSpaceMesh fan(int n, glm::vec2 centre = {0.123f, -0.271f}) {
   ClipSpaceMesh mesh;
-  mesh.vertices.push_back({{0.123f, -0.271f, 0.0f, 1.0f}, {0.5f, 0.5f}});
+  mesh.vertices.push_back({{centre.x, centre.y, 0.0f, 1.0f}, {0.5f, 0.5f}});
   for (int i = 0; i < n; ++i) {
     const double a = 2.0 * 3.14159265358979 * i / n;
     mesh.vertices.push_back(
@@ -44,12 +44,13 @@ ClipSpaceMesh fan(int n) {
 
 // The winner at a pixel by brute force over all set-up triangles, with the rules of
 // visibility.h spelled out again.
-int32_t bruteForce(const std::vector<SetupTriangle>& triangles, int px, int py) {
+int32_t bruteForce(const std::vector<SetupTriangle>& triangles, int px, int py,
+                   const Arithmetic& arithmetic) {
   int32_t best = -1;
   float bestZ = 1.0f;
   for (size_t k = 0; k < triangles.size(); ++k) {
     if (!triangles[k].covers(px, py)) continue;
-    const float z = windowDepth(triangles[k], px, py, arithmeticPoint("exact"));
+    const float z = windowDepth(triangles[k], px, py, arithmetic);
     if (z < bestZ) {  // strictly less: the earlier drawn keeps a tie
       best = static_cast<int32_t>(k);
       bestZ = z;
@@ -73,20 +74,37 @@ class Oracle : public ::testing::Test {
   std::unique_ptr<ResidentTexture> texture_;
 };
 
-TEST_F(Oracle, SharedEdgesCoverEveryPixelExactlyOnce) {
-  for (const int n : {3, 7, 40}) {
-    const Viewport viewport{97, 61};
-    const auto triangles = setupTriangles(fan(n), viewport, arithmeticPoint("exact"));
+// The rasterization tests below run for every named point: each point's own coverage (snapped
+// edge functions with its grid and tie rule, or softpipe's float spans) and depth, so that the
+// llvmpipe and softpipe set-ups have tests of their own on the CPU side, not only crosschecks.
+class OracleAtPoint : public Oracle, public ::testing::WithParamInterface<std::string> {
+ protected:
+  Arithmetic arithmetic() const { return arithmeticPoint(GetParam()); }
+};
+
+INSTANTIATE_TEST_SUITE_P(NamedPoints, OracleAtPoint,
+                         ::testing::ValuesIn(arithmeticPointNames()),
+                         [](const auto& info) { return info.param; });
+
+TEST_P(OracleAtPoint, SharedEdgesCoverEveryPixelExactlyOnce) {
+  const Viewport viewport{97, 61};
+  // Off-centre fans, and fans around the pixel centre (48.5, 30.5) = NDC (0, 0) whose horizontal
+  // and vertical spokes run through rows and columns of pixel centres: the tie rule decides them.
+  for (const auto& [n, centre] : std::vector<std::pair<int, glm::vec2>>{
+           {3, {0.123f, -0.271f}}, {7, {0.123f, -0.271f}}, {40, {0.123f, -0.271f}},
+           {4, {0.0f, 0.0f}}, {8, {0.0f, 0.0f}}, {12, {0.0f, 0.0f}}}) {
+    const auto triangles = setupTriangles(fan(n, centre), viewport, arithmetic());
     for (int py = 0; py < viewport.height; ++py)
       for (int px = 0; px < viewport.width; ++px) {
         int count = 0;
         for (const SetupTriangle& t : triangles) count += t.covers(px, py);
-        ASSERT_EQ(count, 1) << "fan of " << n << ", pixel " << px << ", " << py;
+        ASSERT_EQ(count, 1) << "fan of " << n << " around (" << centre.x << ", " << centre.y
+                            << "), pixel " << px << ", " << py;
       }
   }
 }
 
-TEST_F(Oracle, VisibilityMatchesBruteForceOnRandomTriangles) {
+TEST_P(OracleAtPoint, VisibilityMatchesBruteForceOnRandomTriangles) {
   std::mt19937 random(5);
   std::uniform_real_distribution<float> coordinate(-1.5f, 1.5f), depth(-0.9f, 0.9f), w(0.5f, 2.0f);
   ClipSpaceMesh mesh;
@@ -106,12 +124,12 @@ TEST_F(Oracle, VisibilityMatchesBruteForceOnRandomTriangles) {
       mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
     }
   const Viewport viewport{80, 50};
-  const auto triangles = setupTriangles(mesh, viewport, arithmeticPoint("exact"));
-  const Visibility visibility(triangles, viewport, DepthFormat::kDepth32F,
-                              arithmeticPoint("exact"));
+  const auto triangles = setupTriangles(mesh, viewport, arithmetic());
+  const Visibility visibility(triangles, viewport, DepthFormat::kDepth32F, arithmetic());
   for (int py = 0; py < viewport.height; ++py)
     for (int px = 0; px < viewport.width; ++px)
-      ASSERT_EQ(visibility.at(px, py).triangle, bruteForce(triangles, px, py)) << px << ", " << py;
+      ASSERT_EQ(visibility.at(px, py).triangle, bruteForce(triangles, px, py, arithmetic()))
+          << px << ", " << py;
 }
 
 TEST_F(Oracle, ScreenQuadHasExactCoordinatesAndDerivatives) {
@@ -236,7 +254,7 @@ TEST_F(Oracle, TriangleCrossingTheNearPlaneIsClippedNotDropped) {
   int covered = 0;
   for (int py = 0; py < 64; ++py)
     for (int px = 0; px < 64; ++px) {
-      const int32_t expected = bruteForce(triangles, px, py);
+      const int32_t expected = bruteForce(triangles, px, py, arithmeticPoint("exact"));
       ASSERT_EQ(visibility.at(px, py).triangle, expected);
       covered += expected >= 0;
       const auto need = frame.need[static_cast<size_t>(py * 64 + px)];
