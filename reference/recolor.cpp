@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "reference/parallel_for.h"
+#include "common/parallel_for.h"
 #include "reference/shader_backends.h"
 #include "reference/shader_math.h"
 

@@ -7,7 +7,7 @@
 #include <thread>
 
 #include "reference/linear_filter.h"
-#include "reference/parallel_for.h"
+#include "common/parallel_for.h"
 #include "reference/result_set_builder.h"
 #include "reference/shader_backends.h"
 #include "reference/shader_math.h"

@@ -2,9 +2,11 @@
 // Where the oracle's shader reads texels: a cache state (DESIGN section 4) reduced to what the
 // fragment logic fetches. ResidentTexture is the state "every page resident": each lookup names
 // the page itself, or on a sparse texture its nearest stored ancestor, and texels come straight
-// from the virtual-texture file, each page decoded once.
+// from the virtual-texture file, each page decoded once; or, for a dense texture made in memory
+// (the calibration's probe texture), from a function that makes a page's texels.
 
 #include <cstdint>
+#include <functional>
 #include <glm/glm.hpp>
 #include <memory>
 #include <mutex>
@@ -19,8 +21,11 @@ namespace vt::reference {
 class ResidentTexture {
  public:
   explicit ResidentTexture(const VirtualTextureReader& reader);
+  // Every page of `description` stored, its texels (borders included) made by `page`.
+  using PageMaker = std::function<std::vector<std::byte>(PageId)>;
+  ResidentTexture(const TextureDescription& description, PageMaker page);
 
-  const TextureDescription& description() const { return reader_.description(); }
+  const TextureDescription& description() const { return description_; }
 
   // The page that serves (px, py) of `level`: itself or its nearest stored ancestor.
   PageId residentPage(PageId page) const;
@@ -29,7 +34,9 @@ class ResidentTexture {
   const std::vector<std::byte>& texels(PageId page) const;
 
  private:
-  const VirtualTextureReader& reader_;
+  const TextureDescription description_;
+  const VirtualTextureReader* reader_ = nullptr;  // or, for a texture made in memory, makePage_
+  PageMaker makePage_;
   mutable std::shared_mutex mutex_;
   mutable std::unordered_map<uint64_t, std::unique_ptr<std::vector<std::byte>>> pages_;
 };

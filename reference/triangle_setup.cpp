@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "reference/parallel_for.h"
+#include "common/parallel_for.h"
 
 namespace vt::reference {
 namespace {

@@ -66,7 +66,7 @@ if ((sanitizers)); then
 
   # ThreadSanitizer over the code that starts its own threads: the streaming thread, concurrent
   # page reads and writes, and the oracle's tile workers, which this build runs on std::thread
-  # (VT_STD_THREAD_WORKERS, reference/parallel_for.h). Code parallelised with TBB (the texture
+  # (VT_STD_THREAD_WORKERS, src/common/parallel_for.h). Code parallelised with TBB (the texture
   # builder, retexturing) is left out: TBB is not instrumented and its synchronisation reads as
   # races.
   echo "== configure and build build-tsan"

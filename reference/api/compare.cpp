@@ -3,12 +3,12 @@
 #include <algorithm>
 
 #include "reference/api/api_internal.h"
-#include "reference/frame_comparison.h"
+#include "render/frame_comparison.h"
 
 namespace vt::oracle {
 
 std::string reasonName(int reason) { return vt::reasonName(reason); }
-std::string widthUnit(int reason) { return reference::widthUnit(reason); }
+std::string widthUnit(int reason) { return vt::widthUnit(reason); }
 
 Comparison compare(const Frame& oracle, std::span<const uint8_t> color,
                    std::span<const uint32_t> need) {
@@ -37,7 +37,7 @@ Comparison compare(const Frame& oracle, std::span<const uint8_t> color,
                                     oracle.need[i * 4 + 2], oracle.need[i * 4 + 3]);
       actualNeed[i] = glm::uvec4(need[i * 4], need[i * 4 + 1], need[i * 4 + 2], need[i * 4 + 3]);
     }
-    reference::FrameComparison c = reference::compareFrames(
+    vt::FrameComparison c = vt::compareFrames(
         expected, color, actualNeed, oracle.needEncoding == NeedEncoding::k8Bit);
     Comparison result;
     result.pixels = c.pixels;
@@ -55,7 +55,7 @@ Comparison compare(const Frame& oracle, std::span<const uint8_t> color,
     result.colorDifferenceImage = std::move(c.colorDifferenceImage);
     result.classificationImage = std::move(c.classificationImage);
     const auto width = static_cast<size_t>(oracle.viewport.width);
-    for (const reference::UnexplainedPixel& u : c.unexplainedPixels) {
+    for (const vt::UnexplainedPixel& u : c.unexplainedPixels) {
       const uint64_t i = u.index;
       PixelDifference d;
       d.reason = u.reason;

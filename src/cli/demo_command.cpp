@@ -23,7 +23,7 @@
 #include "format/level_image.h"
 #include "gl/headless_context.h"
 #include "render/arithmetic_points.h"
-#include "render/backend.h"
+#include "backends/backend.h"
 #include "render/frame_images.h"
 #include "scene/box_room.h"
 

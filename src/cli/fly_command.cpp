@@ -21,9 +21,8 @@
 #include "common/resource_limits.h"
 #include "eval/flight.h"
 #include "eval/flight_records.h"
-#include "reference/texture_source.h"
 #include "render/arithmetic_points.h"
-#include "render/backend.h"
+#include "backends/backend.h"
 #include "runtime/needbuffer_scale.h"
 #include "scene/box_room.h"
 #include "scene/camera_path.h"
@@ -148,9 +147,9 @@ void addFlyCommand(CLI::App& app) {
     if (!note.empty()) std::cerr << "vt fly: " << note << "\n";
     // Reference images: every page resident, drawn by the oracle at the screen's resolution
     // (DESIGN section 5).
-    std::unique_ptr<reference::ResidentTexture> everything;
+    std::unique_ptr<const ResidentRenderer> everything;
     if (o->quality) {
-      everything = std::make_unique<reference::ResidentTexture>(reader);
+      everything = makeResidentRenderer(reader);
       options.reference = [&](int frame) {
         return referenceImage(*everything, mesh, path.at(frame), options.settings);
       };

@@ -15,7 +15,7 @@
 #include "common/output_path.h"
 #include "eval/golden.h"
 #include "render/arithmetic_points.h"
-#include "render/backend.h"
+#include "backends/backend.h"
 #include "render/precision_model_file.h"
 
 namespace vt {

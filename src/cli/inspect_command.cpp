@@ -19,7 +19,7 @@
 #include "eval/flight.h"
 #include "eval/inspect_images.h"
 #include "eval/inspect_page.h"
-#include "reference/texture_source.h"
+#include "backends/backend.h"
 #include "scene/box_room.h"
 #include "scene/obj_mesh.h"
 #include "shader/needbuffer.h"
@@ -92,10 +92,10 @@ void addInspectCommand(CLI::App& app) {
                          static_cast<uint64_t>(options.settings.viewport.height), 1);
     options.settings.need8 = need8Encodes(reader.description().finestLevel());
     options.keepAnalysis = true;
-    const reference::ResidentTexture everything(reader);
+    const std::unique_ptr<const ResidentRenderer> everything = makeResidentRenderer(reader);
     // Reference images for the frames shown only.
     options.reference = [&](int frame) {
-      return wanted(frame) ? referenceImage(everything, mesh, path.at(frame), options.settings)
+      return wanted(frame) ? referenceImage(*everything, mesh, path.at(frame), options.settings)
                            : std::vector<uint8_t>{};
     };
     const Viewport screen = options.settings.viewport;

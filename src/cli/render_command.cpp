@@ -16,7 +16,7 @@
 #include "common/output_path.h"
 #include "eval/image_metrics.h"
 #include "render/arithmetic_points.h"
-#include "render/backend.h"
+#include "backends/backend.h"
 #include "render/frame_images.h"
 #include "scene/box_room.h"
 #include "scene/obj_mesh.h"

@@ -6,12 +6,11 @@
 #include <memory>
 #include <thread>
 
+#include "backends/backend.h"
 #include "common/elapsed_time.h"
+#include "common/parallel_for.h"
 #include "eval/flight_run.h"
 #include "eval/image_metrics.h"
-#include "reference/parallel_for.h"
-#include "reference/recolor.h"
-#include "reference/texture_source.h"
 #include "runtime/needbuffer_scale.h"
 
 namespace vt {
@@ -43,7 +42,7 @@ class SharedViews {
   SharedViews(const VirtualTextureReader& reader, const Mesh& mesh, const CameraPath& path,
               const RenderSettings& settings,
               const std::vector<FlightConfiguration>& configurations)
-      : mesh_(mesh), path_(path), everything_(reader), settings_(settings) {
+      : mesh_(mesh), path_(path), everything_(makeResidentRenderer(reader)), settings_(settings) {
     settings_.needScaleLog2 = 0;
     settings_.debugChannels = true;
     for (const FlightConfiguration& c : configurations) {
@@ -56,8 +55,7 @@ class SharedViews {
   void draw(int frameNumber) {
     const auto start = Clock::now();
     const Camera current = path_.at(frameNumber);
-    reference::renderFrame(toClipSpace(mesh_, current, settings_.viewport), everything_, settings_,
-                           view_);
+    everything_->draw(toClipSpace(mesh_, current, settings_.viewport), settings_, view_);
     viewSeconds_ = secondsSince(start);
     const Camera previous = path_.at(std::max(0, frameNumber - 1)),
                  beforePrevious = path_.at(std::max(0, frameNumber - 2));
@@ -72,8 +70,7 @@ class SharedViews {
       settings.needScaleLog2 = pass.scaleLog2;
       settings.viewport = reducedViewport(settings_.viewport, pass.scaleLog2);
       const glm::vec2 jitter = needJitter(static_cast<uint64_t>(frameNumber), pass.scaleLog2);
-      reference::renderFrame(toClipSpace(mesh_, camera, settings.viewport, jitter), everything_,
-                             settings, scratch_);
+      everything_->draw(toClipSpace(mesh_, camera, settings.viewport, jitter), settings, scratch_);
       image.need = std::move(scratch_.need);
       image.depth = std::move(scratch_.depth);
       image.seconds = secondsSince(passStart);
@@ -96,7 +93,7 @@ class SharedViews {
  private:
   const Mesh& mesh_;
   const CameraPath& path_;
-  const reference::ResidentTexture everything_;
+  const std::unique_ptr<const ResidentRenderer> everything_;
   RenderSettings settings_;
   Frame view_, scratch_;
   double viewSeconds_ = 0.0;
@@ -162,7 +159,7 @@ Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const 
   const auto start = Clock::now();
   const unsigned threads =
       options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
-  const reference::ThreadLimit parallelism(threads);
+  const ThreadLimit parallelism(threads);
   RenderSettings settings = options.settings;
   settings.threads = threads;
   settings.needScaleLog2 = 0;
@@ -173,6 +170,7 @@ Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const 
   };
 
   SharedViews views(reader, mesh, path, settings, configurations);
+  const std::unique_ptr<const CacheRenderer> recolorer = makeCacheRenderer();
   FlightOptions flight;
   flight.settings = settings;
   Evaluation evaluation;
@@ -194,11 +192,11 @@ Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const 
       caches.push_back(&state.run->runtime().cacheState());
       colors.push_back(&state.color);
     }
-    reference::recolor(views.view(), caches, settings, colors);
+    recolorer->recolor(views.view(), caches, settings, colors);
     evaluation.recolorSeconds += secondsSince(recolorStart);
     const PreparedReference prepared(
         ImageView{settings.viewport.width, settings.viewport.height, views.view().color});
-    reference::parallelFor(states.size(), threads,
+    parallelFor(states.size(), threads,
                            [&](size_t r) { flyFrame(states[r], views, prepared, path, f); });
     report(static_cast<uint64_t>(f + 1) * configurations.size());
   }

@@ -6,7 +6,6 @@
 
 #include "common/elapsed_time.h"
 #include "eval/flight_run.h"
-#include "reference/renderer.h"
 #include "runtime/needbuffer_scale.h"
 #include "shader/needbuffer.h"
 
@@ -85,11 +84,11 @@ class FrameDrawer {
 
 }  // namespace
 
-std::vector<uint8_t> referenceImage(const reference::ResidentTexture& everything, const Mesh& mesh,
+std::vector<uint8_t> referenceImage(const ResidentRenderer& everything, const Mesh& mesh,
                                     const Camera& camera, const RenderSettings& settings) {
   RenderSettings full = settings;
   full.needScaleLog2 = 0;
-  return reference::renderFrame(toClipSpace(mesh, camera, full.viewport), everything, full).color;
+  return everything.draw(toClipSpace(mesh, camera, full.viewport), full).color;
 }
 
 FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const CameraPath& path,
@@ -98,9 +97,9 @@ FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const Cam
   // The first frame's needbuffer with every page resident, for the initial cache state.
   std::vector<glm::uvec4> firstNeed;
   if (configuration.preloadVisible)
-    firstNeed = reference::renderFrame(toClipSpace(mesh, path.at(0), settings.viewport),
-                                       reference::ResidentTexture(reader), settings)
-                    .need;
+    firstNeed =
+        makeResidentRenderer(reader)->draw(toClipSpace(mesh, path.at(0), settings.viewport), settings)
+            .need;
   const std::vector<uint64_t> initial =
       initialPages(reader, configuration, firstNeed, settings.need8);
   FrameDrawer drawer(mesh, settings, options.backend, configuration.needScaleLog2);

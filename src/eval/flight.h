@@ -16,8 +16,7 @@
 
 #include "eval/flight_configuration.h"
 #include "format/virtual_texture_reader.h"
-#include "reference/texture_source.h"
-#include "render/backend.h"
+#include "backends/backend.h"
 #include "runtime/page_streamer.h"
 #include "runtime/virtual_texture_runtime.h"
 #include "scene/camera_path.h"
@@ -100,7 +99,7 @@ FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const Cam
                  const FlightConfiguration& configuration, const FlightOptions& options);
 
 // The frame drawn with every page resident, at `settings`' viewport: the reference image.
-std::vector<uint8_t> referenceImage(const reference::ResidentTexture& everything, const Mesh& mesh,
+std::vector<uint8_t> referenceImage(const ResidentRenderer& everything, const Mesh& mesh,
                                     const Camera& camera, const RenderSettings& settings);
 
 }  // namespace vt

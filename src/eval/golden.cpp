@@ -7,6 +7,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 
+#include "backends/backend.h"
 #include "common/checksum.h"
 #include "common/error.h"
 #include "common/input_file.h"
@@ -16,9 +17,7 @@
 #include "common/resource_limits.h"
 #include "eval/flight_records.h"
 #include "format/virtual_texture_reader.h"
-#include "reference/frame_comparison.h"
-#include "reference/renderer.h"
-#include "reference/texture_source.h"
+#include "render/frame_comparison.h"
 #include "render/arithmetic_points.h"
 #include "render/precision_model.h"
 #include "scene/obj_mesh.h"
@@ -76,7 +75,7 @@ struct Recorded {
   std::vector<uint8_t> color;
   std::vector<glm::uvec4> need;
   FrameQuality quality;
-  std::optional<reference::FrameComparison> judged = std::nullopt;  // under a free model
+  std::optional<FrameComparison> judged = std::nullopt;  // under a free model
 };
 
 // Flies `configuration` and keeps every `every`-th frame.
@@ -89,12 +88,12 @@ std::vector<Recorded> flyAndRecord(const VirtualTextureReader& reader, const Mes
   options.settings.arithmetic = profile;
   options.settings.need8 = need8Encodes(reader.description().finestLevel());
   options.backend = backend;
-  const reference::ResidentTexture everything(reader);
+  const std::unique_ptr<const ResidentRenderer> everything = makeResidentRenderer(reader);
   RenderSettings referenceSettings = options.settings;
   referenceSettings.arithmetic = arithmeticPoint("exact");
   // Reference images for the recorded frames only.
   options.reference = [&](int frame) {
-    return frame % every == 0 ? referenceImage(everything, mesh, path.at(frame), referenceSettings)
+    return frame % every == 0 ? referenceImage(*everything, mesh, path.at(frame), referenceSettings)
                               : std::vector<uint8_t>{};
   };
   std::vector<Recorded> recorded;
@@ -106,15 +105,15 @@ std::vector<Recorded> flyAndRecord(const VirtualTextureReader& reader, const Mes
   };
   // Under a model with free parameters, each recorded frame is drawn again from the cache state
   // it was drawn with (a capture) and judged against the oracle's result sets there.
-  std::vector<std::pair<int, reference::FrameComparison>> judged;
+  std::vector<std::pair<int, FrameComparison>> judged;
+  const std::unique_ptr<const CacheRenderer> oracle = makeCacheRenderer();
   if (judge && !judge->pinned()) {
     options.wantsCapture = [every](int frame) { return frame % every == 0; };
     options.capture = [&](const FlightCaptureView& view) {
       RenderSettings settings = options.settings;
       applyModel(settings, *judge);
-      const Frame oracle = reference::renderFrame(view.mesh, view.runtime.cacheState(), settings);
-      judged.emplace_back(view.frame,
-                          reference::compareFrames(oracle, view.color, view.need, settings.need8));
+      const Frame drawn = oracle->draw(view.mesh, view.runtime.cacheState(), settings);
+      judged.emplace_back(view.frame, compareFrames(drawn, view.color, view.need, settings.need8));
     };
   }
   fly(reader, mesh, path, configuration, options);

@@ -10,7 +10,7 @@
 // Checking flies the same configuration again and compares each recorded frame: with the oracle
 // exactly (checksums and metrics to the bit); with the GL path under the llvmpipe profile exactly,
 // under the other profiles the colour within the profile's bound per channel
-// (reference/frame_comparison.h) and the needbuffer not at all (the oracle cannot say which
+// (src/render/frame_comparison.h) and the needbuffer not at all (the oracle cannot say which
 // pixels are ambiguous in a cache state it did not draw).
 
 #include <filesystem>

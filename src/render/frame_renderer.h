@@ -2,7 +2,7 @@
 // The rendering box of the thesis's figure 3.5 as the loop sees it: draw a clip-space mesh from
 // the current cache state into a Frame (colour, needbuffer, depth). The CPU oracle
 // (reference/oracle_frame_renderer.h) and the GL path (gl/gl_frame_renderer.h) implement it;
-// render/backend.h makes one by name, the only place that chooses between them.
+// backends/backend.h makes one by name, the only place that chooses between them.
 
 #include <string>
 

@@ -4,7 +4,7 @@
 //
 // A pixel's set is a list of alternatives, one per triangle that may own the pixel (and one with
 // no triangle where the pixel may stay empty). The oracle builds them
-// (reference/result_set_builder.h); a comparison reads them (reference/frame_comparison.h).
+// (reference/result_set_builder.h); a comparison reads them (src/render/frame_comparison.h).
 
 #include <cstdint>
 #include <glm/glm.hpp>

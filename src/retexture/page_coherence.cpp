@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "reference/renderer.h"
+#include "backends/backend.h"
 #include "scene/camera.h"
 #include "shader/needbuffer.h"
 
@@ -40,12 +40,13 @@ PageCoherence measureCoherence(const TexturedScene& scene, const Retexturing& la
   RenderSettings render;
   render.viewport = {static_cast<int>(settings.width), static_cast<int>(settings.height)};
   render.threads = settings.threads;
+  const std::unique_ptr<const CacheRenderer> oracle = makeCacheRenderer();
   PageCoherence coherence;
   double sumPer1000 = 0.0, sumPages = 0.0;
   uint32_t coveredViews = 0;
   for (const Camera& view : coherenceViews(scene)) {
     const Frame frame =
-        reference::renderFrame(toClipSpace(mesh, view, render.viewport), cache, render);
+        oracle->draw(toClipSpace(mesh, view, render.viewport), cache, render);
     const NeededPages needed = neededPages(frame.need, false);
     ++coherence.views;
     if (needed.coveredPixels == 0) continue;

@@ -33,7 +33,7 @@ double fraction(uint64_t part, uint64_t whole) {
 }
 
 // Written next to "ambiguous_fraction" in every record.
-void addWidths(nlohmann::json& record, const reference::SetWidths& widths) {
+void addWidths(nlohmann::json& record, const SetWidths& widths) {
   record["covered"] = widths.covered;
   record["mean_color_width"] = widths.meanColorWidth();
   record["mean_candidate_levels"] = widths.meanLevels();
@@ -48,7 +48,7 @@ std::string number(double value) {
 
 }  // namespace
 
-void ComparisonTotals::add(const oracle::Comparison& c, const reference::SetWidths& frameWidths) {
+void ComparisonTotals::add(const oracle::Comparison& c, const SetWidths& frameWidths) {
   pixels += c.pixels;
   identical += c.identical;
   explained += c.explained;
@@ -89,7 +89,7 @@ std::string ComparisonTotals::line() const {
   return text;
 }
 
-nlohmann::json comparisonJson(const oracle::Comparison& c, const reference::SetWidths& widths) {
+nlohmann::json comparisonJson(const oracle::Comparison& c, const SetWidths& widths) {
   nlohmann::json record = {{"model", c.model},
                            {"pixels", c.pixels},
                            {"identical", c.identical},
@@ -107,7 +107,7 @@ nlohmann::json comparisonJson(const oracle::Comparison& c, const reference::SetW
 }
 
 std::vector<std::pair<std::string, std::string>> widthProperties(
-    const oracle::Comparison& c, const reference::SetWidths& widths) {
+    const oracle::Comparison& c, const SetWidths& widths) {
   return {{"ambiguous_fraction", number(fraction(c.ambiguous, c.pixels))},
           {"covered", std::to_string(widths.covered)},
           {"mean_color_width", number(widths.meanColorWidth())},
@@ -116,7 +116,7 @@ std::vector<std::pair<std::string, std::string>> widthProperties(
 }
 
 void printComparison(const std::string& name, const std::string& detail,
-                     const oracle::Comparison& c, const reference::SetWidths& widths) {
+                     const oracle::Comparison& c, const SetWidths& widths) {
   std::printf(
       "  %-12s %-28s %8llu pixels: %8llu identical, %6llu explained, %6llu unexplained, "
       "ambiguous %.4f (width %.4f/255, %.4f levels, %.4f pages); colour max %d, mean %.4f\n",

@@ -3,7 +3,7 @@
 // scenes and for captures alike: one printed line and one JSON record per frame, difference
 // images, and the totals. Beside the ambiguous fraction each reports how tight the verdict is: the
 // mean colour width, candidate levels and candidate pages of the covered pixels' result sets
-// (reference::SetWidths, reference/frame_comparison.h, defines them).
+// (SetWidths, src/render/frame_comparison.h, defines them).
 
 #include <array>
 #include <cstdint>
@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "reference/frame_comparison.h"
+#include "render/frame_comparison.h"
 #include "vt/oracle/compare.h"
 
 namespace vt {
@@ -22,9 +22,9 @@ struct ComparisonTotals {
   uint64_t pixels = 0, identical = 0, explained = 0, unexplained = 0, ambiguous = 0;
   std::array<uint64_t, oracle::kReasons> explainedBy{}, unexplainedBy{};
   std::array<double, oracle::kReasons> widenBy{};
-  reference::SetWidths widths;
+  SetWidths widths;
 
-  void add(const oracle::Comparison& c, const reference::SetWidths& frameWidths);
+  void add(const oracle::Comparison& c, const SetWidths& frameWidths);
   double ambiguousFraction() const;
   nlohmann::json json() const;
   // "<identical> of <pixels> pixels identical, <explained> explained, <unexplained> unexplained;
@@ -33,17 +33,17 @@ struct ComparisonTotals {
 };
 
 // The counts, by reason, the needbuffer mismatches, the colour differences and the set widths.
-nlohmann::json comparisonJson(const oracle::Comparison& c, const reference::SetWidths& widths);
+nlohmann::json comparisonJson(const oracle::Comparison& c, const SetWidths& widths);
 
 // "  <name> <detail> <pixels> pixels: ... identical, ... explained, ... unexplained, ambiguous
 // ... (width W/255, L levels, P pages); colour max M, mean D", then one line per parameter that
 // would have to widen.
 void printComparison(const std::string& name, const std::string& detail,
-                     const oracle::Comparison& c, const reference::SetWidths& widths);
+                     const oracle::Comparison& c, const SetWidths& widths);
 
 // The set widths as JUnit-style (name, value) properties, the ambiguous fraction among them.
 std::vector<std::pair<std::string, std::string>> widthProperties(
-    const oracle::Comparison& c, const reference::SetWidths& widths);
+    const oracle::Comparison& c, const SetWidths& widths);
 
 // <stem>-color-difference.png and <stem>-classes.png in `folder`.
 void writeComparisonImages(const std::filesystem::path& folder, const std::string& stem,

@@ -113,7 +113,7 @@ CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options) {
               ? oracle::checkCapture(capture, *texture, judge.profile, options.threads)
               : oracle::checkCapture(capture, *texture, judge.file, options.threads);
       const oracle::Comparison& c = check.comparison;
-      const reference::SetWidths widths = verdictWidths(check.oracle);
+      const SetWidths widths = verdictWidths(check.oracle);
       const oracle::Viewport v = capture.scene.viewport;
       writeComparisonImages(folder, name, v, c);
       nlohmann::json mismatches = nlohmann::json::array();

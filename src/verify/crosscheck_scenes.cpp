@@ -12,7 +12,7 @@
 #include "format/virtual_texture_reader.h"
 #include "gl/headless_context.h"
 #include "render/arithmetic_points.h"
-#include "render/backend.h"
+#include "backends/backend.h"
 #include "render/check_modes.h"
 #include "render/precision_model.h"
 #include "render/precision_model_file.h"
@@ -96,7 +96,7 @@ ScenesCheck crosscheckScenes(const ScenesCheckOptions& options) {
       const Frame frame = gl->render(mesh, settings);
       const oracle::Comparison c =
           oracle::compare(expected, frame.color, oracle::flatNeed(frame.need));
-      const reference::SetWidths widths = verdictWidths(expected);
+      const SetWidths widths = verdictWidths(expected);
       writeComparisonImages(folder, scene.name + "-" + mode.name, publicMesh.viewport, c);
       nlohmann::json record = {{"scene", scene.name}, {"mode", mode.name}};
       record.update(comparisonJson(c, widths));

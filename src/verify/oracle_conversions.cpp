@@ -32,7 +32,7 @@ oracle::RenderOptions publicRenderOptions(const RenderSettings& settings,
   return options;
 }
 
-reference::SetWidths verdictWidths(const oracle::Frame& frame) {
+SetWidths verdictWidths(const oracle::Frame& frame) {
   static const vt::ResultSets kPinned;
   const vt::ResultSets& sets = frame.sets ? frame.sets->sets : kPinned;
   std::vector<glm::uvec4> need;
@@ -41,7 +41,7 @@ reference::SetWidths verdictWidths(const oracle::Frame& frame) {
     for (size_t i = 0; i + 3 < frame.need.size(); i += 4)
       need.emplace_back(frame.need[i], frame.need[i + 1], frame.need[i + 2], frame.need[i + 3]);
   }
-  return reference::setWidths(sets, need, frame.needEncoding == oracle::NeedEncoding::k8Bit);
+  return setWidths(sets, need, frame.needEncoding == oracle::NeedEncoding::k8Bit);
 }
 
 }  // namespace vt

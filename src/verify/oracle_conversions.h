@@ -4,7 +4,7 @@
 // convert with the API implementation's own oracle::publicScene and oracle::flatNeed.
 
 #include "reference/api/api_internal.h"
-#include "reference/frame_comparison.h"
+#include "render/frame_comparison.h"
 #include "reference/renderer.h"
 #include "render/cache_state.h"
 #include "scene/clip_space_mesh.h"
@@ -16,8 +16,8 @@ namespace vt {
 oracle::CacheState publicCacheState(const CacheState& cache);
 oracle::RenderOptions publicRenderOptions(const RenderSettings& settings,
                                           const std::string& modelFile = "");
-// How tight the verdict on an oracle frame is (reference::SetWidths): from its result sets, or
+// How tight the verdict on an oracle frame is (SetWidths): from its result sets, or
 // under a pinned model from its needbuffer. The public API's Comparison does not carry them.
-reference::SetWidths verdictWidths(const oracle::Frame& frame);
+SetWidths verdictWidths(const oracle::Frame& frame);
 
 }  // namespace vt

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "backends/backend.h"
 #include "build/synthetic_texture.h"
 #include "eval/evaluation_report.h"
 #include "eval/flight_records.h"
@@ -154,12 +155,12 @@ TEST(Evaluation, RunsEqualFlightsThatDrawEveryFrameThemselves) {
   for (FlightConfiguration& c : configurations) c.budget = 2;
   const EvaluationOptions options = smallScreen(reader, 2);
   const Evaluation e = evaluate(reader, boxRoom(), boxRoomPath(), configurations, options);
-  const reference::ResidentTexture everything(reader);
+  const std::unique_ptr<const ResidentRenderer> everything = makeResidentRenderer(reader);
   for (size_t r = 0; r < configurations.size(); ++r) {
     FlightOptions flight;
     flight.settings = options.settings;
     flight.reference = [&](int frame) {
-      return referenceImage(everything, boxRoom(), boxRoomPath().at(frame), options.settings);
+      return referenceImage(*everything, boxRoom(), boxRoomPath().at(frame), options.settings);
     };
     const FlightResult alone = fly(reader, boxRoom(), boxRoomPath(), configurations[r], flight);
     EXPECT_EQ(flightCsvRows(e.runs[r].result, true), flightCsvRows(alone, true)) << "run " << r;

@@ -20,7 +20,7 @@
 #include "gl/headless_context.h"
 #include "gl/virtual_texture_program.h"
 #include "random_triangles.h"
-#include "reference/frame_comparison.h"
+#include "render/frame_comparison.h"
 #include "reference/renderer.h"
 #include "render/arithmetic_points.h"
 #include "test_support.h"
@@ -119,8 +119,8 @@ class PlantedBugs : public ::testing::Test {
       const ClipSpaceMesh mesh = scene();
       const Frame gl = renderer.render(mesh, settings);
       const Frame oracle = reference::renderFrame(mesh, *cache_, settings);
-      const reference::FrameComparison c =
-          reference::compareFrames(oracle, gl.color, gl.need, settings.need8);
+      const FrameComparison c =
+          compareFrames(oracle, gl.color, gl.need, settings.need8);
       verdict.unexplained += c.unexplained;
       for (size_t r = 0; r < verdict.by.size(); ++r) verdict.by[r] += c.unexplainedBy[r];
     }

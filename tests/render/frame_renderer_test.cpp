@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "reference/renderer.h"
-#include "render/backend.h"
+#include "backends/backend.h"
 #include "render/frame_renderer_contract.h"
 
 namespace vt {

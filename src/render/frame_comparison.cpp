@@ -1,4 +1,4 @@
-#include "reference/frame_comparison.h"
+#include "render/frame_comparison.h"
 
 #include <algorithm>
 #include <array>
@@ -10,7 +10,7 @@
 
 #include "shader/needbuffer.h"
 
-namespace vt::reference {
+namespace vt {
 namespace {
 
 int bitOf(uint8_t reason) { return std::countr_zero(static_cast<unsigned>(reason)); }
@@ -355,4 +355,4 @@ void accumulate(FrameComparison& total, const FrameComparison& frame) {
   total.maxColorDifference = std::max(total.maxColorDifference, frame.maxColorDifference);
 }
 
-}  // namespace vt::reference
+}  // namespace vt

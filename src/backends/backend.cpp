@@ -1,10 +1,11 @@
-#include "render/backend.h"
+#include "backends/backend.h"
 
 #include <stdexcept>
 
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
 #include "reference/oracle_frame_renderer.h"
+#include "reference/oracle_roles.h"
 #include "render/arithmetic_points.h"
 
 namespace vt {
@@ -42,6 +43,14 @@ std::unique_ptr<FrameRenderer> makeFrameRendererOfEveryPage(Backend backend,
   if (backend == Backend::kOracle && fitting.residentPages.size() < reader.storedPageCount())
     return std::make_unique<reference::OracleFrameRenderer>(reader);
   return makeFrameRenderer(backend, fitting);
+}
+
+std::unique_ptr<ResidentRenderer> makeResidentRenderer(const VirtualTextureReader& reader) {
+  return std::make_unique<reference::OracleResidentRenderer>(reader);
+}
+
+std::unique_ptr<CacheRenderer> makeCacheRenderer() {
+  return std::make_unique<reference::OracleCacheRenderer>();
 }
 
 }  // namespace vt

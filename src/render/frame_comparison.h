@@ -21,7 +21,7 @@
 #include "render/frame.h"
 #include "render/result_set.h"
 
-namespace vt::reference {
+namespace vt {
 
 inline constexpr size_t kListedMismatches = 1000;
 
@@ -102,4 +102,4 @@ SetWidths pixelSetWidths(const ResultSets& sets, size_t pixel);
 // oracle's own needbuffer `need` (one value per covered pixel).
 SetWidths setWidths(const ResultSets& sets, std::span<const glm::uvec4> need, bool need8);
 
-}  // namespace vt::reference
+}  // namespace vt

@@ -1,12 +1,14 @@
 #pragma once
 // The one place that chooses a renderer (ARCHITECTURE.md, "Renderers to the loop"): the CPU
-// oracle (reference/) or the GL path (src/gl/). Everything else draws through FrameRenderer.
+// oracle (reference/) or the GL path (src/gl/). Everything else draws through FrameRenderer, and
+// asks for the roles only the oracle plays through render/reference_roles.h.
 
 #include <memory>
 #include <string>
 
 #include "format/virtual_texture_reader.h"
 #include "render/frame_renderer.h"
+#include "render/reference_roles.h"
 #include "render/render_settings.h"
 
 namespace vt {
@@ -56,5 +58,9 @@ std::unique_ptr<FrameRenderer> makeFrameRenderer(Backend backend, const CacheSta
 std::unique_ptr<FrameRenderer> makeFrameRendererOfEveryPage(Backend backend,
                                                             const VirtualTextureReader& reader,
                                                             const CacheState& fitting);
+
+// The oracle in its own roles (render/reference_roles.h). `reader` must outlive the renderer.
+std::unique_ptr<ResidentRenderer> makeResidentRenderer(const VirtualTextureReader& reader);
+std::unique_ptr<CacheRenderer> makeCacheRenderer();
 
 }  // namespace vt

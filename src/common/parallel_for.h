@@ -18,7 +18,7 @@
 #include <tbb/parallel_for.h>
 #endif
 
-namespace vt::reference {
+namespace vt {
 
 // Limits the parallelism of everything in its scope to `threads` (0: every core): TBB's loops
 // and Embree's scene build. Nothing to limit on std::threads, where parallelFor takes the count.
@@ -72,4 +72,4 @@ void parallelFor(size_t count, unsigned threads, const Body& body) {
 #endif
 }
 
-}  // namespace vt::reference
+}  // namespace vt

@@ -1,4 +1,4 @@
-#include "reference/frame_comparison.h"
+#include "render/frame_comparison.h"
 
 #include <gtest/gtest.h>
 
