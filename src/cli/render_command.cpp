@@ -1,5 +1,5 @@
-// vt render TEXTURE: one frame of a scene with the CPU oracle, to images, with its run time and,
-// given a reference image, its error.
+// vt render TEXTURE: one frame of a scene with the CPU oracle or the GL path, to images, with its
+// run time and, given a reference image, its error.
 
 #include <OpenImageIO/imageio.h>
 
@@ -54,7 +54,7 @@ void addRenderCommand(CLI::App& app) {
   struct Options {
     std::string texture, mesh, camera, size = "640x360", profile = "exact", depth = "32f";
     std::string output = "frame.png", needbuffer, reference, backend = "oracle";
-    bool bilinear = false, hardwareFilter = false, need8 = false;
+    bool bilinear = false, hardwareFilter = false, need8 = false, everyPage = false;
     int residentLevels = -1;
     unsigned threads = 0;
   };
@@ -78,10 +78,17 @@ void addRenderCommand(CLI::App& app) {
   command->add_flag("--hardware-filter", o->hardwareFilter,
                     "GL_LINEAR sampling instead of texel fetches");
   command->add_flag("--need8", o->need8, "8-bit needbuffer encoding");
+  CLI::Option* levels =
+      command
+          ->add_option("--resident-levels", o->residentLevels,
+                       "Only levels 0..K-1 resident (a cache state); default the levels an "
+                       "8192^2 cache texture holds, coarsest first")
+          ->check(CLI::Range(1, 16));
   command
-      ->add_option("--resident-levels", o->residentLevels,
-                   "Only levels 0..K-1 resident (a cache state); default every page")
-      ->check(CLI::Range(1, 16));
+      ->add_flag("--every-page", o->everyPage,
+                 "Every stored page resident, read from the file as the frame needs it, also "
+                 "where they exceed a cache texture (the oracle only)")
+      ->excludes(levels);
   command->add_option("--threads", o->threads, "Worker threads of the oracle (0: every core)")
       ->check(workerCount());
   command
@@ -93,6 +100,10 @@ void addRenderCommand(CLI::App& app) {
   command->add_option("--reference", o->reference,
                       "Reference image: print RMSE and SSIM against it");
   command->callback([o] {
+    const Backend backend = parseBackend(o->backend);
+    if (o->everyPage && backend != Backend::kOracle)
+      throw CLI::ValidationError("--every-page",
+                                 "the GL path draws from a cache texture; use --backend oracle");
     const std::vector<std::filesystem::path> inputs = {o->texture, o->mesh, o->reference};
     requireOutputFile(o->output, inputs);
     if (!o->needbuffer.empty()) requireOutputFile(o->needbuffer, inputs);
@@ -114,16 +125,15 @@ void addRenderCommand(CLI::App& app) {
     const Camera camera = o->camera.empty() ? boxRoomCamera() : parseCamera(o->camera);
     const ClipSpaceMesh clip = toClipSpace(mesh, camera, settings.viewport);
 
-    // Both backends draw from the same cache state: the levels asked for, or every page that fits
-    // into an 8192^2 cache texture (coarsest levels first), so that their frames can be compared
-    // bit for bit. Only the oracle can do without one: textures whose pages do not fit are drawn
-    // by it with every page resident, straight from the file.
+    // One set of defaults whatever the backend: both draw from the same cache state, the levels
+    // asked for or the levels an 8192^2 cache texture holds (coarsest first), so that the same
+    // command line draws the same frame with either. Only the oracle can do without a cache
+    // texture: --every-page draws every stored page straight from the file.
     const CacheState cache = cacheOfLevels(reader, o->residentLevels - 1, 8192);
-    const Backend backend = parseBackend(o->backend);
     const BackendContext context(backend);
     const std::unique_ptr<FrameRenderer> renderer =
-        o->residentLevels < 0 ? makeFrameRendererOfEveryPage(backend, reader, cache)
-                              : makeFrameRenderer(backend, cache);
+        o->everyPage ? makeFrameRendererOfEveryPage(backend, reader, cache)
+                     : makeFrameRenderer(backend, cache);
     renderer->warmUp(clip, settings);  // GL compiles its shaders: not part of the frame time
     const auto start = std::chrono::steady_clock::now();
     const Frame frame = renderer->render(clip, settings);

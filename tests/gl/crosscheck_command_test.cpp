@@ -83,6 +83,27 @@ TEST(CrosscheckCommand, Q3dm6ishFlythroughPasses) {
     EXPECT_EQ(summary["totals"]["identical"], summary["totals"]["pixels"]);
   }
 
+  // `vt render` draws the same frame with either backend from one command line: by default both
+  // from the levels an 8192^2 cache texture holds (the map's pages do not all fit).
+  std::string cacheLine;
+  for (const std::string backend : {"gl", "oracle"}) {
+    const auto rendered = test::runCommand(
+        VT_EXECUTABLE,
+        {"render", (dir / "q3.vt").string(), "--mesh", out + "/q3dm6ish.obj", "--camera",
+         "6.9088,0.6604,13.4112:7.6519,0.6604,14.0803:73.74", "--size", "160x100", "--backend",
+         backend, "--profile", "llvmpipe", "-o", (dir / (backend + ".png")).string()},
+        dir.path());
+    ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
+    const std::string line = rendered.out.substr(0, rendered.out.find('\n'));
+    EXPECT_THAT(line, HasSubstr("cache state: "));
+    if (cacheLine.empty()) cacheLine = line;
+    EXPECT_EQ(line, cacheLine) << backend;
+  }
+  if (summary["gl_renderer"].get<std::string>().find("llvmpipe") != std::string::npos &&
+      summary["model"] == "llvmpipe") {
+    EXPECT_EQ(test::readBytes(dir / "gl.png"), test::readBytes(dir / "oracle.png"));
+  }
+
   // The same map on llvmpipe generated for SSE2 alone (no FMA, 8-bit GL_LINEAR with floored
   // lerps), an implementation no code of the oracle names: under the model `vt calibrate`
   // measures there, every pixel identical and nothing ambiguous.
