@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "calibrate/fingerprint.h"
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
 #include "reference/oracle_frame_renderer.h"
@@ -32,10 +33,22 @@ std::string BackendContext::captureName(const RenderSettings& settings) const {
              : std::string(kOracleRenderer) + " (" + arithmeticLabel(settings.arithmetic) + ")";
 }
 
+std::optional<PrecisionModel> BackendContext::autoModel(std::string* note) const {
+  note->clear();
+  if (!gl_) return std::nullopt;
+  return calibrate::autoModel(gl_->renderer(), note);
+}
+
+std::string BackendContext::fingerprintedPoint() const {
+  return gl_ ? calibrate::fingerprintedPoint().value_or("") : "";
+}
+
 std::unique_ptr<FrameRenderer> makeFrameRenderer(Backend backend, const CacheState& cache) {
   if (backend == Backend::kGl) return std::make_unique<GlFrameRenderer>(cache);
   return std::make_unique<reference::OracleFrameRenderer>(cache);
 }
+
+bool drawsEveryPage(Backend backend) { return backend == Backend::kOracle; }
 
 std::unique_ptr<FrameRenderer> makeFrameRendererOfEveryPage(Backend backend,
                                                             const VirtualTextureReader& reader,

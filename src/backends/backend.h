@@ -4,10 +4,12 @@
 // asks for the roles only the oracle plays through render/reference_roles.h.
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "format/virtual_texture_reader.h"
 #include "render/frame_renderer.h"
+#include "render/precision_model.h"
 #include "render/reference_roles.h"
 #include "render/render_settings.h"
 
@@ -42,6 +44,15 @@ class BackendContext {
   // judged under auto.
   std::string captureName(const RenderSettings& settings) const;
 
+  // What `auto` means for the implementation that draws, the verifier's one resolution
+  // (calibrate/fingerprint.h, autoModel): a measured or shipped model whose fingerprint
+  // reproduces on this context, else gl45, with one line in `note` saying why. None for the
+  // oracle, which draws whatever arithmetic it is given: the caller's own default applies.
+  std::optional<PrecisionModel> autoModel(std::string* note) const;
+  // The named point this context's implementation reproduces, recorded in captures; "" where
+  // none does, and for the oracle.
+  std::string fingerprintedPoint() const;
+
  private:
   std::unique_ptr<HeadlessContext> gl_;
 };
@@ -50,6 +61,10 @@ class BackendContext {
 // call cacheChanged() after changing it). The GL path needs a current context for its whole life
 // (BackendContext, or the caller's own).
 std::unique_ptr<FrameRenderer> makeFrameRenderer(Backend backend, const CacheState& cache);
+
+// Whether the backend draws a texture's stored pages without a cache texture (the oracle reads
+// them from the file as a frame needs them; the GL path holds what its cache texture holds).
+bool drawsEveryPage(Backend backend);
 
 // A renderer of every stored page of `reader` as far as the backend can draw it: `fitting` is the
 // cache state of the most pages a cache texture holds (cacheOfLevels). When `fitting` lacks some,

@@ -11,7 +11,6 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "calibrate/fingerprint.h"
 #include "cli/argument_checks.h"
 #include "cli/commands.h"
 #include "cli/configuration_options.h"
@@ -137,13 +136,12 @@ void addFlyCommand(CLI::App& app) {
     options.link = LinkModel{o->linkLatency, o->linkMegabytes * 1e6};
     options.backend = parseBackend(o->backend);
     const BackendContext context(options.backend);
-    // auto: with GL, the named point the implementation reproduces (its fingerprint), else exact.
+    // auto: the model the implementation's fingerprint confirms (BackendContext::autoModel);
+    // the oracle, which has none, flies in exact arithmetic.
     std::string note;
-    options.settings.arithmetic =
-        o->profile != "auto" ? arithmeticPoint(o->profile)
-        : options.backend == Backend::kGl
-            ? calibrate::resolveModelHere("auto", context.renderer(), &note).arithmetic
-            : arithmeticPoint("exact");
+    options.settings.arithmetic = o->profile != "auto"
+                                      ? arithmeticPoint(o->profile)
+                                      : context.autoModel(&note).value_or(exactModel()).arithmetic;
     if (!note.empty()) std::cerr << "vt fly: " << note << "\n";
     // Reference images: every page resident, drawn by the oracle at the screen's resolution
     // (DESIGN section 5).
@@ -174,8 +172,7 @@ void addFlyCommand(CLI::App& app) {
     if (!o->capture.empty()) {
       const std::string renderer = context.captureName(options.settings);
       // The named point this GL implementation reproduces, recorded for `--model auto`.
-      const std::string fingerprint =
-          options.backend == Backend::kGl ? calibrate::fingerprintedPoint().value_or("") : "";
+      const std::string fingerprint = context.fingerprintedPoint();
       options.wantsCapture = [&](int frame) { return frame % o->captureEvery == 0; };
       options.capture = [&, renderer, fingerprint](const FlightCaptureView& view) {
         writeFlightCapture(captureStaging->path(), view, reader, options.settings, renderer,

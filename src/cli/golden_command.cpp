@@ -7,7 +7,6 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "calibrate/fingerprint.h"
 #include "cli/commands.h"
 #include "cli/configuration_options.h"
 #include "cli/size_argument.h"
@@ -76,9 +75,9 @@ void addGoldenCommand(CLI::App& app) {
   check
       ->add_option(
           "--model", c->model,
-          "With --backend gl: the precision model (exact, llvmpipe, softpipe, gl45 or a model "
-          "file); auto: a measured or shipped model whose fingerprint reproduces here, else "
-          "gl45")
+          "The precision model (exact, llvmpipe, softpipe, gl45 or a model file); auto: with "
+          "--backend gl a measured or shipped model whose fingerprint reproduces here, else "
+          "gl45; with the oracle the golden set's own profile")
       ->capture_default_str();
   check->add_option("-o,--output", c->output, "Folder for check.json and difference images")
       ->capture_default_str();
@@ -86,18 +85,20 @@ void addGoldenCommand(CLI::App& app) {
     requireOutputFolder(c->output, {c->golden, c->texture, c->mesh, c->path});
     const Backend backend = parseBackend(c->backend);
     const BackendContext context(backend);
-    // The oracle judges itself under the golden set's own profile; the model matters for GL.
+    // auto: the model the implementation's fingerprint confirms (BackendContext::autoModel); the
+    // oracle, which has none, flies in the golden set's own profile.
     std::string note;
-    const PrecisionModel glModel =
-        backend == Backend::kGl ? calibrate::resolveModelHere(c->model, context.renderer(), &note)
-                                : resolveModel(c->model == "auto" ? "exact" : c->model, "");
+    const std::optional<PrecisionModel> model =
+        c->model == "auto" ? context.autoModel(&note)
+                           : std::optional(resolveModel(c->model, context.renderer()));
     if (!note.empty()) std::cerr << "vt golden check: " << note << "\n";
-    if (const std::string warning =
-            calibrationMismatch(glModel, context.renderer(), context.version());
-        !warning.empty())
-      std::cerr << "vt golden check: " << warning << "\n";
+    if (model)
+      if (const std::string warning =
+              calibrationMismatch(*model, context.renderer(), context.version());
+          !warning.empty())
+        std::cerr << "vt golden check: " << warning << "\n";
     const GoldenCheck result =
-        checkGolden(c->golden, c->texture, c->mesh, c->path, backend, glModel, c->output);
+        checkGolden(c->golden, c->texture, c->mesh, c->path, backend, model, c->output);
     size_t passed = 0;
     for (const GoldenFrameCheck& frame : result.frames) {
       passed += frame.passed;

@@ -101,7 +101,7 @@ void addRenderCommand(CLI::App& app) {
                       "Reference image: print RMSE and SSIM against it");
   command->callback([o] {
     const Backend backend = parseBackend(o->backend);
-    if (o->everyPage && backend != Backend::kOracle)
+    if (o->everyPage && !drawsEveryPage(backend))
       throw CLI::ValidationError("--every-page",
                                  "the GL path draws from a cache texture; use --backend oracle");
     const std::vector<std::filesystem::path> inputs = {o->texture, o->mesh, o->reference};

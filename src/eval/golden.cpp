@@ -176,10 +176,8 @@ bool GoldenCheck::passed() const {
 
 GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesystem::path& texture,
                         const std::filesystem::path& mesh, const std::filesystem::path& path,
-                        Backend backend, const PrecisionModel& glModel,
+                        Backend backend, const std::optional<PrecisionModel>& model,
                         const std::filesystem::path& reportFolder) {
-  const bool gl = backend == Backend::kGl;
-  const Arithmetic glProfile = glModel.arithmetic;
   const std::filesystem::path manifest = folder / "golden.json";
   // Whole numbers only: a float converted to int out of its range is undefined.
   const auto whole = [](const nlohmann::json& value, const char* what) {
@@ -229,8 +227,8 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
 
   GoldenCheck check;
   check.backend = toString(backend);
-  check.profile = gl ? glProfile : profile;
-  check.model = gl ? glModel.name : arithmeticLabel(profile);
+  check.profile = model ? model->arithmetic : profile;
+  check.model = model ? model->name : arithmeticLabel(profile);
   const CameraPath cameraPath = CameraPath::load(path);
   requirePathPixelsFit(path, static_cast<uint64_t>(cameraPath.frameCount()),
                        static_cast<uint64_t>(viewport.width),
@@ -239,8 +237,8 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
   const std::filesystem::path& report = staging.path();
   const std::vector<Recorded> recorded =
       flyAndRecord(reader, loadObjMesh(mesh), cameraPath, configuration, viewport, check.profile,
-                   every, backend, gl ? &glModel : nullptr);
-  const bool exact = !gl || glModel.pinned();
+                   every, backend, model ? &*model : nullptr);
+  const bool exact = !model || model->pinned();
   nlohmann::json frames = nlohmann::json::array();
   for (const auto& expected : golden["frames"]) {
     GoldenFrameCheck frame;

@@ -53,16 +53,17 @@ struct GoldenCheck {
   bool passed() const;
 };
 
-// Flies the golden's flight again with `backend` (GL: a current context is the caller's) and
-// compares. The texture, mesh and path files are the golden's unless
-// given; they must be the same by identity and checksum (InputError otherwise). With the oracle,
-// or GL under a pinned model (llvmpipe), every recorded frame must match bit for bit; GL under a
-// model with free parameters (gl45, a model file) is judged by the oracle's result sets for each
-// recorded frame's cache state, and must leave no pixel unexplained. Writes, for each failed
-// frame, frameNNNN.difference.png (colour difference x 16) into `report` with check.json.
+// Flies the golden's flight again with `backend` (GL: a current context is the caller's) in the
+// arithmetic of `model` and compares. The texture, mesh and path files are the golden's unless
+// given; they must be the same by identity and checksum (InputError otherwise). Without a model
+// (the oracle under auto: it draws whatever arithmetic it is given) the flight takes the golden
+// set's own profile. Under a pinned model, or none, every recorded frame must match bit for bit;
+// under a model with free parameters (gl45, a model file) each recorded frame is judged by the
+// oracle's result sets for its cache state, and must leave no pixel unexplained. Writes, for each
+// failed frame, frameNNNN.difference.png (colour difference x 16) into `report` with check.json.
 GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesystem::path& texture,
                         const std::filesystem::path& mesh, const std::filesystem::path& path,
-                        Backend backend, const PrecisionModel& glModel,
+                        Backend backend, const std::optional<PrecisionModel>& model,
                         const std::filesystem::path& report);
 
 }  // namespace vt

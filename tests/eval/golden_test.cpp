@@ -37,7 +37,7 @@ struct GoldenFixture {
   }
   GoldenCheck check(const std::filesystem::path& texture) {
     return checkGolden(dir / "golden", texture, request.mesh, request.path, Backend::kOracle,
-                       exactModel(), dir / "report");
+                       std::nullopt, dir / "report");
   }
 };
 
