@@ -16,6 +16,7 @@
 #include "common/posix_file.h"
 #include "common/resource_limits.h"
 #include "eval/flight_records.h"
+#include "eval/golden_manifest.h"
 #include "format/virtual_texture_reader.h"
 #include "render/frame_comparison.h"
 #include "render/arithmetic_points.h"
@@ -26,13 +27,7 @@
 namespace vt {
 namespace {
 
-constexpr const char* kFormat = "vt-golden 1";
-
-std::string hex(uint64_t value) {
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
-  return text;
-}
+std::string hex(uint64_t value) { return checksumText(value); }
 
 uint64_t fileChecksum(const std::filesystem::path& file) {
   const std::string bytes = readTextFile(file, "file");
@@ -139,31 +134,28 @@ void generateGolden(const GoldenRequest& request, const std::filesystem::path& d
   const std::vector<Recorded> recorded =
       flyAndRecord(reader, mesh, path, request.configuration, request.viewport, request.profile,
                    request.every, Backend::kOracle);
-  nlohmann::json frames = nlohmann::json::array();
+  GoldenManifest manifest{.texture = request.texture.filename().string(),
+                          .textureIdentity = hex(reader.identity()),
+                          .mesh = request.mesh.filename().string(),
+                          .meshChecksum = hex(fileChecksum(request.mesh)),
+                          .path = request.path.filename().string(),
+                          .pathChecksum = hex(fileChecksum(request.path)),
+                          .configuration = request.configuration,
+                          .viewport = request.viewport,
+                          .profile = request.profile,
+                          .every = request.every,
+                          .frames = {}};
   for (const Recorded& r : recorded) {
     writeColorImage(folder / imageName(r.frame), request.viewport, r.color);
-    frames.push_back({{"frame", r.frame},
-                      {"color", hex(bytesChecksum(std::span<const uint8_t>(r.color)))},
-                      {"need", hex(bytesChecksum(std::span<const glm::uvec4>(r.need)))},
-                      {"rmse", r.quality.rmse},
-                      {"ssim", r.quality.ssim},
-                      {"wssim", r.quality.wssim},
-                      {"image", imageName(r.frame)}});
+    manifest.frames.push_back({.frame = r.frame,
+                               .color = hex(bytesChecksum(std::span<const uint8_t>(r.color))),
+                               .need = hex(bytesChecksum(std::span<const glm::uvec4>(r.need))),
+                               .rmse = r.quality.rmse,
+                               .ssim = r.quality.ssim,
+                               .wssim = r.quality.wssim,
+                               .image = imageName(r.frame)});
   }
-  const nlohmann::json golden = {{"format", kFormat},
-                                 {"texture", request.texture.filename().string()},
-                                 {"texture_identity", hex(reader.identity())},
-                                 {"mesh", request.mesh.filename().string()},
-                                 {"mesh_checksum", hex(fileChecksum(request.mesh))},
-                                 {"path", request.path.filename().string()},
-                                 {"path_checksum", hex(fileChecksum(request.path))},
-                                 {"configuration", request.configuration.toJson()},
-                                 {"width", request.viewport.width},
-                                 {"height", request.viewport.height},
-                                 {"profile", arithmeticLabel(request.profile)},
-                                 {"every", request.every},
-                                 {"frames", frames}};
-  writeFileAtomically(folder / "golden.json", golden.dump(1) + "\n");
+  writeFileAtomically(folder / "golden.json", manifest.text());
   staging.commit();
 }
 
@@ -178,57 +170,25 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
                         const std::filesystem::path& mesh, const std::filesystem::path& path,
                         Backend backend, const std::optional<PrecisionModel>& model,
                         const std::filesystem::path& reportFolder) {
-  const std::filesystem::path manifest = folder / "golden.json";
-  // Whole numbers only: a float converted to int out of its range is undefined.
-  const auto whole = [](const nlohmann::json& value, const char* what) {
-    if (!value.is_number_integer() || value.get<int64_t>() < 0 || value.get<int64_t>() > 1 << 30)
-      throw std::invalid_argument(std::string(what) + " is not a whole number from 0 to 2^30");
-    return static_cast<int>(value.get<int64_t>());
-  };
-  nlohmann::json golden;
-  FlightConfiguration configuration;
-  Viewport viewport;
-  Arithmetic profile;
-  int every = 1;
-  try {
-    golden = readJsonFile(manifest, "golden set");
-    if (golden.at("format") != kFormat)
-      throw std::invalid_argument("format is not '" + std::string(kFormat) + "'");
-    configuration = FlightConfiguration::fromJson(golden.at("configuration"), {});
-    viewport = {whole(golden.at("width"), "width"), whole(golden.at("height"), "height")};
-    profile = arithmeticPoint(golden.at("profile").get<std::string>());
-    every = whole(golden.at("every"), "every");
-    for (const char* key : {"texture_identity", "mesh_checksum", "path_checksum"})
-      golden.at(key).get<std::string>();
-    for (const auto& frame : golden.at("frames")) {
-      whole(frame.at("frame"), "a frame number");
-      for (const char* key : {"color", "need", "image"}) frame.at(key).get<std::string>();
-      for (const char* key : {"rmse", "ssim", "wssim"}) frame.at(key).get<double>();
-    }
-    if (every < 1 || viewport.width < 1 || viewport.height < 1 || viewport.width > 16384 ||
-        viewport.height > 16384 || golden.at("frames").empty())
-      throw std::invalid_argument("size, every or frames out of range");
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(manifest, "not a golden set: " + jsonErrorText(e));
-  } catch (const std::invalid_argument& e) {
-    throw InputError(manifest, std::string("not a golden set: ") + e.what());
-  }
+  const std::filesystem::path manifestFile = folder / "golden.json";
+  const GoldenManifest golden = GoldenManifest::read(manifestFile);
+  const Viewport viewport = golden.viewport;
 
   const VirtualTextureReader reader(texture);
-  if (hex(reader.identity()) != golden["texture_identity"])
+  if (hex(reader.identity()) != golden.textureIdentity)
     throw InputError(texture, "its identity " + hex(reader.identity()) + " is not the golden's " +
-                                  golden["texture_identity"].get<std::string>() +
+                                  golden.textureIdentity +
                                   ": the goldens were made from another texture");
-  for (const auto& [file, key] : {std::pair{mesh, "mesh_checksum"}, {path, "path_checksum"}})
-    if (hex(fileChecksum(file)) != golden[key])
+  for (const auto& [file, expected] :
+       {std::pair{mesh, golden.meshChecksum}, {path, golden.pathChecksum}})
+    if (hex(fileChecksum(file)) != expected)
       throw InputError(file, "its checksum " + hex(fileChecksum(file)) + " is not the golden's " +
-                                 golden[key].get<std::string>() +
-                                 ": the goldens were made from another file");
+                                 expected + ": the goldens were made from another file");
 
   GoldenCheck check;
   check.backend = toString(backend);
-  check.profile = model ? model->arithmetic : profile;
-  check.model = model ? model->name : arithmeticLabel(profile);
+  check.profile = model ? model->arithmetic : golden.profile;
+  check.model = model ? model->name : arithmeticLabel(golden.profile);
   const CameraPath cameraPath = CameraPath::load(path);
   requirePathPixelsFit(path, static_cast<uint64_t>(cameraPath.frameCount()),
                        static_cast<uint64_t>(viewport.width),
@@ -236,26 +196,24 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
   TemporaryFolder staging(reportFolder, "check.json");  // replaces the report once complete
   const std::filesystem::path& report = staging.path();
   const std::vector<Recorded> recorded =
-      flyAndRecord(reader, loadObjMesh(mesh), cameraPath, configuration, viewport, check.profile,
-                   every, backend, model ? &*model : nullptr);
+      flyAndRecord(reader, loadObjMesh(mesh), cameraPath, golden.configuration, viewport,
+                   check.profile, golden.every, backend, model ? &*model : nullptr);
   const bool exact = !model || model->pinned();
   nlohmann::json frames = nlohmann::json::array();
-  for (const auto& expected : golden["frames"]) {
+  for (const GoldenFrame& expected : golden.frames) {
     GoldenFrameCheck frame;
-    frame.frame = expected.at("frame").get<int>();
+    frame.frame = expected.frame;
     const auto r = std::find_if(recorded.begin(), recorded.end(),
                                 [&](const Recorded& x) { return x.frame == frame.frame; });
     if (r == recorded.end())
-      throw InputError(manifest, "frame " + std::to_string(frame.frame) + " is not on the path");
-    frame.colorMatches =
-        hex(bytesChecksum(std::span<const uint8_t>(r->color))) == expected["color"];
-    frame.needMatches =
-        hex(bytesChecksum(std::span<const glm::uvec4>(r->need))) == expected["need"];
-    frame.qualityMatches = r->quality.rmse == expected["rmse"].get<double>() &&
-                           r->quality.ssim == expected["ssim"].get<double>() &&
-                           r->quality.wssim == expected["wssim"].get<double>();
+      throw InputError(manifestFile,
+                       "frame " + std::to_string(frame.frame) + " is not on the path");
+    frame.colorMatches = hex(bytesChecksum(std::span<const uint8_t>(r->color))) == expected.color;
+    frame.needMatches = hex(bytesChecksum(std::span<const glm::uvec4>(r->need))) == expected.need;
+    frame.qualityMatches = r->quality.rmse == expected.rmse && r->quality.ssim == expected.ssim &&
+                           r->quality.wssim == expected.wssim;
     const std::vector<uint8_t> image = readGoldenImage(
-        pathInside(folder, expected.at("image").get<std::string>(), manifest.string()), viewport);
+        pathInside(folder, expected.image, manifestFile.string()), viewport);
     std::vector<uint8_t> difference(image.size(), 255);
     for (size_t p = 0; p < image.size(); p += 4) {
       int pixelMax = 0;

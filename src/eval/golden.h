@@ -1,19 +1,14 @@
 #pragma once
 // Golden images: a flight's frames recorded once and checked later (DESIGN section 5). A golden
 // set is a folder:
-//   golden.json      what was flown (the texture's identity, checksums of the mesh and path files,
-//                    the configuration, screen size, precision profile, every n-th frame) and per
-//                    recorded frame the checksums of its colour and needbuffer (XXH3 of the RGBA8
-//                    bytes, rows bottom to top, and of the needbuffer as 32-bit little-endian
-//                    words) with its RMSE, SSIM and WSSIM against the reference image
+//   golden.json      the manifest (golden_manifest.h): what was flown and per recorded frame the
+//                    checksums of its colour and needbuffer with its RMSE, SSIM and WSSIM
 //   frameNNNN.png    each recorded frame's colour, small, for people to look at
-// Checking flies the same configuration again and compares each recorded frame: with the oracle
-// exactly (checksums and metrics to the bit); with the GL path under the llvmpipe profile exactly,
-// under the other profiles the colour within the profile's bound per channel
-// (src/render/frame_comparison.h) and the needbuffer not at all (the oracle cannot say which
-// pixels are ambiguous in a cache state it did not draw).
+// Checking (checkGolden below) flies the same configuration again and compares each recorded
+// frame.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
