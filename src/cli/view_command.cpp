@@ -16,15 +16,19 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/configuration_options.h"
 #include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/image_file.h"
 #include "common/output_path.h"
 #include "eval/flight_run.h"
+#include "eval/frame_drawer.h"
+#include "eval/frame_plan.h"
 #include "gl/gl_frame_renderer.h"
 #include "gl/hud_overlay.h"
 #include "gl/window_context.h"
 #include "render/frame_images.h"
+#include "runtime/needbuffer_scale.h"
 #include "runtime/page_streamer.h"
 #include "runtime/virtual_texture_runtime.h"
 #include "scene/box_room.h"
@@ -58,8 +62,6 @@ FlyInput readInput(WindowContext& window, glm::dvec2& lastCursor) {
 void addViewCommand(CLI::App& app) {
   struct Options {
     std::string texture, mesh, camera, path, record, screenshot, size = "1280x720";
-    std::string heuristic = "pixelsum", ancestors = "none";
-    uint32_t frames = 16;
     double linkLatency = 0.0, linkMegabytes = 0.0, speed = 3.0;
     int maxFrames = 0;
     bool recordFromStart = false;
@@ -79,13 +81,8 @@ void addViewCommand(CLI::App& app) {
   command->add_option("--size", o->size, "Window WIDTHxHEIGHT")
       ->check(sizeValidator())
       ->capture_default_str();
-  command->add_option("--heuristic", o->heuristic, "Page priority (as vt fly)")
-      ->capture_default_str();
-  command->add_option("--ancestors", o->ancestors, joinedNames(kAncestorStrategyNames))
-      ->capture_default_str();
-  command->add_option("--cache-frames", o->frames, "The cache holds N x N frames")
-      ->check(CLI::Range(1u, 256u))
-      ->capture_default_str();
+  // The flight's configuration as vt fly takes it; the budget gives way to the streaming thread.
+  auto configurationOptions = std::make_shared<ConfigurationOptions>(command);
   command->add_option("--link-latency", o->linkLatency, "Seconds each page travels")
       ->check(CLI::Range(0.0, 3600.0));
   command->add_option("--link-bandwidth", o->linkMegabytes, "MB/s of the link (0 unlimited)")
@@ -98,8 +95,9 @@ void addViewCommand(CLI::App& app) {
   command->add_option("--frames", o->maxFrames, "Quit after N frames (0: when closed)")
       ->check(CLI::Range(0, 1 << 30));
   command->add_option("--screenshot", o->screenshot, "Write the last frame (with HUD) as image");
-  command->callback([o] {
-    const std::vector<std::filesystem::path> inputs = {o->texture, o->mesh, o->path};
+  command->callback([o, configurationOptions] {
+    const std::vector<std::filesystem::path> inputs = {o->texture, o->mesh, o->path,
+                                                       configurationOptions->file()};
     if (!o->record.empty()) requireOutputFile(o->record, inputs);
     if (!o->screenshot.empty()) requireOutputFile(o->screenshot, inputs);
     const VirtualTextureReader reader(o->texture);
@@ -110,23 +108,24 @@ void addViewCommand(CLI::App& app) {
                     : o->camera.empty() ? boxRoomCamera()
                                         : parseCamera(o->camera);
 
-    // The thesis's interactive setup (4.2.1): levels 0..2 first, a streaming thread over the link.
-    FlightConfiguration configuration;
-    configuration.cacheFrames = o->frames;
-    configuration.heuristic = Heuristic::parse(o->heuristic);
-    configuration.ancestors = parseAncestorStrategy(o->ancestors);
-    configuration.initialLevels = 3;
+    // The thesis's interactive setup (4.2.1): levels 0..2 first (the configuration's default), a
+    // streaming thread over the link. Each frame draws what its plan says (eval/frame_plan.h), as
+    // vt fly would for the same configuration.
+    const FlightConfiguration configuration = configurationOptions->configuration();
     FlightOptions flight;
     flight.settings.need8 = need8Encodes(reader.description().finestLevel());
     flight.threadedStreaming = true;
     flight.link = {o->linkLatency, o->linkMegabytes * 1e6};
     const Viewport size = parseSize(o->size);
-    FlightRun run(reader, configuration, flight, size,
+    FlightRun run(reader, configuration, flight,
+                  reducedViewport(size, configuration.needScaleLog2),
                   initialPages(reader, configuration, {}, flight.settings.need8));
     WindowContext window(size.width, size.height, "vt view: " + o->texture);
     GlFrameRenderer gl(run.runtime().cacheState());
+    FrameDrawer drawer(mesh, flight.settings);
+    drawer.attach(gl);
+    DrawnPasses drawn;
     HudOverlay hud;
-    RenderSettings settings = flight.settings;
     std::vector<Keyframe> recorded;
     bool recording = o->recordFromStart;
     glm::dvec2 cursor = window.cursor();
@@ -134,7 +133,7 @@ void addViewCommand(CLI::App& app) {
     Clock::time_point last = Clock::now();
     double frameMs = 0.0;
     uint64_t streamedTotal = 0;
-    Camera previous = camera;
+    Camera previous = camera, beforePrevious = camera;
     for (int frame = 0; !window.shouldClose(); ++frame) {
       const Clock::time_point now = Clock::now();
       const auto seconds = static_cast<float>(std::chrono::duration<double>(now - last).count());
@@ -147,6 +146,7 @@ void addViewCommand(CLI::App& app) {
           std::cout << "recorded " << recorded.size() << " keyframes to " << o->record << "\n";
         }
       }
+      beforePrevious = previous;
       previous = camera;
       if (path) {
         camera = path->at(frame);
@@ -159,15 +159,17 @@ void addViewCommand(CLI::App& app) {
 
       // Draw from the cache as it is, analyse, ask the thread, apply what arrived.
       const glm::ivec2 windowSize = window.framebufferSize();
-      settings.viewport = {std::max(1, windowSize.x), std::max(1, windowSize.y)};
-      gl.cacheChanged();
+      const FramePlan plan =
+          planFrame(configuration, {std::max(1, windowSize.x), std::max(1, windowSize.y)},
+                    static_cast<uint64_t>(frame), beforePrevious, previous, camera);
       const auto drawStart = Clock::now();
-      const Frame drawn = gl.render(toClipSpace(mesh, camera, settings.viewport), settings,
-                                    run.runtime().needsDepth());
-      run.frame(
-          frame, previous, camera,
-          DrawnFrame{.need = drawn.need, .depth = drawn.depth, .needViewport = settings.viewport},
-          std::chrono::duration<double>(Clock::now() - drawStart).count());
+      drawer.draw(plan, ViewColor::kShown, run.runtime().needsDepth(), drawn);
+      run.frame(frame, plan.previous, plan.camera,
+                DrawnFrame{.need = drawn.need,
+                           .depth = drawn.depth,
+                           .lookAheadNeed = drawn.lookAheadNeed,
+                           .needViewport = plan.need.viewport},
+                std::chrono::duration<double>(Clock::now() - drawStart).count());
       const FrameStatistics& statistics = run.frames().back().statistics;
       streamedTotal += statistics.streamed;
 
@@ -182,9 +184,10 @@ void addViewCommand(CLI::App& app) {
                     static_cast<unsigned long long>(statistics.requested),
                     static_cast<unsigned long long>(statistics.streamed),
                     static_cast<unsigned long long>(streamedTotal));
+      const uint32_t capacity = configuration.cacheFrames * configuration.cacheFrames;
       std::snprintf(lines[3], sizeof lines[3], "RESIDENT %llu / %u  %.0f%%",
-                    static_cast<unsigned long long>(statistics.resident), o->frames * o->frames,
-                    100.0 * static_cast<double>(statistics.resident) / (o->frames * o->frames));
+                    static_cast<unsigned long long>(statistics.resident), capacity,
+                    100.0 * static_cast<double>(statistics.resident) / capacity);
       hud.draw(renderHudText({lines[0], lines[1], lines[2], lines[3]}, 2), windowSize);
 
       const bool lastFrame = o->maxFrames > 0 && frame + 1 >= o->maxFrames;

@@ -10,6 +10,7 @@
 #include "common/elapsed_time.h"
 #include "common/parallel_for.h"
 #include "eval/flight_run.h"
+#include "eval/frame_plan.h"
 #include "eval/image_metrics.h"
 #include "runtime/needbuffer_scale.h"
 
@@ -18,13 +19,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The needbuffers an evaluation draws besides each view's own: a camera (the view, or a LookAhead
-// camera) at a needbuffer scale. The view at full scale is the shared frame itself.
-struct NeedPass {
-  LookAhead camera = LookAhead::kNone;  // kNone: the view
-  int scaleLog2 = 0;
-  auto operator<=>(const NeedPass&) const = default;
-};
+// The needbuffers an evaluation draws besides each view's own, by NeedPass::key (frame_plan.h): a
+// camera (the view, or a LookAhead camera) at a needbuffer scale. The view at full scale is the
+// shared frame itself.
+using PassKey = std::pair<LookAhead, int>;
 
 struct NeedImage {
   std::vector<glm::uvec4> need;
@@ -34,7 +32,7 @@ struct NeedImage {
 
 // Every camera view of the path, drawn once for all configurations: with every page resident and
 // the fragment inputs recorded (the reference image, its needbuffer and depth), and the extra
-// needbuffer passes the configurations ask for. Needbuffers and depth do not depend on the cache
+// needbuffer passes the configurations' frame plans ask for. Needbuffers and depth do not depend on the cache
 // state; each configuration's colour is the recorded frame shaded again under its own cache state
 // (reference/recolor.h), the same bytes as drawing it.
 class SharedViews {
@@ -42,62 +40,70 @@ class SharedViews {
   SharedViews(const VirtualTextureReader& reader, const Mesh& mesh, const CameraPath& path,
               const RenderSettings& settings,
               const std::vector<FlightConfiguration>& configurations)
-      : mesh_(mesh), path_(path), everything_(makeResidentRenderer(reader)), settings_(settings) {
+      : mesh_(mesh),
+        path_(path),
+        configurations_(configurations),
+        everything_(makeResidentRenderer(reader)),
+        settings_(settings) {
     settings_.needScaleLog2 = 0;
     settings_.debugChannels = true;
-    for (const FlightConfiguration& c : configurations) {
-      if (c.needScaleLog2 > 0) passes_[NeedPass{LookAhead::kNone, c.needScaleLog2}];
-      if (c.lookAhead != LookAhead::kNone) passes_[NeedPass{c.lookAhead, c.needScaleLog2}];
-    }
   }
 
-  // Draws frame `frameNumber`'s view and its extra passes, each with every thread.
+  // Draws frame `frameNumber`'s view and the passes of its plans other than the view, each with
+  // every thread, each distinct pass once.
   void draw(int frameNumber) {
     const auto start = Clock::now();
-    const Camera current = path_.at(frameNumber);
-    everything_->draw(toClipSpace(mesh_, current, settings_.viewport), settings_, view_);
+    plans_.clear();
+    for (const FlightConfiguration& c : configurations_)
+      plans_.push_back(planFrame(c, settings_.viewport, path_, frameNumber));
+    everything_->draw(toClipSpace(mesh_, path_.at(frameNumber), settings_.viewport), settings_,
+                      view_);
     viewSeconds_ = secondsSince(start);
-    const Camera previous = path_.at(std::max(0, frameNumber - 1)),
-                 beforePrevious = path_.at(std::max(0, frameNumber - 2));
-    for (auto& [pass, image] : passes_) {
-      const auto passStart = Clock::now();
-      const Camera camera = pass.camera == LookAhead::kNone
-                                ? current
-                                : lookAheadCamera(beforePrevious, previous, current, pass.camera);
-      RenderSettings settings = settings_;
-      settings.debugChannels = false;
-      settings.needOnly = true;
-      settings.needScaleLog2 = pass.scaleLog2;
-      settings.viewport = reducedViewport(settings_.viewport, pass.scaleLog2);
-      const glm::vec2 jitter = needJitter(static_cast<uint64_t>(frameNumber), pass.scaleLog2);
-      everything_->draw(toClipSpace(mesh_, camera, settings.viewport, jitter), settings, scratch_);
-      image.need = std::move(scratch_.need);
-      image.depth = std::move(scratch_.depth);
-      image.seconds = secondsSince(passStart);
+    passes_.clear();
+    for (const FramePlan& plan : plans_) {
+      if (plan.colorPassOfItsOwn()) drawPass(plan.need);
+      if (plan.lookAhead) drawPass(*plan.lookAhead);
     }
   }
 
   const Frame& view() const { return view_; }
   double viewSeconds() const { return viewSeconds_; }
-  // The pass's needbuffer (and depth) of the current frame; the view's own at full scale.
-  const NeedImage* pass(LookAhead camera, int scaleLog2) const {
-    const auto found = passes_.find(NeedPass{camera, scaleLog2});
-    return found == passes_.end() ? nullptr : &found->second;
-  }
+  // Configuration r's plan of the current frame.
+  const FramePlan& plan(size_t r) const { return plans_.at(r); }
+  // The pass's needbuffer (and depth) of the current frame.
+  const NeedImage& pass(const NeedPass& pass) const { return passes_.at(pass.key()); }
   double totalSeconds() const {
     double seconds = viewSeconds_;
-    for (const auto& [pass, image] : passes_) seconds += image.seconds;
+    for (const auto& [key, image] : passes_) seconds += image.seconds;
     return seconds;
   }
 
  private:
+  void drawPass(const NeedPass& pass) {
+    if (passes_.contains(pass.key())) return;
+    NeedImage& image = passes_[pass.key()];
+    const auto passStart = Clock::now();
+    RenderSettings settings = settings_;
+    settings.debugChannels = false;
+    settings.needOnly = true;
+    settings.needScaleLog2 = pass.scaleLog2;
+    settings.viewport = pass.viewport;
+    everything_->draw(toClipSpace(mesh_, pass.view, pass.viewport, pass.jitter), settings,
+                      scratch_);
+    image.need = std::move(scratch_.need);
+    image.depth = std::move(scratch_.depth);
+    image.seconds = secondsSince(passStart);
+  }
+
   const Mesh& mesh_;
   const CameraPath& path_;
+  const std::vector<FlightConfiguration>& configurations_;
   const std::unique_ptr<const ResidentRenderer> everything_;
   RenderSettings settings_;
+  std::vector<FramePlan> plans_;
   Frame view_, scratch_;
   double viewSeconds_ = 0.0;
-  std::map<NeedPass, NeedImage> passes_;
+  std::map<PassKey, NeedImage> passes_;
 };
 
 // One configuration's run inside the evaluation: its flight, and its own buffers (the colour of
@@ -112,28 +118,27 @@ struct RunState {
 // Frame `f` of one run from the shared views, its colour already shaded under its cache state:
 // the needbuffers its configuration reads, then the run's analysis, quality and streaming. Its
 // drawing time is the shared passes' it reads: what drawing the frame once costs.
-void flyFrame(RunState& state, const SharedViews& views, const PreparedReference& reference,
-              const CameraPath& path, int f) {
-  const FlightConfiguration& c = state.run->configuration();
+void flyFrame(RunState& state, const SharedViews& views, const FramePlan& plan,
+              const PreparedReference& reference, int f) {
   double drawSeconds = views.viewSeconds();
   std::span<const glm::uvec4> need = views.view().need;
   std::span<const float> depth = views.view().depth;
-  if (c.needScaleLog2 > 0) {
-    const NeedImage* reduced = views.pass(LookAhead::kNone, c.needScaleLog2);
-    need = reduced->need;
-    depth = reduced->depth;
-    drawSeconds += reduced->seconds;
+  if (plan.colorPassOfItsOwn()) {
+    const NeedImage& reduced = views.pass(plan.need);
+    need = reduced.need;
+    depth = reduced.depth;
+    drawSeconds += reduced.seconds;
   }
   std::span<const glm::uvec4> lookAheadNeed;
-  if (c.lookAhead != LookAhead::kNone) {
-    const NeedImage* ahead = views.pass(c.lookAhead, c.needScaleLog2);
-    lookAheadNeed = ahead->need;
-    drawSeconds += ahead->seconds;
+  if (plan.lookAhead) {
+    const NeedImage& ahead = views.pass(*plan.lookAhead);
+    lookAheadNeed = ahead.need;
+    drawSeconds += ahead.seconds;
   }
   if (!state.run->runtime().needsDepth()) depth = {};
   std::vector<glm::uvec4> currentNeed;
   std::vector<float> currentDepth;
-  if (c.asyncReadback) {  // the analysis sees the previous frame's needbuffer
+  if (plan.delayedReadback) {  // the analysis sees the previous frame's needbuffer
     currentNeed.assign(need.begin(), need.end());
     currentDepth.assign(depth.begin(), depth.end());
     std::swap(currentNeed, state.delayedNeed);
@@ -141,7 +146,7 @@ void flyFrame(RunState& state, const SharedViews& views, const PreparedReference
     need = currentNeed;
     depth = currentDepth;
   }
-  state.run->frame(f, path.at(std::max(0, f - 1)), path.at(f),
+  state.run->frame(f, plan.previous, plan.camera,
                    DrawnFrame{.color = state.color,
                               .need = need,
                               .depth = depth,
@@ -197,7 +202,7 @@ Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const 
     const PreparedReference prepared(
         ImageView{settings.viewport.width, settings.viewport.height, views.view().color});
     parallelFor(states.size(), threads,
-                           [&](size_t r) { flyFrame(states[r], views, prepared, path, f); });
+                           [&](size_t r) { flyFrame(states[r], views, views.plan(r), prepared, f); });
     report(static_cast<uint64_t>(f + 1) * configurations.size());
   }
   for (size_t r = 0; r < configurations.size(); ++r)
