@@ -10,6 +10,8 @@
 //                   and jitter (scene/camera_motion.h)
 //   the readback    synchronous, or delayed by a frame (the analysis reads the previous frame's
 //                   needbuffer and depth)
+// The reference image a frame's quality is measured against is the view drawn by the oracle with
+// every page resident in the flight's own arithmetic (flight.h, referenceImage), in every driver.
 
 #include <cstdint>
 #include <optional>

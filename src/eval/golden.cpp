@@ -84,11 +84,10 @@ std::vector<Recorded> flyAndRecord(const VirtualTextureReader& reader, const Mes
   options.settings.need8 = need8Encodes(reader.description().finestLevel());
   options.backend = backend;
   const std::unique_ptr<const ResidentRenderer> everything = makeResidentRenderer(reader);
-  RenderSettings referenceSettings = options.settings;
-  referenceSettings.arithmetic = arithmeticPoint("exact");
-  // Reference images for the recorded frames only.
+  // Reference images for the recorded frames only, in the flight's arithmetic as every flight's
+  // (frame_plan.h): the quality measures what streaming costs, not the arithmetic.
   options.reference = [&](int frame) {
-    return frame % every == 0 ? referenceImage(*everything, mesh, path.at(frame), referenceSettings)
+    return frame % every == 0 ? referenceImage(*everything, mesh, path.at(frame), options.settings)
                               : std::vector<uint8_t>{};
   };
   std::vector<Recorded> recorded;
