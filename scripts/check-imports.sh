@@ -18,6 +18,7 @@ rules=(
   "src/eval|gl reference verify calibrate capture cli"
   "src/retexture|gl reference eval verify calibrate capture cli"
   "src/capture|reference backends eval verify"
+  "src/viewer|reference verify calibrate capture cli"
 )
 
 violations=0
