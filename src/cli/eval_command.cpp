@@ -135,21 +135,10 @@ void addEvalCommand(CLI::App& app) {
     TemporaryFolder::requireReplaceable(o->output, "summary.json");
     EvaluationOptions options;
     options.settings.viewport = parseSize(o->scene.size);
-    // The runs fly in lockstep, each cache and colour buffer held at once: refused before the
-    // first frame is drawn.
     const Viewport& v = options.settings.viewport;
-    const TextureDescription& d = reader.description();
-    const uint64_t storedSide = uint64_t{d.pageSize} + 2 * uint64_t{d.border};
-    uint64_t stateBytes = 0;
-    for (const FlightConfiguration& c : configurations)
-      stateBytes += uint64_t{c.cacheFrames} * c.cacheFrames * storedSide * storedSide * 4 +
-                    static_cast<uint64_t>(v.width) * static_cast<uint64_t>(v.height) * 4;
-    if (stateBytes > kMaxEvaluationStateBytes)
-      throw limitError(o->configs.empty() ? std::filesystem::path("the configurations")
-                                          : std::filesystem::path(o->configs),
-                       "flying " + std::to_string(configurations.size()) +
-                           " configurations in lockstep (each cache and frame held at once)",
-                       stateBytes, kMaxEvaluationStateBytes, " bytes");
+    requireEvaluationFits(o->configs.empty() ? std::filesystem::path("the configurations")
+                                             : std::filesystem::path(o->configs),
+                          reader.description(), v, configurations);
     // The views drawn once, and one recolouring per configuration, along the path.
     requirePathPixelsFit(o->scene.path.empty() ? "the box room's path" : o->scene.path,
                          static_cast<uint64_t>(path.frameCount()), static_cast<uint64_t>(v.width),

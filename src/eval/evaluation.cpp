@@ -9,6 +9,7 @@
 #include "backends/backend.h"
 #include "common/elapsed_time.h"
 #include "common/parallel_for.h"
+#include "common/resource_limits.h"
 #include "eval/flight_run.h"
 #include "eval/frame_plan.h"
 #include "eval/image_metrics.h"
@@ -157,6 +158,20 @@ void flyFrame(RunState& state, const SharedViews& views, const FramePlan& plan,
 }
 
 }  // namespace
+
+void requireEvaluationFits(const std::filesystem::path& origin, const TextureDescription& texture,
+                           Viewport screen, const std::vector<FlightConfiguration>& configurations) {
+  const uint64_t storedSide = uint64_t{texture.pageSize} + 2 * uint64_t{texture.border};
+  uint64_t stateBytes = 0;
+  for (const FlightConfiguration& c : configurations)
+    stateBytes += uint64_t{c.cacheFrames} * c.cacheFrames * storedSide * storedSide * 4 +
+                  static_cast<uint64_t>(screen.width) * static_cast<uint64_t>(screen.height) * 4;
+  if (stateBytes > kMaxEvaluationStateBytes)
+    throw limitError(origin,
+                     "flying " + std::to_string(configurations.size()) +
+                         " configurations in lockstep (each cache and frame held at once)",
+                     stateBytes, kMaxEvaluationStateBytes, " bytes");
+}
 
 Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const CameraPath& path,
                     const std::vector<FlightConfiguration>& configurations,

@@ -35,6 +35,12 @@ struct Evaluation {
   double wallSeconds = 0.0;     // the whole evaluation
 };
 
+// An evaluation flies its runs in lockstep, each run's cache texture and colour buffer held at
+// once: throws limitError (common/resource_limits.h) naming `origin` (the configurations' file)
+// when they exceed kMaxEvaluationStateBytes, before anything is drawn.
+void requireEvaluationFits(const std::filesystem::path& origin, const TextureDescription& texture,
+                           Viewport screen, const std::vector<FlightConfiguration>& configurations);
+
 // Throws what a flight throws (the first error of any run).
 Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const CameraPath& path,
                     const std::vector<FlightConfiguration>& configurations,
