@@ -182,24 +182,15 @@ void addFlyCommand(CLI::App& app) {
 
     const FlightResult result = fly(reader, mesh, path, configuration, options);
     writeFlightRecords(folder, result, o->quality);
-    nlohmann::json summary = configuration.toJson();
-    summary.erase("name");
-    summary.update({{"texture", o->scene.texture},
-                    {"frames", path.frameCount()},
-                    {"streaming", o->streaming},
-                    {"link_latency_seconds", o->linkLatency},
-                    {"link_megabytes_per_second", o->linkMegabytes},
-                    {"backend", o->backend},
-                    {"profile", arithmeticLabel(options.settings.arithmetic)}});
-    summary.update(flightTotals(result));
-    writeFileAtomically(folder / "summary.json", summary.dump(2) + "\n");
-    writeFileAtomically(folder / "timing.json",
-                        nlohmann::json{{"seconds", result.seconds},
-                                       {"frames", path.frameCount()},
-                                       {"quality_seconds", result.qualitySeconds},
-                                       {"times", flightTimesJson(result.times)}}
-                                .dump(2) +
-                            "\n");
+    writeFlightSummary(folder, configuration,
+                       {.texture = o->scene.texture,
+                        .frames = path.frameCount(),
+                        .streaming = o->streaming,
+                        .backend = o->backend,
+                        .linkLatencySeconds = o->linkLatency,
+                        .linkMegabytesPerSecond = o->linkMegabytes,
+                        .arithmetic = options.settings.arithmetic},
+                       result);
     if (captureStaging) captureStaging->commit();
     staging.commit();
     const FrameStatistics& totals = result.totals;

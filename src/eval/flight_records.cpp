@@ -5,6 +5,7 @@
 
 #include "common/image_file.h"
 #include "common/posix_file.h"
+#include "render/arithmetic_points.h"
 
 namespace vt {
 
@@ -78,6 +79,29 @@ nlohmann::json flightTimesJson(const FlightTimes& times) {
   return {{"draw", times.draw},           {"analysis", times.analysis},
           {"streaming", times.streaming}, {"reference", times.reference},
           {"metrics", times.metrics},     {"other", times.other}};
+}
+
+void writeFlightSummary(const std::filesystem::path& folder,
+                        const FlightConfiguration& configuration,
+                        const FlightSummaryContext& context, const FlightResult& result) {
+  nlohmann::json summary = configuration.toJson();
+  summary.erase("name");
+  summary.update({{"texture", context.texture},
+                  {"frames", context.frames},
+                  {"streaming", context.streaming},
+                  {"link_latency_seconds", context.linkLatencySeconds},
+                  {"link_megabytes_per_second", context.linkMegabytesPerSecond},
+                  {"backend", context.backend},
+                  {"profile", arithmeticLabel(context.arithmetic)}});
+  summary.update(flightTotals(result));
+  writeFileAtomically(folder / "summary.json", summary.dump(2) + "\n");
+  writeFileAtomically(folder / "timing.json",
+                      nlohmann::json{{"seconds", result.seconds},
+                                     {"frames", context.frames},
+                                     {"quality_seconds", result.qualitySeconds},
+                                     {"times", flightTimesJson(result.times)}}
+                              .dump(2) +
+                          "\n");
 }
 
 }  // namespace vt

@@ -29,6 +29,22 @@ nlohmann::json flightTimesJson(const FlightTimes& times);
 void writeFlightRecords(const std::filesystem::path& folder, const FlightResult& result,
                         bool quality);
 
+// What a flight flew besides its configuration, for its summary.
+struct FlightSummaryContext {
+  std::string texture;  // as given
+  int frames = 0;
+  std::string streaming, backend;  // "budget" or "thread"; "oracle" or "gl"
+  double linkLatencySeconds = 0, linkMegabytesPerSecond = 0;  // as given
+  Arithmetic arithmetic;
+};
+
+// folder/summary.json (the configuration without its name, the context, the totals: the same
+// bytes for any thread count) and folder/timing.json (where the flight's time went), each through
+// a temporary file renamed at the end.
+void writeFlightSummary(const std::filesystem::path& folder,
+                        const FlightConfiguration& configuration,
+                        const FlightSummaryContext& context, const FlightResult& result);
+
 // An RGBA8 frame (rows bottom to top, as rendered) as a PNG (rows top to bottom).
 void writeColorImage(const std::filesystem::path& file, Viewport viewport,
                      std::span<const uint8_t> rgba);
