@@ -19,6 +19,7 @@ rules=(
   "src/retexture|gl reference eval verify calibrate capture cli"
   "src/capture|reference backends eval verify"
   "src/viewer|reference verify calibrate capture cli"
+  "src/workflows|cli"
 )
 
 violations=0

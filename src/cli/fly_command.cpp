@@ -5,29 +5,18 @@
 // (timing.json), and optionally every n-th frame as an image.
 
 #include <algorithm>
-#include <cstdio>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
-#include <optional>
 
+#include "backends/backend.h"
 #include "cli/argument_checks.h"
 #include "cli/commands.h"
 #include "cli/configuration_options.h"
 #include "cli/size_argument.h"
 #include "common/output_path.h"
-#include "common/posix_file.h"
 #include "common/resource_limits.h"
-#include "eval/flight.h"
-#include "eval/flight_records.h"
 #include "render/arithmetic_points.h"
-#include "backends/backend.h"
-#include "runtime/needbuffer_scale.h"
-#include "scene/box_room.h"
-#include "scene/camera_path.h"
-#include "scene/obj_mesh.h"
-#include "shader/needbuffer.h"
-#include "verify/flight_capture.h"
+#include "workflows/fly_to_folder.h"
 
 namespace vt {
 namespace {
@@ -117,95 +106,28 @@ void addFlyCommand(CLI::App& app) {
                                    "one another");
       requireOutputFolder(o->capture, inputs);
     }
-    FlightOptions options;
-    options.settings.viewport = parseSize(o->scene.size);
-    options.settings.threads = o->threads;
     const VirtualTextureReader reader(o->scene.texture);
-    // The narrowest needbuffer encoding that fits.
-    options.settings.need8 = need8Encodes(reader.description().finestLevel());
-    const CameraPath path = o->scene.cameraPath();
+    FlyRequest request{.texture = o->scene.texture,
+                       .mesh = o->scene.loadMesh(),
+                       .path = o->scene.cameraPath(),
+                       .configuration = configurationOptions->configuration(),
+                       .screen = parseSize(o->scene.size),
+                       .threads = o->threads,
+                       .backend = parseBackend(o->backend),
+                       .profile = o->profile,
+                       .threadedStreaming = o->streaming == "thread",
+                       .linkLatencySeconds = o->linkLatency,
+                       .linkMegabytesPerSecond = o->linkMegabytes,
+                       .quality = o->quality,
+                       .imagesEvery = o->imagesEvery,
+                       .output = o->output,
+                       .capture = o->capture,
+                       .captureEvery = o->captureEvery};
     requirePathPixelsFit(o->scene.path.empty() ? "the box room's path" : o->scene.path,
-                         static_cast<uint64_t>(path.frameCount()),
-                         static_cast<uint64_t>(options.settings.viewport.width),
-                         static_cast<uint64_t>(options.settings.viewport.height),
-                         o->quality ? 2 : 1);
-    const Mesh mesh = o->scene.loadMesh();
-
-    const FlightConfiguration configuration = configurationOptions->configuration();
-    options.threadedStreaming = o->streaming == "thread";
-    options.link = LinkModel{o->linkLatency, o->linkMegabytes * 1e6};
-    options.backend = parseBackend(o->backend);
-    const BackendContext context(options.backend);
-    // auto: the model the implementation's fingerprint confirms (BackendContext::autoModel);
-    // the oracle, which has none, flies in exact arithmetic.
-    std::string note;
-    options.settings.arithmetic = o->profile != "auto"
-                                      ? arithmeticPoint(o->profile)
-                                      : context.autoModel(&note).value_or(exactModel()).arithmetic;
-    if (!note.empty()) std::cerr << "vt fly: " << note << "\n";
-    // Reference images: every page resident, drawn by the oracle at the screen's resolution
-    // (DESIGN section 5).
-    std::unique_ptr<const ResidentRenderer> everything;
-    if (o->quality) {
-      everything = makeResidentRenderer(reader);
-      options.reference = [&](int frame) {
-        return referenceImage(*everything, mesh, path.at(frame), options.settings);
-      };
-    }
-    // The frames and records, and the captures, go into temporary folders that take the outputs'
-    // places once the flight is complete: a failure, early or late, leaves the previous outputs or
-    // none. Frame 0 is always captured, so its manifest marks a previous capture folder.
-    TemporaryFolder staging(o->output, "summary.json");
-    const std::filesystem::path folder = staging.path();
-    std::optional<TemporaryFolder> captureStaging;
-    if (!o->capture.empty()) captureStaging.emplace(o->capture, "frame0000.json");
-    if (o->imagesEvery > 0) {
-      options.wantsColor = [&](int frame) { return frame % o->imagesEvery == 0; };
-      options.observe = [&](const FlightFrameView& view) {
-        if (view.frame % o->imagesEvery != 0) return;
-        char name[32];
-        std::snprintf(name, sizeof name, "frame%04d.png", view.frame);
-        writeColorImage(folder / name, options.settings.viewport, view.color);
-      };
-    }
-
-    if (!o->capture.empty()) {
-      const std::string renderer = context.captureName(options.settings);
-      // The named point this GL implementation reproduces, recorded for `--model auto`.
-      const std::string fingerprint = context.fingerprintedPoint();
-      options.wantsCapture = [&](int frame) { return frame % o->captureEvery == 0; };
-      options.capture = [&, renderer, fingerprint](const FlightCaptureView& view) {
-        writeFlightCapture(captureStaging->path(), view, reader, options.settings, renderer,
-                           fingerprint);
-      };
-    }
-
-    const FlightResult result = fly(reader, mesh, path, configuration, options);
-    writeFlightRecords(folder, result, o->quality);
-    writeFlightSummary(folder, configuration,
-                       {.texture = o->scene.texture,
-                        .frames = path.frameCount(),
-                        .streaming = o->streaming,
-                        .backend = o->backend,
-                        .linkLatencySeconds = o->linkLatency,
-                        .linkMegabytesPerSecond = o->linkMegabytes,
-                        .arithmetic = options.settings.arithmetic},
-                       result);
-    if (captureStaging) captureStaging->commit();
-    staging.commit();
-    const FrameStatistics& totals = result.totals;
-    std::cout << "flew " << path.frameCount() << " frames in " << result.seconds << " s ("
-              << o->backend << "): " << totals.hits << " needed-page hits, " << totals.misses
-              << " misses, " << totals.streamed << " pages streamed, " << totals.evicted
-              << " evicted; wrote " << (std::filesystem::path(o->output) / "frames.csv").string()
-              << "\n";
-    if (o->quality) {
-      const nlohmann::json q = flightTotals(result);
-      std::cout << "quality against every page resident: mean SSIM " << q["mean_ssim"].get<double>()
-                << ", min SSIM " << q["min_ssim"].get<double>() << ", mean WSSIM "
-                << q["mean_wssim"].get<double>() << ", mean RMSE " << q["mean_rmse"].get<double>()
-                << " (8-bit units), for " << result.seconds << " s of flight\n";
-    }
+                         static_cast<uint64_t>(request.path.frameCount()),
+                         static_cast<uint64_t>(request.screen.width),
+                         static_cast<uint64_t>(request.screen.height), o->quality ? 2 : 1);
+    flyToFolder(reader, request, std::cout, std::cerr);
   });
 }
 
