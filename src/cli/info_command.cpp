@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "cli/commands.h"
-#include "cli/texture_report.h"
+#include "format/texture_report.h"
 
 namespace vt {
 

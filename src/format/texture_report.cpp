@@ -1,4 +1,4 @@
-#include "cli/texture_report.h"
+#include "format/texture_report.h"
 
 #include <cinttypes>
 #include <cstdio>
