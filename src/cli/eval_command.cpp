@@ -6,32 +6,18 @@
 // Configurations come from a JSON file (--configs) or are the product of comma-separated lists
 // (eval/configurations_file.h reads and checks both).
 
-#include <fstream>
 #include <iostream>
-#include <iterator>
 #include <memory>
-#include <nlohmann/json.hpp>
-#include <thread>
 
 #include "cli/argument_checks.h"
 #include "cli/commands.h"
 #include "cli/configuration_options.h"
 #include "cli/size_argument.h"
-#include "common/error.h"
-#include "common/json_text.h"
 #include "common/output_path.h"
-#include "common/posix_file.h"
-#include "common/progress_bar.h"
-#include "common/resource_limits.h"
 #include "eval/configurations_file.h"
-#include "eval/evaluation.h"
-#include "eval/evaluation_report.h"
-#include "eval/flight_records.h"
 #include "render/arithmetic_points.h"
 #include "runtime/needbuffer_scale.h"
-#include "scene/box_room.h"
-#include "scene/obj_mesh.h"
-#include "shader/needbuffer.h"
+#include "workflows/evaluate_to_folder.h"
 
 namespace vt {
 
@@ -133,45 +119,24 @@ void addEvalCommand(CLI::App& app) {
     inputs.push_back(o->configs);
     requireOutputFolder(o->output, inputs);
     TemporaryFolder::requireReplaceable(o->output, "summary.json");
-    EvaluationOptions options;
-    options.settings.viewport = parseSize(o->scene.size);
-    const Viewport& v = options.settings.viewport;
-    requireEvaluationFits(o->configs.empty() ? std::filesystem::path("the configurations")
-                                             : std::filesystem::path(o->configs),
-                          reader.description(), v, configurations);
-    // The views drawn once, and one recolouring per configuration, along the path.
-    requirePathPixelsFit(o->scene.path.empty() ? "the box room's path" : o->scene.path,
-                         static_cast<uint64_t>(path.frameCount()), static_cast<uint64_t>(v.width),
-                         static_cast<uint64_t>(v.height), 1 + configurations.size());
-    options.settings.need8 = need8Encodes(reader.description().finestLevel());
-    options.settings.arithmetic = arithmeticPoint(o->profile);
-    options.jobs = o->jobs;
-    const uint64_t total = static_cast<uint64_t>(path.frameCount()) * (1 + configurations.size());
-    ProgressBar bar("eval", total);
-    options.progress = [&bar](uint64_t done, uint64_t) { bar.update(done); };
-    const Evaluation evaluation = evaluate(reader, mesh, path, configurations, options);
-
-    EvaluationDescription description;
-    description.title =
-        o->title.empty() ? std::filesystem::path(o->scene.texture).stem().string() : o->title;
-    description.scene = o->scene.sceneName();
-    description.texture = o->scene.texture;
-    description.figures = figures;
-    description.jobs = o->jobs ? o->jobs : std::max(1u, std::thread::hardware_concurrency());
-    writeEvaluation(o->output, description, path, options.settings, evaluation);
-    std::cout << "evaluated " << configurations.size() << " configurations over "
-              << path.frameCount() << " frames in " << evaluation.wallSeconds
-              << " s (views drawn once " << evaluation.viewSeconds << " s, shaded per run "
-              << evaluation.recolorSeconds << " s); wrote "
-              << (std::filesystem::path(o->output) / "summary.md").string() << "\n";
-    for (const EvaluationRun& run : evaluation.runs) {
-      const nlohmann::json totals = flightTotals(run.result);
-      std::cout << "  " << run.configuration.label() << ": mean SSIM "
-                << totals["mean_ssim"].get<double>() << ", min SSIM "
-                << totals["min_ssim"].get<double>() << ", mean RMSE "
-                << totals["mean_rmse"].get<double>() << ", " << run.result.totals.streamed
-                << " pages streamed, " << run.result.seconds << " s\n";
-    }
+    EvaluateRequest request{
+        .mesh = mesh,
+        .path = path,
+        .pathFile = o->scene.path,
+        .configurations = std::move(configurations),
+        .configurationsFile = o->configs,
+        .description = {.title = o->title.empty()
+                                     ? std::filesystem::path(o->scene.texture).stem().string()
+                                     : o->title,
+                        .scene = o->scene.sceneName(),
+                        .texture = o->scene.texture,
+                        .jobs = 1,
+                        .figures = std::move(figures)},
+        .screen = parseSize(o->scene.size),
+        .arithmetic = arithmeticPoint(o->profile),
+        .jobs = o->jobs,
+        .output = o->output};
+    evaluateToFolder(reader, std::move(request), std::cout);
   });
 }
 
