@@ -13,8 +13,7 @@ class OracleResidentRenderer : public ResidentRenderer {
   // `reader` must outlive the renderer.
   explicit OracleResidentRenderer(const VirtualTextureReader& reader) : everything_(reader) {}
   using ResidentRenderer::draw;
-  void draw(const ClipSpaceMesh& mesh, const RenderSettings& settings,
-            Frame& frame) const override;
+  void draw(const ClipSpaceMesh& mesh, const RenderSettings& settings, Frame& frame) const override;
 
  private:
   const ResidentTexture everything_;

@@ -5,10 +5,8 @@
 namespace vt::calibrate {
 
 TextureDescription ProbeTexture::describe(int levelCount) {
-  return {.pageSize = 16,
-          .border = 2,
-          .levelCount = static_cast<uint32_t>(levelCount),
-          .channels = 4};
+  return {
+      .pageSize = 16, .border = 2, .levelCount = static_cast<uint32_t>(levelCount), .channels = 4};
 }
 
 ProbeTexture::ProbeTexture(int levelCount)

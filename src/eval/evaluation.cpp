@@ -33,9 +33,9 @@ struct NeedImage {
 
 // Every camera view of the path, drawn once for all configurations: with every page resident and
 // the fragment inputs recorded (the reference image, its needbuffer and depth), and the extra
-// needbuffer passes the configurations' frame plans ask for. Needbuffers and depth do not depend on the cache
-// state; each configuration's colour is the recorded frame shaded again under its own cache state
-// (reference/recolor.h), the same bytes as drawing it.
+// needbuffer passes the configurations' frame plans ask for. Needbuffers and depth do not depend on
+// the cache state; each configuration's colour is the recorded frame shaded again under its own
+// cache state (reference/recolor.h), the same bytes as drawing it.
 class SharedViews {
  public:
   SharedViews(const VirtualTextureReader& reader, const Mesh& mesh, const CameraPath& path,
@@ -160,7 +160,8 @@ void flyFrame(RunState& state, const SharedViews& views, const FramePlan& plan,
 }  // namespace
 
 void requireEvaluationFits(const std::filesystem::path& origin, const TextureDescription& texture,
-                           Viewport screen, const std::vector<FlightConfiguration>& configurations) {
+                           Viewport screen,
+                           const std::vector<FlightConfiguration>& configurations) {
   const uint64_t storedSide = uint64_t{texture.pageSize} + 2 * uint64_t{texture.border};
   uint64_t stateBytes = 0;
   for (const FlightConfiguration& c : configurations)
@@ -217,7 +218,7 @@ Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const 
     const PreparedReference prepared(
         ImageView{settings.viewport.width, settings.viewport.height, views.view().color});
     parallelFor(states.size(), threads,
-                           [&](size_t r) { flyFrame(states[r], views, views.plan(r), prepared, f); });
+                [&](size_t r) { flyFrame(states[r], views, views.plan(r), prepared, f); });
     report(static_cast<uint64_t>(f + 1) * configurations.size());
   }
   for (size_t r = 0; r < configurations.size(); ++r)

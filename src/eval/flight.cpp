@@ -27,9 +27,9 @@ FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const Cam
   // The first frame's needbuffer with every page resident, for the initial cache state.
   std::vector<glm::uvec4> firstNeed;
   if (configuration.preloadVisible)
-    firstNeed =
-        makeResidentRenderer(reader)->draw(toClipSpace(mesh, path.at(0), settings.viewport), settings)
-            .need;
+    firstNeed = makeResidentRenderer(reader)
+                    ->draw(toClipSpace(mesh, path.at(0), settings.viewport), settings)
+                    .need;
   const std::vector<uint64_t> initial =
       initialPages(reader, configuration, firstNeed, settings.need8);
   FlightRun run(reader, configuration, options,

@@ -29,7 +29,8 @@ enum class ViewColor { kNone, kShown, kReadBack };
 class FrameDrawer {
  public:
   // `settings`: everything but the viewport, which each pass takes from the plan.
-  FrameDrawer(const Mesh& mesh, const RenderSettings& settings) : mesh_(mesh), settings_(settings) {}
+  FrameDrawer(const Mesh& mesh, const RenderSettings& settings)
+      : mesh_(mesh), settings_(settings) {}
 
   // The renderer draws from a cache state the caller changes between frames.
   void attach(FrameRenderer& renderer) { renderer_ = &renderer; }

@@ -24,9 +24,9 @@ FramePlan planFrame(const FlightConfiguration& configuration, Viewport screen, u
   };
   plan.need = pass(LookAhead::kNone, current);
   if (configuration.lookAhead != LookAhead::kNone)
-    plan.lookAhead = pass(configuration.lookAhead,
-                          lookAheadCamera(beforePrevious, previous, current,
-                                          configuration.lookAhead));
+    plan.lookAhead =
+        pass(configuration.lookAhead,
+             lookAheadCamera(beforePrevious, previous, current, configuration.lookAhead));
   plan.delayedReadback = configuration.asyncReadback;
   return plan;
 }

@@ -18,8 +18,8 @@
 #include "eval/flight_records.h"
 #include "eval/golden_manifest.h"
 #include "format/virtual_texture_reader.h"
-#include "render/frame_comparison.h"
 #include "render/arithmetic_points.h"
+#include "render/frame_comparison.h"
 #include "render/precision_model.h"
 #include "scene/obj_mesh.h"
 #include "shader/needbuffer.h"
@@ -211,8 +211,8 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
     frame.needMatches = hex(bytesChecksum(std::span<const glm::uvec4>(r->need))) == expected.need;
     frame.qualityMatches = r->quality.rmse == expected.rmse && r->quality.ssim == expected.ssim &&
                            r->quality.wssim == expected.wssim;
-    const std::vector<uint8_t> image = readGoldenImage(
-        pathInside(folder, expected.image, manifestFile.string()), viewport);
+    const std::vector<uint8_t> image =
+        readGoldenImage(pathInside(folder, expected.image, manifestFile.string()), viewport);
     std::vector<uint8_t> difference(image.size(), 255);
     for (size_t p = 0; p < image.size(); p += 4) {
       int pixelMax = 0;

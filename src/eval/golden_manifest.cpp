@@ -78,8 +78,8 @@ GoldenManifest GoldenManifest::read(const std::filesystem::path& file) {
                           .ssim = f.at("ssim").get<double>(),
                           .wssim = f.at("wssim").get<double>(),
                           .image = f.at("image").get<std::string>()});
-    if (m.every < 1 || m.viewport.width < 1 || m.viewport.height < 1 ||
-        m.viewport.width > 16384 || m.viewport.height > 16384 || m.frames.empty())
+    if (m.every < 1 || m.viewport.width < 1 || m.viewport.height < 1 || m.viewport.width > 16384 ||
+        m.viewport.height > 16384 || m.frames.empty())
       throw std::invalid_argument("size, every or frames out of range");
   } catch (const nlohmann::json::exception& e) {
     throw InputError(file, "not a golden set: " + jsonErrorText(e));

@@ -52,8 +52,7 @@ void flyInteractively(WindowContext& window, const VirtualTextureReader& reader,
   flight.link = request.link;
   const glm::ivec2 opened = window.framebufferSize();
   const Viewport size{std::max(1, opened.x), std::max(1, opened.y)};
-  FlightRun run(reader, configuration, flight,
-                reducedViewport(size, configuration.needScaleLog2),
+  FlightRun run(reader, configuration, flight, reducedViewport(size, configuration.needScaleLog2),
                 initialPages(reader, configuration, {}, flight.settings.need8));
   GlFrameRenderer gl(run.runtime().cacheState());
   FrameDrawer drawer(request.mesh, flight.settings);
@@ -77,7 +76,8 @@ void flyInteractively(WindowContext& window, const VirtualTextureReader& reader,
       recording = !recording;
       if (!recording && !request.record.empty() && recorded.size() >= 2) {
         saveCameraPath(request.record, recorded);
-        out << "recorded " << recorded.size() << " keyframes to " << request.record.string() << "\n";
+        out << "recorded " << recorded.size() << " keyframes to " << request.record.string()
+            << "\n";
       }
     }
     beforePrevious = previous;
@@ -131,8 +131,7 @@ void flyInteractively(WindowContext& window, const VirtualTextureReader& reader,
       shot.color.resize(size_t(windowSize.x) * size_t(windowSize.y) * 4);
       glBindFramebuffer(GL_FRAMEBUFFER, 0);  // the window's, not the renderer's target
       glReadBuffer(GL_BACK);
-      glReadPixels(0, 0, windowSize.x, windowSize.y, GL_RGBA, GL_UNSIGNED_BYTE,
-                   shot.color.data());
+      glReadPixels(0, 0, windowSize.x, windowSize.y, GL_RGBA, GL_UNSIGNED_BYTE, shot.color.data());
       const std::vector<uint8_t> rows = colorImage(shot);
       writeImage8(request.screenshot, static_cast<uint32_t>(windowSize.x),
                   static_cast<uint32_t>(windowSize.y), 4, std::as_bytes(std::span(rows)));

@@ -26,10 +26,10 @@ struct InteractiveFlight {
   std::optional<CameraPath> path;  // played instead of flying by hand
   FlightConfiguration configuration;
   LinkModel link;
-  double speed = 3.0;             // world units per second (Shift: 4x)
-  int maxFrames = 0;              // quit after this many frames; 0: when the window closes
-  bool recordFromStart = false;   // record from the first frame (R stops)
-  std::filesystem::path record;   // where recording writes the camera path (.json), if anywhere
+  double speed = 3.0;                // world units per second (Shift: 4x)
+  int maxFrames = 0;                 // quit after this many frames; 0: when the window closes
+  bool recordFromStart = false;      // record from the first frame (R stops)
+  std::filesystem::path record;      // where recording writes the camera path (.json), if anywhere
   std::filesystem::path screenshot;  // the last frame with the HUD (with maxFrames)
 };
 

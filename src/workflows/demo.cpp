@@ -63,9 +63,8 @@ void renderAndCrossCheck(const VirtualTextureReader& reader, const std::filesyst
   writeImage8(folder / "frame.png", width, height, 4, std::as_bytes(std::span(color)));
   writeImage8(folder / "needbuffer.png", width, height, 4, std::as_bytes(std::span(need)));
   out << "oracle (profile " << arithmeticLabel(settings.arithmetic) << "): " << width << " x "
-            << height << " in " << oracleSeconds * 1000.0 << " ms, wrote "
-            << (shown / "frame.png").string() << " and " << (shown / "needbuffer.png").string()
-            << "\n";
+      << height << " in " << oracleSeconds * 1000.0 << " ms, wrote "
+      << (shown / "frame.png").string() << " and " << (shown / "needbuffer.png").string() << "\n";
   if (!context) return;
 
   const std::unique_ptr<FrameRenderer> gl = makeFrameRenderer(Backend::kGl, cache);
@@ -80,8 +79,8 @@ void renderAndCrossCheck(const VirtualTextureReader& reader, const std::filesyst
                             oracle.color.begin() + static_cast<long>(4 * i));
   }
   out << context->renderer() << ": the same frame in " << glSeconds * 1000.0 << " ms\n"
-            << "cross-check: colour identical in " << colorSame << " of " << oracle.need.size()
-            << " pixels, needbuffer identical in " << needSame << "\n";
+      << "cross-check: colour identical in " << colorSame << " of " << oracle.need.size()
+      << " pixels, needbuffer identical in " << needSame << "\n";
 }
 
 }  // namespace
@@ -93,8 +92,8 @@ void runDemo(const std::filesystem::path& shown, std::ostream& out) {
   const std::filesystem::path folder = staging.path();
   auto start = std::chrono::steady_clock::now();
   const std::filesystem::path layoutFile = writeDemoScene(folder / "scene");
-  out << "wrote the default scene " << (shown / "scene" / layoutFile.filename()).string()
-            << " in " << secondsSince(start) << " s\n";
+  out << "wrote the default scene " << (shown / "scene" / layoutFile.filename()).string() << " in "
+      << secondsSince(start) << " s\n";
 
   const Layout layout = readLayout(layoutFile);
   const std::filesystem::path file = folder / "scene.vt";
@@ -107,14 +106,14 @@ void runDemo(const std::filesystem::path& shown, std::ostream& out) {
   report["verified_pages"] = verifyAllPages(reader);
   report["file"] = (shown / "scene.vt").string();
   out << "read and verified in " << secondsSince(start) << " s\n\n"
-            << formatTextureReport(report) << '\n';
+      << formatTextureReport(report) << '\n';
 
   const uint32_t level = reader.description().finestLevel() - 1;
   const std::string image = "level" + std::to_string(level) + ".png";
   const LevelImage pixels = assembleLevel(reader, level);
   writeImage8(folder / image, pixels.side, pixels.side, pixels.channels, pixels.texels);
-  out << "wrote " << (shown / image).string() << " (level " << level << ", " << pixels.side
-            << " x " << pixels.side << " texels)\n\n";
+  out << "wrote " << (shown / image).string() << " (level " << level << ", " << pixels.side << " x "
+      << pixels.side << " texels)\n\n";
   renderAndCrossCheck(reader, folder, shown, out);
   staging.commit();
 }

@@ -27,9 +27,9 @@ FlightResult flyToFolder(const VirtualTextureReader& reader, const FlyRequest& r
   // auto: the model the implementation's fingerprint confirms (BackendContext::autoModel); the
   // oracle, which has none, flies in exact arithmetic.
   std::string note;
-  options.settings.arithmetic =
-      request.profile != "auto" ? arithmeticPoint(request.profile)
-                                : context.autoModel(&note).value_or(exactModel()).arithmetic;
+  options.settings.arithmetic = request.profile != "auto"
+                                    ? arithmeticPoint(request.profile)
+                                    : context.autoModel(&note).value_or(exactModel()).arithmetic;
   if (!note.empty()) err << "vt fly: " << note << "\n";
   // Reference images: every page resident, drawn by the oracle at the screen's resolution
   // (DESIGN section 5).
@@ -80,8 +80,8 @@ FlightResult flyToFolder(const VirtualTextureReader& reader, const FlyRequest& r
   staging.commit();
   const FrameStatistics& totals = result.totals;
   out << "flew " << path.frameCount() << " frames in " << result.seconds << " s ("
-      << toString(request.backend) << "): " << totals.hits << " needed-page hits, "
-      << totals.misses << " misses, " << totals.streamed << " pages streamed, " << totals.evicted
+      << toString(request.backend) << "): " << totals.hits << " needed-page hits, " << totals.misses
+      << " misses, " << totals.streamed << " pages streamed, " << totals.evicted
       << " evicted; wrote " << (request.output / "frames.csv").string() << "\n";
   if (request.quality) {
     const nlohmann::json q = flightTotals(result);

@@ -23,13 +23,13 @@ struct FlyRequest {
   CameraPath path;
   FlightConfiguration configuration;
   Viewport screen{320, 200};
-  unsigned threads = 0;                  // the oracle's (0: every core)
+  unsigned threads = 0;  // the oracle's (0: every core)
   Backend backend = Backend::kOracle;
-  std::string profile = "auto";          // a point's name, or auto (BackendContext::autoModel)
-  bool threadedStreaming = false;        // a streaming thread in real time over the link
+  std::string profile = "auto";    // a point's name, or auto (BackendContext::autoModel)
+  bool threadedStreaming = false;  // a streaming thread in real time over the link
   double linkLatencySeconds = 0, linkMegabytesPerSecond = 0;
-  bool quality = false;                  // RMSE, SSIM and WSSIM per frame
-  int imagesEvery = 0;                   // every n-th frame as frameNNNN.png (0: none)
+  bool quality = false;  // RMSE, SSIM and WSSIM per frame
+  int imagesEvery = 0;   // every n-th frame as frameNNNN.png (0: none)
   std::filesystem::path output;
   std::filesystem::path capture;  // empty: no captures
   int captureEvery = 1;

@@ -48,10 +48,15 @@ TEST(FramePlanDrivers, FlyEvalAndGoldenDrawTheSameFrames) {
   writeSyntheticTexture(
       dir / "t.vt", {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
   test::writeBoxRoomScene(dir.path());
-  const std::vector<std::string> scene = {(dir / "t.vt").string(), "--mesh",
-                                          (dir / "room.obj").string(), "--path",
-                                          (dir / "path.json").string(), "--size", "64x40",
-                                          "--profile", "llvmpipe"};
+  const std::vector<std::string> scene = {(dir / "t.vt").string(),
+                                          "--mesh",
+                                          (dir / "room.obj").string(),
+                                          "--path",
+                                          (dir / "path.json").string(),
+                                          "--size",
+                                          "64x40",
+                                          "--profile",
+                                          "llvmpipe"};
   // One configuration, as vt fly and vt golden read it and as one entry of vt eval's file.
   const std::string configuration =
       R"({"name": "planned", "budget": 3, "need_scale": 2, "lookahead": "stopfix",
@@ -80,9 +85,9 @@ TEST(FramePlanDrivers, FlyEvalAndGoldenDrawTheSameFrames) {
   ASSERT_EQ(golden["frames"].size(), fly.size());
   size_t streamed = 0;
   for (size_t f = 0; f < fly.size(); ++f) {
-    for (const char* column : {"frame", "covered_pixels", "needed_pages", "hits", "misses",
-                               "requested", "streamed", "evicted", "resident", "rmse", "ssim",
-                               "wssim"}) {
+    for (const char* column :
+         {"frame", "covered_pixels", "needed_pages", "hits", "misses", "requested", "streamed",
+          "evicted", "resident", "rmse", "ssim", "wssim"}) {
       ASSERT_TRUE(fly[f].contains(column)) << column;
       EXPECT_EQ(eval[f].at(column), fly[f].at(column)) << "frame " << f << ", " << column;
     }

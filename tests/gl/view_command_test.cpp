@@ -41,16 +41,17 @@ class ViewCommand : public ::testing::Test {
       if (ci && std::string(ci) == "true") FAIL() << "xvfb-run is missing in CI";
       GTEST_SKIP() << "xvfb-run not installed (scripts/install-deps.sh installs xvfb)";
     }
-    writeSyntheticTexture(dir_ / "t.vt", {{.pageSize = 32, .border = 2, .levelCount = 6,
-                                           .channels = 4},
-                                          std::nullopt});
+    writeSyntheticTexture(
+        dir_ / "t.vt",
+        {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
   }
 
   // 12 frames of the box room at 320 x 200 with `options`, the last one as a screenshot.
   test::CommandResult view(const std::vector<std::string>& options) {
-    std::vector<std::string> args = {"-a", "-s", "-screen 0 640x480x24", VT_EXECUTABLE, "view",
-                                     (dir_ / "t.vt").string(), "--size", "320x200", "--frames",
-                                     "12", "--screenshot", (dir_ / "shot.png").string()};
+    std::vector<std::string> args = {"-a",          "-s",           "-screen 0 640x480x24",
+                                     VT_EXECUTABLE, "view",         (dir_ / "t.vt").string(),
+                                     "--size",      "320x200",      "--frames",
+                                     "12",          "--screenshot", (dir_ / "shot.png").string()};
     args.insert(args.end(), options.begin(), options.end());
     return test::runCommand(kXvfbRun.string(), args, dir_.path());
   }
@@ -98,8 +99,7 @@ TEST_F(ViewCommand, FliesUnderXvfbWithAHudAndRecordsItsPath) {
 // The window executes the same frame plan as vt fly (eval/frame_plan.h): a reduced jittered
 // needbuffer, the LookAhead pass and delayed readback, and still shows the view (the last pass).
 TEST_F(ViewCommand, ExecutesTheFramePlanOfItsConfiguration) {
-  const auto result =
-      view({"--need-scale", "2", "--lookahead", "stopfix", "--readback", "async"});
+  const auto result = view({"--need-scale", "2", "--lookahead", "stopfix", "--readback", "async"});
   ASSERT_EQ(result.exitCode, 0) << result.out << result.err;
   EXPECT_THAT(result.out, HasSubstr("pages streamed"));
   const Screenshot shot = screenshot();

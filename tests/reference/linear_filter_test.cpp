@@ -17,7 +17,8 @@ int sampledUnits(std::array<uint8_t, 2> texels, int weight, LerpRounding roundin
   // s = u * (2 * 256) - 128 is the weight on texel 0's side: u = (weight + 128) / 512, exact.
   const float u = static_cast<float>(weight + 128) / 512.0f;
   const Filter filter{FilterWeights::kFixedPoint8, false, false, rounding};
-  const shader::vec4 c = sampleLinearAt(fetch8, shader::vec2(u, 0.25f), shader::ivec2(2, 1), filter);
+  const shader::vec4 c =
+      sampleLinearAt(fetch8, shader::vec2(u, 0.25f), shader::ivec2(2, 1), filter);
   return static_cast<int>(std::lround(c.x * 255.0f));
 }
 
