@@ -165,77 +165,67 @@ bool GoldenCheck::passed() const {
   return true;
 }
 
-GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesystem::path& texture,
-                        const std::filesystem::path& mesh, const std::filesystem::path& path,
-                        Backend backend, const std::optional<PrecisionModel>& model,
-                        const std::filesystem::path& reportFolder) {
-  const std::filesystem::path manifestFile = folder / "golden.json";
-  const GoldenManifest golden = GoldenManifest::read(manifestFile);
-  const Viewport viewport = golden.viewport;
+namespace {
 
-  const VirtualTextureReader reader(texture);
+// The golden's inputs must be the files it was made of, by identity and checksum.
+void requireTheGoldensInputs(const GoldenManifest& golden, const VirtualTextureReader& reader,
+                             const std::filesystem::path& mesh, const std::filesystem::path& path) {
   if (hex(reader.identity()) != golden.textureIdentity)
-    throw InputError(texture, "its identity " + hex(reader.identity()) + " is not the golden's " +
-                                  golden.textureIdentity +
-                                  ": the goldens were made from another texture");
+    throw InputError(reader.path(), "its identity " + hex(reader.identity()) +
+                                        " is not the golden's " + golden.textureIdentity +
+                                        ": the goldens were made from another texture");
   for (const auto& [file, expected] :
        {std::pair{mesh, golden.meshChecksum}, {path, golden.pathChecksum}})
     if (hex(fileChecksum(file)) != expected)
       throw InputError(file, "its checksum " + hex(fileChecksum(file)) + " is not the golden's " +
                                  expected + ": the goldens were made from another file");
+}
 
-  GoldenCheck check;
-  check.backend = toString(backend);
-  check.profile = model ? model->arithmetic : golden.profile;
-  check.model = model ? model->name : arithmeticLabel(golden.profile);
-  const CameraPath cameraPath = CameraPath::load(path);
-  requirePathPixelsFit(path, static_cast<uint64_t>(cameraPath.frameCount()),
-                       static_cast<uint64_t>(viewport.width),
-                       static_cast<uint64_t>(viewport.height), 1);
-  TemporaryFolder staging(reportFolder, "check.json");  // replaces the report once complete
-  const std::filesystem::path& report = staging.path();
-  const std::vector<Recorded> recorded =
-      flyAndRecord(reader, loadObjMesh(mesh), cameraPath, golden.configuration, viewport,
-                   check.profile, golden.every, backend, model ? &*model : nullptr);
-  const bool exact = !model || model->pinned();
+// One recorded frame against its golden: checksums, quality, the image's differences (written to
+// `report` as frameNNNN.difference.png when the frame fails) and, under a model with free
+// parameters, the verdict of the oracle's result sets.
+GoldenFrameCheck compareWithGolden(const GoldenFrame& expected, const Recorded& recorded,
+                                   const std::vector<uint8_t>& image, bool exact, Viewport viewport,
+                                   const std::filesystem::path& report) {
+  GoldenFrameCheck frame;
+  frame.frame = expected.frame;
+  frame.colorMatches =
+      hex(bytesChecksum(std::span<const uint8_t>(recorded.color))) == expected.color;
+  frame.needMatches =
+      hex(bytesChecksum(std::span<const glm::uvec4>(recorded.need))) == expected.need;
+  frame.qualityMatches = recorded.quality.rmse == expected.rmse &&
+                         recorded.quality.ssim == expected.ssim &&
+                         recorded.quality.wssim == expected.wssim;
+  std::vector<uint8_t> difference(image.size(), 255);
+  for (size_t p = 0; p < image.size(); p += 4) {
+    int pixelMax = 0;
+    for (size_t c = 0; c < 4; ++c) {
+      const int d = std::abs(int{image[p + c]} - int{recorded.color[p + c]});
+      pixelMax = std::max(pixelMax, d);
+      if (c < 3) difference[p + c] = static_cast<uint8_t>(std::min(255, d * 16));
+    }
+    frame.pixelsDiffering += pixelMax > 0;
+    frame.maxColorDifference = std::max(frame.maxColorDifference, pixelMax);
+  }
+  if (recorded.judged) {
+    frame.explained = recorded.judged->explained;
+    frame.unexplained = recorded.judged->unexplained;
+    frame.ambiguous = recorded.judged->ambiguous;
+  }
+  frame.passed = exact ? frame.colorMatches && frame.needMatches && frame.qualityMatches
+                       : recorded.judged && frame.unexplained == 0;
+  if (!frame.passed)
+    writeColorImage(
+        report / std::filesystem::path(imageName(frame.frame)).replace_extension(".difference.png"),
+        viewport, difference);
+  return frame;
+}
+
+// check.json.
+void writeCheckReport(const std::filesystem::path& report, const std::filesystem::path& golden,
+                      const GoldenCheck& check) {
   nlohmann::json frames = nlohmann::json::array();
-  for (const GoldenFrame& expected : golden.frames) {
-    GoldenFrameCheck frame;
-    frame.frame = expected.frame;
-    const auto r = std::find_if(recorded.begin(), recorded.end(),
-                                [&](const Recorded& x) { return x.frame == frame.frame; });
-    if (r == recorded.end())
-      throw InputError(manifestFile,
-                       "frame " + std::to_string(frame.frame) + " is not on the path");
-    frame.colorMatches = hex(bytesChecksum(std::span<const uint8_t>(r->color))) == expected.color;
-    frame.needMatches = hex(bytesChecksum(std::span<const glm::uvec4>(r->need))) == expected.need;
-    frame.qualityMatches = r->quality.rmse == expected.rmse && r->quality.ssim == expected.ssim &&
-                           r->quality.wssim == expected.wssim;
-    const std::vector<uint8_t> image =
-        readGoldenImage(pathInside(folder, expected.image, manifestFile.string()), viewport);
-    std::vector<uint8_t> difference(image.size(), 255);
-    for (size_t p = 0; p < image.size(); p += 4) {
-      int pixelMax = 0;
-      for (size_t c = 0; c < 4; ++c) {
-        const int d = std::abs(int{image[p + c]} - int{r->color[p + c]});
-        pixelMax = std::max(pixelMax, d);
-        if (c < 3) difference[p + c] = static_cast<uint8_t>(std::min(255, d * 16));
-      }
-      frame.pixelsDiffering += pixelMax > 0;
-      frame.maxColorDifference = std::max(frame.maxColorDifference, pixelMax);
-    }
-    if (r->judged) {
-      frame.explained = r->judged->explained;
-      frame.unexplained = r->judged->unexplained;
-      frame.ambiguous = r->judged->ambiguous;
-    }
-    frame.passed = exact ? frame.colorMatches && frame.needMatches && frame.qualityMatches
-                         : r->judged && frame.unexplained == 0;
-    if (!frame.passed)
-      writeColorImage(
-          report /
-              std::filesystem::path(imageName(frame.frame)).replace_extension(".difference.png"),
-          viewport, difference);
+  for (const GoldenFrameCheck& frame : check.frames)
     frames.push_back({{"frame", frame.frame},
                       {"color_matches", frame.colorMatches},
                       {"need_matches", frame.needMatches},
@@ -246,10 +236,8 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
                       {"unexplained", frame.unexplained},
                       {"ambiguous", frame.ambiguous},
                       {"passed", frame.passed}});
-    check.frames.push_back(frame);
-  }
   writeFileAtomically(report / "check.json",
-                      nlohmann::json{{"golden", folder.string()},
+                      nlohmann::json{{"golden", golden.string()},
                                      {"backend", check.backend},
                                      {"profile", arithmeticLabel(check.profile)},
                                      {"model", check.model},
@@ -257,6 +245,44 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
                                      {"frames", frames}}
                               .dump(2) +
                           "\n");
+}
+
+}  // namespace
+
+GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesystem::path& texture,
+                        const std::filesystem::path& mesh, const std::filesystem::path& path,
+                        Backend backend, const std::optional<PrecisionModel>& model,
+                        const std::filesystem::path& reportFolder) {
+  const std::filesystem::path manifestFile = folder / "golden.json";
+  const GoldenManifest golden = GoldenManifest::read(manifestFile);
+  const Viewport viewport = golden.viewport;
+  const VirtualTextureReader reader(texture);
+  requireTheGoldensInputs(golden, reader, mesh, path);
+
+  GoldenCheck check;
+  check.backend = toString(backend);
+  check.profile = model ? model->arithmetic : golden.profile;
+  check.model = model ? model->name : arithmeticLabel(golden.profile);
+  const CameraPath cameraPath = CameraPath::load(path);
+  requirePathPixelsFit(path, static_cast<uint64_t>(cameraPath.frameCount()),
+                       static_cast<uint64_t>(viewport.width),
+                       static_cast<uint64_t>(viewport.height), 1);
+  TemporaryFolder staging(reportFolder, "check.json");  // replaces the report once complete
+  const std::vector<Recorded> recorded =
+      flyAndRecord(reader, loadObjMesh(mesh), cameraPath, golden.configuration, viewport,
+                   check.profile, golden.every, backend, model ? &*model : nullptr);
+  const bool exact = !model || model->pinned();
+  for (const GoldenFrame& expected : golden.frames) {
+    const auto r = std::find_if(recorded.begin(), recorded.end(),
+                                [&](const Recorded& x) { return x.frame == expected.frame; });
+    if (r == recorded.end())
+      throw InputError(manifestFile,
+                       "frame " + std::to_string(expected.frame) + " is not on the path");
+    const std::vector<uint8_t> image =
+        readGoldenImage(pathInside(folder, expected.image, manifestFile.string()), viewport);
+    check.frames.push_back(compareWithGolden(expected, *r, image, exact, viewport, staging.path()));
+  }
+  writeCheckReport(staging.path(), folder, check);
   staging.commit();
   return check;
 }
