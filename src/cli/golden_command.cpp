@@ -14,8 +14,7 @@
 #include "common/output_path.h"
 #include "eval/golden.h"
 #include "render/arithmetic_points.h"
-#include "backends/backend.h"
-#include "render/precision_model_file.h"
+#include "workflows/check_golden_here.h"
 
 namespace vt {
 void addGoldenCommand(CLI::App& app) {
@@ -83,41 +82,14 @@ void addGoldenCommand(CLI::App& app) {
       ->capture_default_str();
   check->callback([c] {
     requireOutputFolder(c->output, {c->golden, c->texture, c->mesh, c->path});
-    const Backend backend = parseBackend(c->backend);
-    const BackendContext context(backend);
-    // auto: the model the implementation's fingerprint confirms (BackendContext::autoModel); the
-    // oracle, which has none, flies in the golden set's own profile.
-    std::string note;
-    const std::optional<PrecisionModel> model =
-        c->model == "auto" ? context.autoModel(&note)
-                           : std::optional(resolveModel(c->model, context.renderer()));
-    if (!note.empty()) std::cerr << "vt golden check: " << note << "\n";
-    if (model)
-      if (const std::string warning =
-              calibrationMismatch(*model, context.renderer(), context.version());
-          !warning.empty())
-        std::cerr << "vt golden check: " << warning << "\n";
-    const GoldenCheck result =
-        checkGolden(c->golden, c->texture, c->mesh, c->path, backend, model, c->output);
-    size_t passed = 0;
-    for (const GoldenFrameCheck& frame : result.frames) {
-      passed += frame.passed;
-      if (!frame.passed)
-        std::cout << "frame " << frame.frame << ": colour "
-                  << (frame.colorMatches ? "same" : "differs") << ", needbuffer "
-                  << (frame.needMatches ? "same" : "differs") << ", metrics "
-                  << (frame.qualityMatches ? "same" : "differ") << "; " << frame.pixelsDiffering
-                  << " pixels differ from the golden image, by up to " << frame.maxColorDifference
-                  << "; " << frame.unexplained << " pixels unexplained\n";
-    }
-    std::cout << "golden check (" << result.backend << ", model " << result.model << "): " << passed
-              << " of " << result.frames.size() << " frames pass; wrote "
-              << (std::filesystem::path(c->output) / "check.json").string() << "\n";
-    if (!result.passed())
-      throw InputError(c->golden,
-                       std::to_string(result.frames.size() - passed) + " of " +
-                           std::to_string(result.frames.size()) + " golden frames differ (see " +
-                           (std::filesystem::path(c->output) / "check.json").string() + ")");
+    checkGoldenHere({.golden = c->golden,
+                     .texture = c->texture,
+                     .mesh = c->mesh,
+                     .path = c->path,
+                     .backend = parseBackend(c->backend),
+                     .model = c->model,
+                     .output = c->output},
+                    std::cout, std::cerr);
   });
 }
 
