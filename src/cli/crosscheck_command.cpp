@@ -9,15 +9,10 @@
 #include "cli/argument_checks.h"
 #include "cli/commands.h"
 #include "cli/size_argument.h"
-#include "common/error.h"
 #include "common/output_path.h"
 #include "common/posix_file.h"
-#include "common/resource_limits.h"
-#include "scene/camera_path.h"
-#include "scene/obj_mesh.h"
 #include "scene/test_scenes.h"
-#include "verify/crosscheck_captures.h"
-#include "verify/crosscheck_scenes.h"
+#include "workflows/crosscheck_here.h"
 
 namespace vt {
 
@@ -71,35 +66,20 @@ void addCrosscheckCommand(CLI::App& app) {
     TemporaryFolder::requireReplaceable(o->output, "summary.json");
     if (!o->captures.empty() && !o->texture.empty())
       throw CLI::ValidationError("TEXTURE", "--captures takes none: each capture names its own");
-    if (!o->captures.empty()) {
-      if (!crosscheckCaptures({o->captures, o->output, o->profile, o->threads}).passed())
-        throw InputError(o->captures,
-                         "crosscheck found unexplained pixels or unreadable "
-                         "captures (see " +
-                             (std::filesystem::path(o->output) / "junit.xml").string() + ")");
-      return;
-    }
-    if (o->texture.empty()) throw CLI::ValidationError("TEXTURE", "needed without --captures");
-    ScenesCheckOptions options{o->texture, {}, parseSize(o->size), o->profile, o->output};
-    // Bad input fails here, before any work.
-    if (!o->mesh.empty() || !o->path.empty()) {
-      if (o->mesh.empty() || o->path.empty())
-        throw CLI::ValidationError("--mesh/--path", "a flythrough needs both");
-      const Mesh mesh = loadObjMesh(o->mesh);
-      const CameraPath path = CameraPath::load(o->path);
-      // Each frame drawn in two modes by two renderers.
-      requirePathPixelsFit(o->path,
-                           static_cast<uint64_t>((path.frameCount() + o->every - 1) / o->every),
-                           static_cast<uint64_t>(options.viewport.width),
-                           static_cast<uint64_t>(options.viewport.height), 4);
-      options.views = flythroughViews(mesh, path, o->every);
-    } else {
-      options.views = namedSceneViews(o->scenes);
-    }
-    if (!crosscheckScenes(options).passed())
-      throw InputError(o->texture,
-                       "crosscheck found unexplained pixels (see " +
-                           (std::filesystem::path(o->output) / "summary.json").string() + ")");
+    if (o->captures.empty() && o->texture.empty())
+      throw CLI::ValidationError("TEXTURE", "needed without --captures");
+    if (o->captures.empty() && (o->mesh.empty() != o->path.empty()))
+      throw CLI::ValidationError("--mesh/--path", "a flythrough needs both");
+    crosscheckHere({.captures = o->captures,
+                    .texture = o->texture,
+                    .scenes = o->scenes,
+                    .mesh = o->mesh,
+                    .path = o->path,
+                    .every = o->every,
+                    .viewport = parseSize(o->size),
+                    .model = o->profile,
+                    .threads = o->threads,
+                    .output = o->output});
   });
 }
 
