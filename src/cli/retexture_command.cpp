@@ -3,36 +3,15 @@
 // report comparing the thesis's layout with ours.
 
 #include <bit>
-#include <iomanip>
 #include <iostream>
 #include <memory>
-#include <optional>
 
 #include "cli/argument_checks.h"
 #include "cli/commands.h"
-#include "common/error.h"
 #include "common/output_path.h"
-#include "common/posix_file.h"
-#include "retexture/retexture_outputs.h"
-#include "scene/obj_scene.h"
-#include "scene/quake3_scene.h"
+#include "workflows/retexture_to_folder.h"
 
 namespace vt {
-namespace {
-
-void printMethod(const char* label, const MethodResult& method) {
-  std::cout << "  " << std::left << std::setw(9) << label << std::right << " side "
-            << method.layout.side << ", " << method.quality.finestPages << " finest pages ("
-            << method.quality.allPages << " all levels), " << std::fixed << std::setprecision(1)
-            << 100.0 * method.quality.referencedFraction << "% of their texels referenced";
-  if (method.coherence)
-    std::cout << ", " << std::setprecision(2) << method.coherence->pagesPer1000Pixels
-              << " pages per 1000 pixels";
-  std::cout << std::defaultfloat << '\n';
-}
-
-}  // namespace
-
 void addRetextureCommand(CLI::App& app) {
   struct Options {
     std::string scene, output;
@@ -91,33 +70,14 @@ void addRetextureCommand(CLI::App& app) {
     std::vector<std::filesystem::path> inputs = packages;
     inputs.push_back(scenePath);
     requireOutputFolder(output, inputs);
-    const std::optional<PackageFiles> files =
-        obj ? std::nullopt : std::optional(PackageFiles::fromFolders(packages));
-    const std::string name = obj ? scenePath.stem().string() : quake3MapName(*files, o->scene);
-    // Everything, extracted images included, is written into a temporary folder that takes the
-    // output's place once complete: a failure leaves the previous output or none. A previous
-    // output is recognised by its report.
-    TemporaryFolder staging(output, name + ".report.json");
-    const std::filesystem::path folder = staging.path(), images = folder / "images";
-    const TexturedScene scene =
-        obj ? loadObjScene(scenePath, images)
-            : loadQuake3Map(*files, o->scene, images, {.patchLevel = o->patchLevel});
-    for (const std::string& warning : scene.warnings)
-      std::cerr << "warning: " << scene.name << ": " << warning << '\n';
-    const RetextureResult result = retexture(scene, o->retexture);
-    const MethodResult& chosen = result.chosen(o->retexture);
-    writeRetexturedObj(folder / (scene.name + ".obj"), scene, result.uvs);
-    writeRetextureLayout(folder / (scene.name + ".layout.json"), scene, chosen.layout,
-                         {.border = o->border});
-    writeRetextureReport(folder / (scene.name + ".report.json"), scene, result, o->retexture);
-    writeViewpointTour(folder / (scene.name + ".path.json"), scene);
-    staging.commit();
-    std::cout << "retextured " << scene.name << ": " << scene.faces.size() << " faces ("
-              << scene.patchFaces << " patches), " << scene.textures.size() << " textures, "
-              << scene.skipped.total() << " faces skipped; wrote " << o->retexture.method
-              << " layout to " << (output / (scene.name + ".layout.json")).string() << '\n';
-    printMethod("baseline", result.baseline);
-    printMethod("charts", result.charts);
+    retextureToFolder({.scene = scenePath,
+                       .obj = obj,
+                       .packages = packages,
+                       .options = o->retexture,
+                       .border = o->border,
+                       .patchLevel = o->patchLevel,
+                       .output = output},
+                      std::cout, std::cerr);
   });
 }
 
