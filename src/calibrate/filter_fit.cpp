@@ -108,12 +108,14 @@ glm::dvec4 snappedBilinear(const ShaderProbe& probe, glm::vec2 u, int bits) {
 
 const std::vector<NamedFilter>& filterMembers() {
   static const std::vector<NamedFilter> members = {
-      {{FilterWeights::kFixedPoint8, false, false}, "fixed_point_8"},
-      {{FilterWeights::kFixedPoint8, false, false, LerpRounding::kFloor}, "fixed_point_8_floor"},
-      {{FilterWeights::kFloat, false, false}, "float"},
-      {{FilterWeights::kFloat, true, false}, "float_fused_lerp"},
-      {{FilterWeights::kFloat, false, true}, "float_fused_position"},
-      {{FilterWeights::kFloat, true, true}, "float_fused_lerp_and_position"}};
+      {{.weights = FilterWeights::kFixedPoint8}, "fixed_point_8"},
+      {{.weights = FilterWeights::kFixedPoint8, .lerpRounding = LerpRounding::kFloor},
+       "fixed_point_8_floor"},
+      {{.weights = FilterWeights::kFloat}, "float"},
+      {{.weights = FilterWeights::kFloat, .fusedLerp = true}, "float_fused_lerp"},
+      {{.weights = FilterWeights::kFloat, .fusedCoordinate = true}, "float_fused_position"},
+      {{.weights = FilterWeights::kFloat, .fusedLerp = true, .fusedCoordinate = true},
+       "float_fused_lerp_and_position"}};
   return members;
 }
 

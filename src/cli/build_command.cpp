@@ -9,6 +9,7 @@
 #include "common/output_path.h"
 #include "format/page_address.h"
 #include "format/texture_description.h"
+#include "workflows/build_texture.h"
 
 namespace vt {
 
@@ -62,27 +63,18 @@ void addBuildCommand(CLI::App& app) {
         throw CLI::ValidationError("--border", std::to_string(*options->border) +
                                                    " is not smaller than the page size " +
                                                    std::to_string(pageSize));
-      if (options->side && (*options->side < pageSize || *options->side > (uint64_t{pageSize} << kMaxLevel)))
+      if (options->side &&
+          (*options->side < pageSize || *options->side > (uint64_t{pageSize} << kMaxLevel)))
         throw CLI::ValidationError("--side", std::to_string(*options->side) +
                                                  " is not the page size " +
-                                                 std::to_string(pageSize) + " times 2^L, L <= " +
-                                                 std::to_string(kMaxLevel));
+                                                 std::to_string(pageSize) +
+                                                 " times 2^L, L <= " + std::to_string(kMaxLevel));
     }
-    requireOutputFile(options->output, {input});
-    const Layout layout = input.extension() == ".json" ? readLayout(input, overrides)
-                                                       : singleImageLayout(input, overrides);
-    std::vector<std::filesystem::path> images;
-    for (const Placement& placement : layout.images) images.push_back(placement.file);
-    requireOutputFile(options->output, images);
-    const BuildReport report = buildVirtualTexture(
-        layout, options->output, {options->threads, !options->quiet, options->keepFree});
-    const TextureDescription& d = layout.description;
-    std::cout << "built " << options->output << ": " << d.sideTexels() << " x " << d.sideTexels()
-              << " texels, levels 0.." << d.finestLevel() << ", " << report.storedPages << " of "
-              << report.totalPages << " pages stored, " << report.fileBytes << " bytes, "
-              << layout.images.size() << " images, filter " << toString(layout.filter) << ", "
-              << toString(d.colorSpace) << ", in " << report.seconds << " s (row rings "
-              << report.ringBytes << " bytes)\n";
+    buildTexture({.input = input,
+                  .overrides = overrides,
+                  .options = {options->threads, !options->quiet, options->keepFree},
+                  .output = options->output},
+                 std::cout);
   });
 }
 

@@ -10,16 +10,20 @@ Arithmetic exactPoint() { return Arithmetic{}; }
 
 Arithmetic llvmpipePoint() {
   Arithmetic a;
-  a.fusedViewport = true;                                                              // rule 1
-  a.coverage = {CoverageRule::kSnappedEdges, 8, SnapRounding::kHalfEven, true, true};  // 2, 4
-  a.planeSetup = PlaneSetup::kFirstVertex;                                             // rule 3
-  a.planeEvaluation = PlaneEvaluation::kFused;                                         // rule 6
-  a.perspective = Perspective::kReciprocalTimes;                                       // rule 6
-  a.depth = {true, Z24Conversion::kNearestEven};                                       // rule 7
-  a.log2 = Log2Form::kPolynomialFused;                                                 // rule 8
-  a.filter = {FilterWeights::kFixedPoint8, false, false};                              // rule 9
-  a.texelConversion = UnormConversion::kTimesReciprocal;                               // rule 9
-  a.flushDenormals = true;                                                             // rule 8
+  a.fusedViewport = true;                             // rule 1
+  a.coverage = {.rule = CoverageRule::kSnappedEdges,  // rules 2, 4
+                .subpixelBits = 8,
+                .rounding = SnapRounding::kHalfEven,
+                .leftEdgesIn = true,
+                .bottomEdgesIn = true};
+  a.planeSetup = PlaneSetup::kFirstVertex;                                 // rule 3
+  a.planeEvaluation = PlaneEvaluation::kFused;                             // rule 6
+  a.perspective = Perspective::kReciprocalTimes;                           // rule 6
+  a.depth = {.offsetAndClamp = true, .z24 = Z24Conversion::kNearestEven};  // rule 7
+  a.log2 = Log2Form::kPolynomialFused;                                     // rule 8
+  a.filter = {.weights = FilterWeights::kFixedPoint8};                     // rule 9
+  a.texelConversion = UnormConversion::kTimesReciprocal;                   // rule 9
+  a.flushDenormals = true;                                                 // rule 8
   return a;
 }
 
@@ -32,9 +36,9 @@ Arithmetic softpipePoint() {
   a.planeSetup = PlaneSetup::kLowestVertex;
   a.planeEvaluation = PlaneEvaluation::kQuadStepped;
   a.perspective = Perspective::kDivided;
-  a.depth = {false, Z24Conversion::kTruncated};
+  a.depth = {.offsetAndClamp = false, .z24 = Z24Conversion::kTruncated};
   a.log2 = Log2Form::kNaturalTimesLog2e;
-  a.filter = {FilterWeights::kFloat, false, false};
+  a.filter = {.weights = FilterWeights::kFloat};
   a.texelConversion = UnormConversion::kTimesReciprocal;
   a.flushDenormals = true;
   return a;

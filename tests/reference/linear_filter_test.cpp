@@ -16,7 +16,7 @@ int sampledUnits(std::array<uint8_t, 2> texels, int weight, LerpRounding roundin
   const auto fetch8 = [&](shader::ivec2 t) { return glm::u8vec4(texels[t.x], 0, 0, 255); };
   // s = u * (2 * 256) - 128 is the weight on texel 0's side: u = (weight + 128) / 512, exact.
   const float u = static_cast<float>(weight + 128) / 512.0f;
-  const Filter filter{FilterWeights::kFixedPoint8, false, false, rounding};
+  const Filter filter{.weights = FilterWeights::kFixedPoint8, .lerpRounding = rounding};
   const shader::vec4 c =
       sampleLinearAt(fetch8, shader::vec2(u, 0.25f), shader::ivec2(2, 1), filter);
   return static_cast<int>(std::lround(c.x * 255.0f));
