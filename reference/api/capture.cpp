@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "common/checksum.h"
 #include "common/image_file.h"
 #include "common/json_text.h"
 #include "common/posix_file.h"
@@ -173,12 +174,6 @@ uint64_t parseIdentity(Fields& fields, const std::string& key) {
   return value;
 }
 
-std::string identityText(uint64_t identity) {
-  char text[17];
-  std::snprintf(text, sizeof text, "%016" PRIx64, identity);
-  return text;
-}
-
 Capture parseManifest(const json& root, const fs::path& manifest) {
   const fs::path folder = manifest.parent_path();
   Capture capture;
@@ -331,7 +326,7 @@ void writeCapture(const fs::path& manifest, const Capture& capture) {
     if (!capture.model.empty()) root["model"] = relativeTo(folder, capture.model).string();
     if (!capture.fingerprint.empty()) root["fingerprint"] = capture.fingerprint;
     root["texture"] = {{"file", relativeTo(folder, capture.texture).string()},
-                       {"identity", identityText(capture.textureIdentity)}};
+                       {"identity", checksumText(capture.textureIdentity)}};
     root["viewport"] = {{"width", v.width}, {"height", v.height}};
     root["needbuffer_encoding"] = toString(capture.needEncoding);
     root["filtering"] = toString(capture.filtering);
@@ -418,8 +413,8 @@ namespace {
 CaptureCheck checkWith(const Capture& capture, const Texture& texture,
                        const RenderOptions& options) {
   if (texture.identity() != capture.textureIdentity)
-    throw Error(texture.path().string() + ": texture identity " + identityText(texture.identity()) +
-                " does not match the capture's " + identityText(capture.textureIdentity) +
+    throw Error(texture.path().string() + ": texture identity " + checksumText(texture.identity()) +
+                " does not match the capture's " + checksumText(capture.textureIdentity) +
                 " (the frame was drawn from another texture)");
   CaptureCheck check;
   check.oracle = render(texture, capture.scene, capture.cache, options);

@@ -1,10 +1,9 @@
 #include "capture/capture_writer.h"
 
-#include <cinttypes>
-#include <cstdio>
 #include <span>
 #include <stdexcept>
 
+#include "common/checksum.h"
 #include "common/posix_file.h"
 #include "format/page_address.h"
 
@@ -34,8 +33,7 @@ void writeCapturedFrame(const std::filesystem::path& manifest, const CapturedFra
   const std::filesystem::path folder = manifest.parent_path();
   const std::string stem = manifest.stem().string();
 
-  char identity[17];
-  std::snprintf(identity, sizeof identity, "%016" PRIx64, c.textureIdentity);
+  const std::string identity = checksumText(c.textureIdentity);
   nlohmann::ordered_json root = {
       {"format", "vt-capture"},
       {"version", 1},

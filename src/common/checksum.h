@@ -5,9 +5,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 
 namespace vt {
 
 uint64_t checksum64(std::span<const std::byte> bytes);
+
+// A checksum or identity as files and reports write it: 16 lowercase hexadecimal digits.
+std::string checksumText(uint64_t value);
 
 }  // namespace vt

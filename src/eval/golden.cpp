@@ -27,8 +27,6 @@
 namespace vt {
 namespace {
 
-std::string hex(uint64_t value) { return checksumText(value); }
-
 uint64_t fileChecksum(const std::filesystem::path& file) {
   const std::string bytes = readTextFile(file, "file");
   return checksum64(std::as_bytes(std::span(bytes)));
@@ -134,11 +132,11 @@ void generateGolden(const GoldenRequest& request, const std::filesystem::path& d
       flyAndRecord(reader, mesh, path, request.configuration, request.viewport, request.profile,
                    request.every, Backend::kOracle);
   GoldenManifest manifest{.texture = request.texture.filename().string(),
-                          .textureIdentity = hex(reader.identity()),
+                          .textureIdentity = checksumText(reader.identity()),
                           .mesh = request.mesh.filename().string(),
-                          .meshChecksum = hex(fileChecksum(request.mesh)),
+                          .meshChecksum = checksumText(fileChecksum(request.mesh)),
                           .path = request.path.filename().string(),
-                          .pathChecksum = hex(fileChecksum(request.path)),
+                          .pathChecksum = checksumText(fileChecksum(request.path)),
                           .configuration = request.configuration,
                           .viewport = request.viewport,
                           .profile = request.profile,
@@ -146,13 +144,14 @@ void generateGolden(const GoldenRequest& request, const std::filesystem::path& d
                           .frames = {}};
   for (const Recorded& r : recorded) {
     writeColorImage(folder / imageName(r.frame), request.viewport, r.color);
-    manifest.frames.push_back({.frame = r.frame,
-                               .color = hex(bytesChecksum(std::span<const uint8_t>(r.color))),
-                               .need = hex(bytesChecksum(std::span<const glm::uvec4>(r.need))),
-                               .rmse = r.quality.rmse,
-                               .ssim = r.quality.ssim,
-                               .wssim = r.quality.wssim,
-                               .image = imageName(r.frame)});
+    manifest.frames.push_back(
+        {.frame = r.frame,
+         .color = checksumText(bytesChecksum(std::span<const uint8_t>(r.color))),
+         .need = checksumText(bytesChecksum(std::span<const glm::uvec4>(r.need))),
+         .rmse = r.quality.rmse,
+         .ssim = r.quality.ssim,
+         .wssim = r.quality.wssim,
+         .image = imageName(r.frame)});
   }
   writeFileAtomically(folder / "golden.json", manifest.text());
   staging.commit();
@@ -170,15 +169,16 @@ namespace {
 // The golden's inputs must be the files it was made of, by identity and checksum.
 void requireTheGoldensInputs(const GoldenManifest& golden, const VirtualTextureReader& reader,
                              const std::filesystem::path& mesh, const std::filesystem::path& path) {
-  if (hex(reader.identity()) != golden.textureIdentity)
-    throw InputError(reader.path(), "its identity " + hex(reader.identity()) +
+  if (checksumText(reader.identity()) != golden.textureIdentity)
+    throw InputError(reader.path(), "its identity " + checksumText(reader.identity()) +
                                         " is not the golden's " + golden.textureIdentity +
                                         ": the goldens were made from another texture");
   for (const auto& [file, expected] :
        {std::pair{mesh, golden.meshChecksum}, {path, golden.pathChecksum}})
-    if (hex(fileChecksum(file)) != expected)
-      throw InputError(file, "its checksum " + hex(fileChecksum(file)) + " is not the golden's " +
-                                 expected + ": the goldens were made from another file");
+    if (checksumText(fileChecksum(file)) != expected)
+      throw InputError(file, "its checksum " + checksumText(fileChecksum(file)) +
+                                 " is not the golden's " + expected +
+                                 ": the goldens were made from another file");
 }
 
 // One recorded frame against its golden: checksums, quality, the image's differences (written to
@@ -190,9 +190,9 @@ GoldenFrameCheck compareWithGolden(const GoldenFrame& expected, const Recorded& 
   GoldenFrameCheck frame;
   frame.frame = expected.frame;
   frame.colorMatches =
-      hex(bytesChecksum(std::span<const uint8_t>(recorded.color))) == expected.color;
+      checksumText(bytesChecksum(std::span<const uint8_t>(recorded.color))) == expected.color;
   frame.needMatches =
-      hex(bytesChecksum(std::span<const glm::uvec4>(recorded.need))) == expected.need;
+      checksumText(bytesChecksum(std::span<const glm::uvec4>(recorded.need))) == expected.need;
   frame.qualityMatches = recorded.quality.rmse == expected.rmse &&
                          recorded.quality.ssim == expected.ssim &&
                          recorded.quality.wssim == expected.wssim;

@@ -1,6 +1,5 @@
 #include "eval/golden_manifest.h"
 
-#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -21,12 +20,6 @@ int whole(const nlohmann::json& value, const char* what) {
 }
 
 }  // namespace
-
-std::string checksumText(uint64_t value) {
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
-  return text;
-}
 
 std::string GoldenManifest::text() const {
   nlohmann::json recorded = nlohmann::json::array();

@@ -39,7 +39,4 @@ struct GoldenManifest {
   static GoldenManifest read(const std::filesystem::path& file);
 };
 
-// 16 lowercase hex digits, as the manifest writes checksums.
-std::string checksumText(uint64_t value);
-
 }  // namespace vt

@@ -4,14 +4,10 @@
 #include <cstdio>
 #include <sstream>
 
+#include "common/checksum.h"
+
 namespace vt {
 namespace {
-
-std::string hex64(uint64_t value) {
-  char text[24];
-  std::snprintf(text, sizeof text, "%016" PRIx64, value);
-  return text;
-}
 
 std::string fixed(double value, int digits) {
   char text[64];
@@ -26,7 +22,7 @@ nlohmann::json textureReport(const VirtualTextureReader& reader) {
   nlohmann::json report;
   report["file"] = reader.path().string();
   report["format_version"] = kFileVersion;
-  report["identity"] = "xxh3:" + hex64(reader.identity());
+  report["identity"] = "xxh3:" + checksumText(reader.identity());
   report["file_bytes"] = reader.fileBytes();
   report["page_size"] = d.pageSize;
   report["border"] = d.border;
