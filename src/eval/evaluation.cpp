@@ -62,7 +62,7 @@ class SharedViews {
     viewSeconds_ = secondsSince(start);
     passes_.clear();
     for (const FramePlan& plan : plans_) {
-      if (plan.colorPassOfItsOwn()) drawPass(plan.need);
+      if (!plan.needPassIsTheView()) drawPass(plan.need);
       if (plan.lookAhead) drawPass(*plan.lookAhead);
     }
   }
@@ -124,7 +124,7 @@ void flyFrame(RunState& state, const SharedViews& views, const FramePlan& plan,
   double drawSeconds = views.viewSeconds();
   std::span<const glm::uvec4> need = views.view().need;
   std::span<const float> depth = views.view().depth;
-  if (plan.colorPassOfItsOwn()) {
+  if (!plan.needPassIsTheView()) {
     const NeedImage& reduced = views.pass(plan.need);
     need = reduced.need;
     depth = reduced.depth;

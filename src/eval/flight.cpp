@@ -36,8 +36,7 @@ FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const Cam
                 reducedViewport(settings.viewport, configuration.needScaleLog2), initial);
   const std::unique_ptr<FrameRenderer> renderer =
       makeFrameRenderer(options.backend, run.runtime().cacheState());
-  FrameDrawer drawer(mesh, settings);
-  drawer.attach(*renderer);
+  FrameDrawer drawer(mesh, settings, *renderer);
 
   DrawnPasses drawn;
   for (int frameNumber = 0; frameNumber < path.frameCount(); ++frameNumber) {
@@ -45,9 +44,6 @@ FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const Cam
     const bool wantsColor =
         options.reference || (options.wantsColor && options.wantsColor(frameNumber));
     const auto drawStart = Clock::now();
-    drawn.color.clear();
-    drawn.lookAheadNeed.clear();
-    drawn.depth.clear();
     drawer.draw(plan, wantsColor ? ViewColor::kReadBack : ViewColor::kNone,
                 run.runtime().needsDepth(), drawn);
     const double drawSeconds = secondsSince(drawStart);

@@ -1,12 +1,12 @@
 #include "eval/frame_drawer.h"
 
-#include <stdexcept>
-
 namespace vt {
 
 void FrameDrawer::draw(const FramePlan& plan, ViewColor viewColor, bool wantsDepth,
                        DrawnPasses& out) {
-  if (!renderer_) throw std::logic_error("FrameDrawer: no renderer attached");
+  out.color.clear();
+  out.depth.clear();
+  out.lookAheadNeed.clear();
   std::vector<uint8_t>* color = viewColor == ViewColor::kReadBack ? &out.color : nullptr;
   std::vector<float>* depth = wantsDepth ? &out.depth : nullptr;
   const NeedPass& need = plan.need;
@@ -17,7 +17,7 @@ void FrameDrawer::draw(const FramePlan& plan, ViewColor viewColor, bool wantsDep
     pass(ahead.view, ahead.viewport, ahead.scaleLog2, ahead.jitter, nullptr, &out.lookAheadNeed,
          nullptr, false);
   }
-  if (!plan.colorPassOfItsOwn()) {
+  if (plan.needPassIsTheView()) {
     out.view = pass(plan.camera, plan.screen, 0, need.jitter, color, &out.need, depth,
                     plan.delayedReadback);
   } else {
@@ -29,7 +29,6 @@ void FrameDrawer::draw(const FramePlan& plan, ViewColor viewColor, bool wantsDep
 }
 
 void FrameDrawer::capture(const FramePlan& plan, DrawnPasses& out) {
-  if (!renderer_) throw std::logic_error("FrameDrawer: no renderer attached");
   out.view =
       pass(plan.camera, plan.screen, 0, glm::vec2(0.0f), &out.color, &out.need, nullptr, false);
 }
@@ -45,9 +44,9 @@ ClipSpaceMesh FrameDrawer::pass(const Camera& camera, Viewport viewport, int sca
   settings.needOnly = color == nullptr;
   const bool readDepth = depth != nullptr;
   ClipSpaceMesh clip = toClipSpace(mesh_, camera, viewport, jitter);
-  renderer_->cacheChanged();  // the management step changed it since the last draw
-  Frame frame = delayed && need ? renderer_->renderDelayed(clip, settings, readDepth)
-                                : renderer_->render(clip, settings, readDepth);
+  renderer_.cacheChanged();  // the management step changed it since the last draw
+  Frame frame = delayed && need ? renderer_.renderDelayed(clip, settings, readDepth)
+                                : renderer_.render(clip, settings, readDepth);
   if (color) *color = std::move(frame.color);
   if (need) *need = std::move(frame.need);
   if (depth) *depth = std::move(frame.depth);

@@ -28,13 +28,14 @@ enum class ViewColor { kNone, kShown, kReadBack };
 
 class FrameDrawer {
  public:
-  // `settings`: everything but the viewport, which each pass takes from the plan.
-  FrameDrawer(const Mesh& mesh, const RenderSettings& settings)
-      : mesh_(mesh), settings_(settings) {}
+  // `settings`: everything but the viewport, which each pass takes from the plan. `renderer`
+  // draws from a cache state the caller changes between frames; both must outlive the drawer.
+  FrameDrawer(const Mesh& mesh, const RenderSettings& settings, FrameRenderer& renderer)
+      : mesh_(mesh), settings_(settings), renderer_(renderer) {}
 
-  // The renderer draws from a cache state the caller changes between frames.
-  void attach(FrameRenderer& renderer) { renderer_ = &renderer; }
-
+  // Fills `out` (reused from frame to frame) with what the plan draws: what it does not draw
+  // (the colour unless read back, depth unless asked, the LookAhead needbuffer without a
+  // LookAhead pass) is left empty.
   void draw(const FramePlan& plan, ViewColor color, bool wantsDepth, DrawnPasses& out);
 
   // The plan's view at the screen's resolution with a full-size needbuffer, synchronously: what a
@@ -49,7 +50,7 @@ class FrameDrawer {
 
   const Mesh& mesh_;
   const RenderSettings settings_;
-  FrameRenderer* renderer_ = nullptr;
+  FrameRenderer& renderer_;
 };
 
 }  // namespace vt

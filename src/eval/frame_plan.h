@@ -41,8 +41,8 @@ struct FramePlan {
   NeedPass need;
   std::optional<NeedPass> lookAhead;
   bool delayedReadback = false;
-  // The needbuffer is not the view's own: the colour is drawn in a pass of its own.
-  bool colorPassOfItsOwn() const { return need.scaleLog2 > 0; }
+  // The needbuffer is the view's own (full scale): the pass that draws it draws the view's colour.
+  bool needPassIsTheView() const { return need.scaleLog2 == 0; }
 };
 
 // Frame `frame` with the cameras of this frame, the one before and the one before that.

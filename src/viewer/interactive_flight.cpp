@@ -55,8 +55,7 @@ void flyInteractively(WindowContext& window, const VirtualTextureReader& reader,
   FlightRun run(reader, configuration, flight, reducedViewport(size, configuration.needScaleLog2),
                 initialPages(reader, configuration, {}, flight.settings.need8));
   GlFrameRenderer gl(run.runtime().cacheState());
-  FrameDrawer drawer(request.mesh, flight.settings);
-  drawer.attach(gl);
+  FrameDrawer drawer(request.mesh, flight.settings, gl);
   DrawnPasses drawn;
   HudOverlay hud;
   std::vector<Keyframe> recorded;
