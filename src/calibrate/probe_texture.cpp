@@ -3,14 +3,19 @@
 #include "build/synthetic_texture.h"
 
 namespace vt::calibrate {
+namespace {
 
-TextureDescription ProbeTexture::describe(int levelCount) {
-  return {
-      .pageSize = 16, .border = 2, .levelCount = static_cast<uint32_t>(levelCount), .channels = 4};
+reference::ResidentTexture probeTexture(int levelCount) {
+  const TextureDescription description{.pageSize = 16,
+                                       .border = 2,
+                                       .levelCount = static_cast<uint32_t>(levelCount),
+                                       .channels = 4};
+  return reference::ResidentTexture(
+      description, [description](PageId page) { return syntheticPage(description, page); });
 }
 
-ProbeTexture::ProbeTexture(int levelCount)
-    : description_(describe(levelCount)),
-      texture_(description_, [this](PageId page) { return syntheticPage(description_, page); }) {}
+}  // namespace
+
+ProbeTexture::ProbeTexture(int levelCount) : texture_(probeTexture(levelCount)) {}
 
 }  // namespace vt::calibrate

@@ -3,7 +3,6 @@
 // made in memory (build/synthetic_texture.h), every page resident. What the probes compare
 // (which triangle, texture coordinates, derivatives, depth) does not depend on its texels.
 
-#include "format/texture_description.h"
 #include "reference/texture_source.h"
 
 namespace vt::calibrate {
@@ -15,8 +14,6 @@ class ProbeTexture {
   const reference::ResidentTexture& texture() const { return texture_; }
 
  private:
-  static TextureDescription describe(int levelCount);
-  const TextureDescription description_;
   const reference::ResidentTexture texture_;
 };
 
