@@ -53,7 +53,7 @@ bool drawsEveryPage(Backend backend) { return backend == Backend::kOracle; }
 std::unique_ptr<FrameRenderer> makeFrameRendererOfEveryPage(Backend backend,
                                                             const VirtualTextureReader& reader,
                                                             const CacheState& fitting) {
-  if (backend == Backend::kOracle && fitting.residentPages.size() < reader.storedPageCount())
+  if (drawsEveryPage(backend) && fitting.residentPages.size() < reader.storedPageCount())
     return std::make_unique<reference::OracleFrameRenderer>(reader);
   return makeFrameRenderer(backend, fitting);
 }

@@ -23,10 +23,11 @@ enum class Backend { kOracle, kGl };
 Backend parseBackend(const std::string& name);
 std::string toString(Backend backend);
 
-// What drawing with a backend needs on the calling thread while it lasts: for the GL path a
-// headless OpenGL 4.5 context (gl/headless_context.h), made current here; for the oracle nothing.
+// The oracle's name where a GL implementation names itself (GL_RENDERER).
 inline constexpr const char* kOracleRenderer = "vt oracle";
 
+// What drawing with a backend needs on the calling thread while it lasts: for the GL path a
+// headless OpenGL 4.5 context (gl/headless_context.h), made current here; for the oracle nothing.
 class BackendContext {
  public:
   explicit BackendContext(Backend backend);
@@ -34,9 +35,8 @@ class BackendContext {
   BackendContext(const BackendContext&) = delete;
   BackendContext& operator=(const BackendContext&) = delete;
 
-  // Who draws: GL_RENDERER and GL_VERSION of the context, or kOracleRenderer and the project's
-  // version for the oracle. Precision models are chosen by this name (modelForRenderer,
-  // resolveModel): for the oracle's name they give the oracle's own arithmetic, exact.
+  // Who draws: GL_RENDERER and GL_VERSION of the context, or kOracleRenderer and "" for the
+  // oracle; messages and reports name the implementation by them.
   std::string renderer() const;
   std::string version() const;
   // The renderer's name for a capture drawn under `settings`: GL_RENDERER, or the oracle's name

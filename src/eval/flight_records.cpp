@@ -1,6 +1,7 @@
 #include "eval/flight_records.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <sstream>
 
 #include "common/image_file.h"
@@ -61,6 +62,12 @@ void writeFlightRecords(const std::filesystem::path& folder, const FlightResult&
                         bool quality) {
   writeFileAtomically(folder / "frames.csv",
                       flightCsvHeader(quality) + flightCsvRows(result, quality));
+}
+
+std::string frameImageName(int frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame%04d.png", frame);
+  return name;
 }
 
 void writeColorImage(const std::filesystem::path& file, Viewport viewport,

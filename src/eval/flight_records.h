@@ -45,6 +45,9 @@ void writeFlightSummary(const std::filesystem::path& folder,
                         const FlightConfiguration& configuration,
                         const FlightSummaryContext& context, const FlightResult& result);
 
+// A frame's image file name, frameNNNN.png (vt fly --images-every, golden sets).
+std::string frameImageName(int frame);
+
 // An RGBA8 frame (rows bottom to top, as rendered) as a PNG (rows top to bottom).
 void writeColorImage(const std::filesystem::path& file, Viewport viewport,
                      std::span<const uint8_t> rgba);

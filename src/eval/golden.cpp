@@ -2,7 +2,6 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
@@ -35,12 +34,6 @@ uint64_t fileChecksum(const std::filesystem::path& file) {
 template <typename T>
 uint64_t bytesChecksum(std::span<const T> values) {
   return checksum64(std::as_bytes(values));
-}
-
-std::string imageName(int frame) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame%04d.png", frame);
-  return name;
 }
 
 // The PNG's RGBA8 rows, turned bottom to top like a rendered frame.
@@ -143,7 +136,7 @@ void generateGolden(const GoldenRequest& request, const std::filesystem::path& d
                           .every = request.every,
                           .frames = {}};
   for (const Recorded& r : recorded) {
-    writeColorImage(folder / imageName(r.frame), request.viewport, r.color);
+    writeColorImage(folder / frameImageName(r.frame), request.viewport, r.color);
     manifest.frames.push_back(
         {.frame = r.frame,
          .color = checksumText(bytesChecksum(std::span<const uint8_t>(r.color))),
@@ -151,7 +144,7 @@ void generateGolden(const GoldenRequest& request, const std::filesystem::path& d
          .rmse = r.quality.rmse,
          .ssim = r.quality.ssim,
          .wssim = r.quality.wssim,
-         .image = imageName(r.frame)});
+         .image = frameImageName(r.frame)});
   }
   writeFileAtomically(folder / "golden.json", manifest.text());
   staging.commit();
@@ -216,7 +209,8 @@ GoldenFrameCheck compareWithGolden(const GoldenFrame& expected, const Recorded& 
                        : recorded.judged && frame.unexplained == 0;
   if (!frame.passed)
     writeColorImage(
-        report / std::filesystem::path(imageName(frame.frame)).replace_extension(".difference.png"),
+        report /
+            std::filesystem::path(frameImageName(frame.frame)).replace_extension(".difference.png"),
         viewport, difference);
   return frame;
 }

@@ -1,6 +1,5 @@
 #include "workflows/fly_to_folder.h"
 
-#include <cstdio>
 #include <memory>
 #include <optional>
 
@@ -49,9 +48,7 @@ FlightResult flyToFolder(const VirtualTextureReader& reader, const FlyRequest& r
     options.wantsColor = [&](int frame) { return frame % request.imagesEvery == 0; };
     options.observe = [&](const FlightFrameView& view) {
       if (view.frame % request.imagesEvery != 0) return;
-      char name[32];
-      std::snprintf(name, sizeof name, "frame%04d.png", view.frame);
-      writeColorImage(folder / name, options.settings.viewport, view.color);
+      writeColorImage(folder / frameImageName(view.frame), options.settings.viewport, view.color);
     };
   }
   if (captureStaging) {
