@@ -60,6 +60,12 @@ void flyInteractively(WindowContext& window, const VirtualTextureReader& reader,
   HudOverlay hud;
   std::vector<Keyframe> recorded;
   bool recording = request.recordFromStart;
+  // Writes the recording when it ends, if it holds a path (two keyframes or more).
+  const auto saveRecording = [&] {
+    if (request.record.empty() || recorded.size() < 2) return;
+    saveCameraPath(request.record, recorded);
+    out << "recorded " << recorded.size() << " keyframes to " << request.record.string() << "\n";
+  };
   glm::dvec2 cursor = window.cursor();
   using Clock = std::chrono::steady_clock;
   Clock::time_point last = Clock::now();
@@ -73,11 +79,7 @@ void flyInteractively(WindowContext& window, const VirtualTextureReader& reader,
     if (window.keyPressed(GLFW_KEY_ESCAPE)) window.close();
     if (window.keyPressed(GLFW_KEY_R)) {
       recording = !recording;
-      if (!recording && !request.record.empty() && recorded.size() >= 2) {
-        saveCameraPath(request.record, recorded);
-        out << "recorded " << recorded.size() << " keyframes to " << request.record.string()
-            << "\n";
-      }
+      if (!recording) saveRecording();
     }
     beforePrevious = previous;
     previous = camera;
@@ -139,10 +141,7 @@ void flyInteractively(WindowContext& window, const VirtualTextureReader& reader,
     frameMs = 1000.0 * std::chrono::duration<double>(Clock::now() - now).count();
     if (lastFrame) window.close();
   }
-  if (recording && !request.record.empty() && recorded.size() >= 2) {
-    saveCameraPath(request.record, recorded);
-    out << "recorded " << recorded.size() << " keyframes to " << request.record.string() << "\n";
-  }
+  if (recording) saveRecording();
   out << "viewed on " << window.renderer() << ": " << streamedTotal << " pages streamed\n";
 }
 
