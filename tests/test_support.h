@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -61,6 +63,33 @@ inline void writeBytes(const std::filesystem::path& path, const std::vector<std:
 inline std::string readText(const std::filesystem::path& path) {
   std::ifstream in(path);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A CSV file the way vt writes one (a header row, comma-separated cells, no quoting).
+struct CsvTable {
+  std::vector<std::string> columns;
+  std::vector<std::vector<std::string>> rows;
+  // Row `row`'s cell in the column named `column`; throws std::out_of_range for neither.
+  const std::string& at(size_t row, const std::string& column) const {
+    for (size_t c = 0; c < columns.size(); ++c)
+      if (columns[c] == column) return rows.at(row).at(c);
+    throw std::out_of_range("no column " + column);
+  }
+};
+
+inline CsvTable readCsv(const std::filesystem::path& path) {
+  const auto cells = [](const std::string& line) {
+    std::vector<std::string> result;
+    std::stringstream text(line);
+    for (std::string cell; std::getline(text, cell, ',');) result.push_back(cell);
+    return result;
+  };
+  std::ifstream in(path);
+  CsvTable table;
+  std::string line;
+  if (std::getline(in, line)) table.columns = cells(line);
+  while (std::getline(in, line)) table.rows.push_back(cells(line));
+  return table;
 }
 
 }  // namespace vt::test

@@ -10,7 +10,6 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -21,27 +20,6 @@
 
 namespace vt {
 namespace {
-
-// The rows of a CSV file by a key column's value, each row as column name -> text.
-using Rows = std::vector<std::map<std::string, std::string>>;
-Rows readCsv(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  std::stringstream header(line);
-  for (std::string name; std::getline(header, name, ',');) names.push_back(name);
-  Rows rows;
-  while (std::getline(in, line)) {
-    std::stringstream cells(line);
-    std::map<std::string, std::string> row;
-    size_t i = 0;
-    for (std::string cell; std::getline(cells, cell, ',') && i < names.size(); ++i)
-      row[names[i]] = cell;
-    rows.push_back(row);
-  }
-  return rows;
-}
 
 TEST(FramePlanDrivers, FlyEvalAndGoldenDrawTheSameFrames) {
   test::ScratchDirectory dir;
@@ -76,31 +54,31 @@ TEST(FramePlanDrivers, FlyEvalAndGoldenDrawTheSameFrames) {
   run({"golden", "generate"},
       {"--config", config, "--every", "1", "-o", (dir / "golden").string()});
 
-  const Rows fly = readCsv(dir / "fly" / "frames.csv");
-  const Rows eval = readCsv(dir / "eval" / "frames.csv");
+  const test::CsvTable fly = test::readCsv(dir / "fly" / "frames.csv");
+  const test::CsvTable eval = test::readCsv(dir / "eval" / "frames.csv");
   std::ifstream manifest(dir / "golden" / "golden.json");
   const nlohmann::json golden = nlohmann::json::parse(manifest);
-  ASSERT_GT(fly.size(), 20u);
-  ASSERT_EQ(eval.size(), fly.size());
-  ASSERT_EQ(golden["frames"].size(), fly.size());
+  ASSERT_GT(fly.rows.size(), 20u);
+  ASSERT_EQ(eval.rows.size(), fly.rows.size());
+  ASSERT_EQ(golden["frames"].size(), fly.rows.size());
   size_t streamed = 0;
-  for (size_t f = 0; f < fly.size(); ++f) {
+  for (size_t f = 0; f < fly.rows.size(); ++f) {
     for (const char* column :
          {"frame", "covered_pixels", "needed_pages", "hits", "misses", "requested", "streamed",
           "evicted", "resident", "rmse", "ssim", "wssim"}) {
-      ASSERT_TRUE(fly[f].contains(column)) << column;
-      EXPECT_EQ(eval[f].at(column), fly[f].at(column)) << "frame " << f << ", " << column;
+      ASSERT_THAT(fly.columns, ::testing::Contains(column));
+      EXPECT_EQ(eval.at(f, column), fly.at(f, column)) << "frame " << f << ", " << column;
     }
     for (const char* measure : {"rmse", "ssim", "wssim"}) {
       std::ostringstream written;  // as frames.csv writes it
       written << golden["frames"][f][measure].get<double>();
-      EXPECT_EQ(written.str(), fly[f].at(measure)) << "frame " << f << ", " << measure;
+      EXPECT_EQ(written.str(), fly.at(f, measure)) << "frame " << f << ", " << measure;
     }
     // The colour itself: the same image file from vt fly and vt golden.
     const std::string image = golden["frames"][f]["image"].get<std::string>();
     EXPECT_EQ(test::readBytes(dir / "fly" / image), test::readBytes(dir / "golden" / image))
         << image;
-    streamed += std::stoul(fly[f].at("streamed"));
+    streamed += std::stoul(fly.at(f, "streamed"));
   }
   EXPECT_GT(streamed, 0u);  // the cache state changed along the flight
 }

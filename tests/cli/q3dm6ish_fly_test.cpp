@@ -24,18 +24,15 @@ struct CsvTotals {
 };
 
 CsvTotals readFrames(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::string line;
-  std::getline(in, line);  // header
+  const test::CsvTable table = test::readCsv(file);
   CsvTotals totals;
-  while (std::getline(in, line)) {
-    std::vector<uint64_t> v;
-    std::stringstream fields(line);
-    for (std::string field; std::getline(fields, field, ',');) v.push_back(std::stoull(field));
-    // frame, covered, needed, hits, misses, hit_pixels, requested, streamed, evicted, resident
+  for (size_t r = 0; r < table.rows.size(); ++r) {
+    const auto value = [&](const char* column) -> uint64_t {
+      return std::stoull(table.at(r, column));
+    };
     ++totals.rows;
-    totals.streamedMax = std::max(totals.streamedMax, v.at(7));
-    totals.hitsPlusMissesAreNeeded &= v.at(3) + v.at(4) == v.at(2);
+    totals.streamedMax = std::max(totals.streamedMax, value("streamed"));
+    totals.hitsPlusMissesAreNeeded &= value("hits") + value("misses") == value("needed_pages");
   }
   return totals;
 }

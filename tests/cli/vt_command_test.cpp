@@ -231,19 +231,12 @@ TEST_F(VtCommand, FlyStreamsTheDefaultPathWithTheSameBytesForAnyThreadCount) {
   EXPECT_EQ(test::readBytes(dir_ / "one" / "summary.json"),
             test::readBytes(dir_ / "two" / "summary.json"));
   // The budget holds: no frame streams more than 3 pages.
-  std::ifstream in(dir_ / "one" / "frames.csv");
-  std::string line;
-  std::getline(in, line);
-  int frames = 0;
-  while (std::getline(in, line)) {
-    std::vector<std::string> fields;
-    std::stringstream row(line);
-    for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
-    ASSERT_EQ(fields.size(), 10u);
-    EXPECT_LE(std::stoi(fields[7]), 3) << line;
-    ++frames;
+  const test::CsvTable frames = test::readCsv(dir_ / "one" / "frames.csv");
+  for (size_t f = 0; f < frames.rows.size(); ++f) {
+    ASSERT_EQ(frames.rows[f].size(), 10u);
+    EXPECT_LE(std::stoi(frames.at(f, "streamed")), 3) << "frame " << f;
   }
-  EXPECT_EQ(frames, 51);
+  EXPECT_EQ(frames.rows.size(), 51u);
   const auto bad =
       vt({"fly", texture, "--heuristic", "pixelsum*speed", "-o", (dir_ / "bad").string()});
   EXPECT_EQ(bad.exitCode, 2);  // a bad argument (issue 20): the usage line too
