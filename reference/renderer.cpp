@@ -112,6 +112,7 @@ template <class Backend, class Source>
 class TileShader {
  public:
   static constexpr int kTile = 16;
+  using Fragment = typename shader::ShaderLogic<Backend>::VtFragment;
 
   TileShader(const FrameJob& job, const Source& texture)
       : job_(job),
@@ -201,7 +202,7 @@ class TileShader {
     const Attributes below = at[static_cast<size_t>(column)],
                      above = at[static_cast<size_t>(2 + column)];
     const vec2 dUVdx = right.uv - left.uv, dUVdy = above.uv - below.uv;
-    const shader::VtFragment f =
+    const Fragment f =
         job_.settings.needOnly ? needOfFragment(here.uv, dUVdx, dUVdy)
                                : shader_.vtShadeFragment(here.uv, dUVdx, dUVdy, job_.parameters);
 
@@ -236,7 +237,7 @@ class TileShader {
     const SetupTriangle& t = job_.triangles[static_cast<size_t>(hit.triangle)];
     const Arithmetic& arithmetic = job_.arithmetic;
     const int qx = px & ~1, qy = py & ~1, column = k & 1, row = k >> 1;
-    shader::VtFragment f;
+    Fragment f;
     vec2 uv;
     {
       const DenormalMode other(!arithmetic.flushDenormals);
@@ -270,9 +271,9 @@ class TileShader {
 
   // The first steps of vtShadeFragment (src/shader/virtual_texture.glsl), through the same
   // functions: the LOD, the needed level and the needbuffer entry, without sampling.
-  shader::VtFragment needOfFragment(vec2 uvIn, vec2 dUVdx, vec2 dUVdy) {
+  Fragment needOfFragment(vec2 uvIn, vec2 dUVdx, vec2 dUVdy) {
     const shader::VtParameters& p = job_.parameters;
-    shader::VtFragment f{};
+    Fragment f{};
     const vec2 uv(shader_.vtClampOrZero(uvIn.x, 1.0f), shader_.vtClampOrZero(uvIn.y, 1.0f));
     f.lod = shader_.vtLevelOfDetail(dUVdx, dUVdy, p);
     f.neededLevel = shader_.vtNeededLevel(f.lod);

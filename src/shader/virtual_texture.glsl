@@ -25,65 +25,90 @@
 // Rules for editing, so that both compilers agree: no `in`/`out` parameters (return structs), no
 // swizzles beyond .x .y .z .w, no arithmetic with floating literals (C++ would compute in double;
 // comparisons and selections with them are fine), no mix/clamp/min/max on values that may be NaN.
+// A value that may differ between fragments is a vfloat, vint, vuint or vbool (types file); a
+// choice between such values is vtSelect (a select, never arithmetic), never `?:`, which C++
+// cannot apply lane by lane; `?:` and `if` stay for uniform conditions.
+
+// The result for one fragment.
+struct VtFragment {
+  vec4 color;          // filtered texel colour in [0, 1]
+  uvec4 need;          // needbuffer value of the needed page
+  vfloat lod;          // fractional level, 0 coarsest .. L finest
+  vint neededLevel;    // the level the needbuffer requests
+  vint residentLevel;  // the level actually sampled for the needed level (itself or an ancestor)
+};
+
+// One level's filtered colour and the level of the page it came from.
+struct VtSample {
+  vec4 color;
+  vint residentLevel;
+};
+
+// c ? a : b, fragment by fragment: GLSL 4.50's mix with a boolean selects and computes nothing, so
+// NaN and infinities pass through unchanged.
+vfloat vtSelect(vbool c, vfloat a, vfloat b) { return mix(b, a, c); }
+vint vtSelect(vbool c, vint a, vint b) { return mix(b, a, c); }
 
 // x clamped to [0, hi], NaN to 0.
-float vtClampOrZero(float x, float hi) {
-  precise float below = (x <= hi) ? x : hi;
-  return (x >= 0.0) ? below : 0.0;
+vfloat vtClampOrZero(vfloat x, vfloat hi) {
+  precise vfloat below = vtSelect(x <= hi, x, hi);
+  return vtSelect(x >= 0.0, below, 0.0);
 }
 
 // Heckbert's edge-compression LOD (appendix B): e_max = sqrt(max(|dUV/dx|^2, |dUV/dy|^2)),
 // d = log2(e_max * P * 2^L) clamped to [0, L], lod = L - d. A reduced needbuffer (1/2^k of the
 // resolution) sees derivatives 2^k times larger: P * 2^L is scaled by 2^-k with ldexp, exactly,
 // so k = 0 gives the same bits as the plain formula.
-float vtLevelOfDetail(vec2 dUVdx, vec2 dUVdy, VtParameters p) {
-  precise float ex = dUVdx.x * dUVdx.x + dUVdx.y * dUVdx.y;
-  precise float ey = dUVdy.x * dUVdy.x + dUVdy.y * dUVdy.y;
+vfloat vtLevelOfDetail(vec2 dUVdx, vec2 dUVdy, VtParameters p) {
+  precise vfloat ex = dUVdx.x * dUVdx.x + dUVdx.y * dUVdx.y;
+  precise vfloat ey = dUVdy.x * dUVdy.x + dUVdy.y * dUVdy.y;
   // max(ex, ey), but NaN when either is NaN (both comparisons fail, and ex + ey is NaN).
-  precise float larger = (ex >= ey) ? ex : ((ey >= ex) ? ey : ex + ey);
-  precise float eMax = sqrt(larger);
+  precise vfloat larger = vtSelect(ex >= ey, ex, vtSelect(ey >= ex, ey, ex + ey));
+  precise vfloat eMax = sqrt(larger);
   precise float finestSide = ldexp(float(p.pageSize) * float(1 << p.finestLevel), -p.needScaleLog2);
-  precise float d = log2(eMax * finestSide);
+  precise vfloat d = log2(eMax * finestSide);
   float L = float(p.finestLevel);
   // NaN (from NaN derivatives) compares false both times and ends at L: the coarsest level.
-  precise float upper = (d <= L) ? d : L;
-  precise float clamped = (upper >= 0.0) ? upper : 0.0;
+  precise vfloat upper = vtSelect(d <= L, d, L);
+  precise vfloat clamped = vtSelect(upper >= 0.0, upper, 0.0);
   return L - clamped;
 }
 
 // The level the needbuffer requests: ceil(lod), in [0, L].
-int vtNeededLevel(float lod) { return int(ceil(lod)); }
+vint vtNeededLevel(vfloat lod) { return vint(ceil(lod)); }
 
 // Page (px, py) of level m under (s, t) in [0, 1]: floor(s * 2^m) (thesis 3.2.3.1), clamped so
 // that s = 1.0 falls in the last page.
-ivec2 vtPageAt(vec2 uv, int level) {
-  float last = float((1 << level) - 1);
-  precise vec2 scaled = uv * float(1 << level);
-  return ivec2(int(vtClampOrZero(floor(scaled.x), last)), int(vtClampOrZero(floor(scaled.y), last)));
+ivec2 vtPageAt(vec2 uv, vint level) {
+  vfloat last = vfloat((1 << level) - 1);
+  precise vec2 scaled = uv * vfloat(1 << level);
+  return ivec2(vint(vtClampOrZero(floor(scaled.x), last)),
+               vint(vtClampOrZero(floor(scaled.y), last)));
 }
 
 // 32-bit needbuffer (thesis 3.2.3.2): r = px, g = py, b = m, a = 1 (a = 0: no geometry).
-uvec4 vtEncodeNeed32(ivec2 page, int level) {
-  return uvec4(uint(page.x), uint(page.y), uint(level), 1u);
+uvec4 vtEncodeNeed32(ivec2 page, vint level) {
+  return uvec4(vuint(page.x), vuint(page.y), vuint(level), 1u);
 }
 
 // 8-bit needbuffer (thesis 3.2.3.2): r = px mod 256, g = py mod 256, b = m,
 // a = px / 256 + (py / 256) * 16, for up to 4096 pages per side. b = 255 marks no geometry.
-uvec4 vtEncodeNeed8(ivec2 page, int level) {
-  return uvec4(uint(page.x & 255), uint(page.y & 255), uint(level),
-               uint((page.x >> 8) + (page.y >> 8) * 16));
+uvec4 vtEncodeNeed8(ivec2 page, vint level) {
+  return uvec4(vuint(page.x & 255), vuint(page.y & 255), vuint(level),
+               vuint((page.x >> 8) + (page.y >> 8) * 16));
 }
 
 // Where (s, t) lies in the cache, in texels, for the page of level m that the indirection entry
 // serves (thesis 3.2.3.3): the frame's origin, the border, and the internal offset
 // s * 2^i - px_i (fract(s * 2^i) except at s = 1.0, where it is 1) scaled by P.
-vec2 vtCacheTexel(vec2 uv, ivec2 page, int level, uvec4 entry, VtParameters p) {
-  int i = int(entry.z);
+vec2 vtCacheTexel(vec2 uv, ivec2 page, vint level, uvec4 entry, VtParameters p) {
+  vint i = vint(entry.z);
   ivec2 resident = ivec2(page.x >> (level - i), page.y >> (level - i));
-  precise vec2 scaled = uv * float(1 << i);
+  precise vec2 scaled = uv * vfloat(1 << i);
   precise vec2 inside = scaled - vec2(resident);
   int stored = p.pageSize + 2 * p.border;
-  precise vec2 origin = vec2(ivec2(int(entry.x) * stored + p.border, int(entry.y) * stored + p.border));
+  precise vec2 origin =
+      vec2(ivec2(vint(entry.x) * stored + p.border, vint(entry.y) * stored + p.border));
   precise vec2 texel = origin + inside * float(p.pageSize);
   return texel;
 }
@@ -106,13 +131,13 @@ vec4 vtBilinearExact(vec2 texel) {
 
 // The filtered colour of level m at (s, t), from the page or the resident ancestor the
 // indirection table names, and that page's level.
-VtSample vtSampleLevel(vec2 uv, int level, VtParameters p) {
+VtSample vtSampleLevel(vec2 uv, vint level, VtParameters p) {
   ivec2 page = vtPageAt(uv, level);
   uvec4 entry = vtFetchIndirection(page, level);
   vec2 texel = vtCacheTexel(uv, page, level, entry, p);
   VtSample result;
   result.color = (p.exactFilter != 0) ? vtBilinearExact(texel) : vtSampleCacheLinear(texel);
-  result.residentLevel = int(entry.z);
+  result.residentLevel = vint(entry.z);
   return result;
 }
 
@@ -127,9 +152,9 @@ VtFragment vtShadeFragment(vec2 uvIn, vec2 dUVdx, vec2 dUVdy, VtParameters p) {
   result.need = (p.need8 != 0) ? vtEncodeNeed8(page, result.neededLevel)
                                : vtEncodeNeed32(page, result.neededLevel);
   if (p.trilinear != 0) {
-    int coarse = int(floor(result.lod));
-    int fine = (coarse < p.finestLevel) ? coarse + 1 : coarse;
-    precise float weight = result.lod - float(coarse);
+    vint coarse = vint(floor(result.lod));
+    vint fine = vtSelect(coarse < p.finestLevel, coarse + 1, coarse);
+    precise vfloat weight = result.lod - vfloat(coarse);
     VtSample c0 = vtSampleLevel(uv, coarse, p);
     VtSample c1 = vtSampleLevel(uv, fine, p);
     precise vec4 color = c0.color + (c1.color - c0.color) * weight;

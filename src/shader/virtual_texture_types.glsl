@@ -1,6 +1,17 @@
 // Types of the virtual-texture shader logic (DESIGN section 3), in the common subset of GLSL 4.50
 // and C++20 with GLM: this file is compiled by the GL driver and, verbatim, by the C++ compiler
 // (shader/shader_cpp.h includes it at namespace scope).
+//
+// Values that differ from fragment to fragment have their own type names, so that the C++ build
+// can give them one value per fragment or one SIMD lane per fragment (shader/shader_cpp.h,
+// shader/shader_lanes.h); in GLSL they are GLSL's own scalar types. Uniform values keep the plain
+// names.
+#ifndef VT_CPP
+#define vfloat float
+#define vint int
+#define vuint uint
+#define vbool bool
+#endif
 
 // What the fragment logic knows of the texture and the page cache (uniforms in GL).
 struct VtParameters {
@@ -13,19 +24,4 @@ struct VtParameters {
   int needScaleLog2;  // k: the frame is drawn at 1/2^k of the screen's resolution per axis (a
                       // reduced needbuffer); the LOD divides its derivatives by 2^k, exactly
   vec2 cacheSize;   // the page cache texture, in texels
-};
-
-// The result for one fragment.
-struct VtFragment {
-  vec4 color;         // filtered texel colour in [0, 1]
-  uvec4 need;         // needbuffer value of the needed page
-  float lod;          // fractional level, 0 coarsest .. L finest
-  int neededLevel;    // the level the needbuffer requests
-  int residentLevel;  // the level actually sampled for the needed level (itself or an ancestor)
-};
-
-// One level's filtered colour and the level of the page it came from.
-struct VtSample {
-  vec4 color;
-  int residentLevel;
 };

@@ -131,12 +131,12 @@ TEST(VirtualTextureShader, TrilinearBlendsTheTwoLevelsAroundTheLod) {
   VtParameters p = parameters(16, 1, 3);  // 128 texels at the finest level
   p.trilinear = 1;
   // Derivatives of 2 finest texels per pixel: lod = 3 - 1 = 2 exactly: needs level 2, weight 0.
-  const VtFragment f = logic.vtShadeFragment(vec2(0.5f, 0.5f), vec2(2.0f / 128, 0), vec2(0, 0), p);
+  const Logic::VtFragment f = logic.vtShadeFragment(vec2(0.5f, 0.5f), vec2(2.0f / 128, 0), vec2(0, 0), p);
   EXPECT_EQ(f.lod, 2.0f);
   EXPECT_EQ(f.neededLevel, 2);
   EXPECT_EQ(f.need, uvec4(2u, 2u, 2u, 1u));
   // sqrt(2) texels per pixel: lod = 2.5, needs level 3; the colour blends levels 2 and 3 halfway.
-  const VtFragment g =
+  const Logic::VtFragment g =
       logic.vtShadeFragment(vec2(0.5f, 0.5f), vec2(std::sqrt(2.0f) / 128, 0), vec2(0, 0), p);
   EXPECT_NEAR(g.lod, 2.5f, 1e-6f);
   EXPECT_EQ(g.neededLevel, 3);
