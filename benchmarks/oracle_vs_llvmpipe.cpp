@@ -1,9 +1,14 @@
-// Frames per second of the CPU oracle against Mesa's llvmpipe drawing the same scene with the GL
-// renderer's own shader (the shared virtual-texture logic), in the same process: a generated
-// terrain of 20,000 triangles at 1280x720 from a cache state holding every page. Prints the time
-// of each, the ratio oracle / llvmpipe (target <= 1.0) and the oracle's scaling from 1 to 2
-// threads (target >= 1.8). llvmpipe runs with LP_NUM_THREADS=2.
-//   usage: oracle_vs_llvmpipe [frames]
+// Time per frame of the CPU oracle against Mesa's llvmpipe drawing the same frames with the GL
+// renderer's own shader (the shared virtual-texture logic), in the same process, from the same
+// cache state. Scenes: a generated terrain of 20,000 triangles with every page resident, and
+// real maps given on the command line (a texture, its mesh and a camera path: tour frames spread
+// over the path, from a cache of the map's coarser levels that fits one 8192^2 texture). Each at
+// 1280 x 720 and 1920 x 1080; llvmpipe with LP_NUM_THREADS=2, the oracle with 2 and 1 threads
+// under the pinned llvmpipe model and with 2 threads under gl45 (result sets for every pixel).
+// Prints one row per scene and size: the medians, the ratio oracle / llvmpipe (target <= 1.0),
+// the oracle's scaling from 1 to 2 threads (target >= 1.8) and the cost of gl45 over the pinned
+// model (target <= 2.0). scripts/oracle-vs-llvmpipe.sh builds the maps and runs this three times.
+//   usage: oracle_vs_llvmpipe [--frames N] [--map NAME TEXTURE.vt MESH.obj PATH.json]...
 
 #include <unistd.h>
 
@@ -12,14 +17,21 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "build/synthetic_texture.h"
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
 #include "reference/renderer.h"
 #include "render/arithmetic_points.h"
+#include "render/cache_state.h"
 #include "scene/camera.h"
+#include "scene/camera_path.h"
+#include "scene/obj_mesh.h"
 
 namespace {
 
@@ -42,10 +54,19 @@ vt::Mesh terrain() {
   return mesh;
 }
 
+// One scene to time: its mesh, the cameras of its frames and the cache state both renderers draw.
+struct Scene {
+  std::string name;
+  vt::Mesh mesh;
+  std::vector<vt::Camera> cameras;
+  std::unique_ptr<vt::CacheState> cache;
+};
+
+// The median over `repeats` runs of the time to draw every camera of a scene once.
 template <class Draw>
-double medianMilliseconds(int frames, Draw draw) {
+double medianMilliseconds(int repeats, Draw draw) {
   std::vector<double> times;
-  for (int k = 0; k < frames; ++k) {
+  for (int k = 0; k < repeats; ++k) {
     const auto start = std::chrono::steady_clock::now();
     draw();
     times.push_back(
@@ -56,50 +77,124 @@ double medianMilliseconds(int frames, Draw draw) {
   return times[times.size() / 2];
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const int frames = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
-  ::setenv("LP_NUM_THREADS", "2", 1);
-  const auto file = std::filesystem::temp_directory_path() /
-                    ("vt-oracle-bench-" + std::to_string(::getpid()) + ".vt");
+Scene terrainScene(const std::filesystem::path& file) {
   vt::writeSyntheticTexture(
       file, {{.pageSize = 128, .border = 4, .levelCount = 5, .channels = 4}, std::nullopt});
   const vt::VirtualTextureReader reader(file);
   std::vector<uint64_t> pages(reader.storedPageCount());
   for (uint64_t p = 0; p < pages.size(); ++p) pages[p] = p;
-  const vt::CacheState cache = vt::makeCacheState(reader, pages, 19, 19);
-
+  Scene scene{"terrain", terrain(), {}, nullptr};
+  scene.cache = std::make_unique<vt::CacheState>(vt::makeCacheState(reader, pages, 19, 19));
   vt::Camera camera;
   camera.position = {0, 18, 45};
   camera.target = {0, 0, 0};
-  vt::RenderSettings settings;
-  settings.viewport = {1280, 720};
-  settings.arithmetic = vt::arithmeticPoint("llvmpipe");
-  const vt::ClipSpaceMesh mesh = vt::toClipSpace(terrain(), camera, settings.viewport);
+  scene.cameras.push_back(camera);
+  return scene;
+}
+
+// Four tour frames spread over the path (its first and last frame included).
+Scene mapScene(const std::string& name, const std::filesystem::path& texture,
+               const std::filesystem::path& mesh, const std::filesystem::path& path) {
+  const vt::VirtualTextureReader reader(texture);
+  Scene scene{name, vt::loadObjMesh(mesh), {}, nullptr};
+  scene.cache = std::make_unique<vt::CacheState>(vt::cacheOfLevels(reader, -1, 8192));
+  const vt::CameraPath cameras = vt::CameraPath::load(path);
+  constexpr int kFrames = 4;
+  for (int k = 0; k < kFrames; ++k)
+    scene.cameras.push_back(cameras.at(k * (cameras.frameCount() - 1) / (kFrames - 1)));
+  return scene;
+}
+
+int usage() {
+  std::fprintf(stderr,
+               "usage: oracle_vs_llvmpipe [--frames N] [--map NAME TEXTURE.vt MESH.obj "
+               "PATH.json]...\n");
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int repeats = 5;
+  struct MapArguments {
+    std::string name, texture, mesh, path;
+  };
+  std::vector<MapArguments> maps;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--frames") == 0 && i + 1 < argc) {
+      repeats = std::max(1, std::atoi(argv[++i]));
+    } else if (std::strcmp(argv[i], "--map") == 0 && i + 4 < argc) {
+      maps.push_back({argv[i + 1], argv[i + 2], argv[i + 3], argv[i + 4]});
+      i += 4;
+    } else {
+      return usage();
+    }
+  }
+  ::setenv("LP_NUM_THREADS", "2", 1);
+  const auto file = std::filesystem::temp_directory_path() /
+                    ("vt-oracle-bench-" + std::to_string(::getpid()) + ".vt");
+  std::vector<Scene> scenes;
+  scenes.push_back(terrainScene(file));
+  std::filesystem::remove(file);
+  try {
+    for (const MapArguments& map : maps)
+      scenes.push_back(mapScene(map.name, map.texture, map.mesh, map.path));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "oracle_vs_llvmpipe: %s\n", e.what());
+    return 1;
+  }
 
   const vt::HeadlessContext context;
-  vt::GlFrameRenderer gl(cache);
-  gl.draw(mesh, settings);  // compile and warm up
-  const double llvmpipe = medianMilliseconds(frames, [&] { gl.draw(mesh, settings); });
-  // Like the GL renderer's targets, the oracle's frame is reused from frame to frame.
-  vt::Frame frame;
-  settings.threads = 2;
-  vt::reference::renderFrame(mesh, cache, settings, frame);
-  const double oracle2 =
-      medianMilliseconds(frames, [&] { vt::reference::renderFrame(mesh, cache, settings, frame); });
-  settings.threads = 1;
-  const double oracle1 =
-      medianMilliseconds(frames, [&] { vt::reference::renderFrame(mesh, cache, settings, frame); });
-  std::filesystem::remove(file);
+  std::printf("%s (%s), LP_NUM_THREADS=2; oracle under the pinned llvmpipe model unless gl45\n",
+              context.renderer().c_str(), context.version().c_str());
+  std::printf("%-12s %-9s %6s %9s %10s %10s %10s %8s %8s %9s\n", "scene", "size", "frames",
+              "llvmpipe", "oracle-2t", "oracle-1t", "gl45-2t", "ratio", "scaling", "gl45/pin");
+  const auto pinned = std::make_shared<const vt::PrecisionModel>(vt::llvmpipeModel());
+  const auto gl45 = std::make_shared<const vt::PrecisionModel>(vt::gl45Model());
+  for (const Scene& scene : scenes)
+    for (const vt::Viewport viewport : {vt::Viewport{1280, 720}, vt::Viewport{1920, 1080}}) {
+      std::vector<vt::ClipSpaceMesh> frames;
+      for (const vt::Camera& camera : scene.cameras)
+        frames.push_back(vt::toClipSpace(scene.mesh, camera, viewport));
+      vt::RenderSettings settings;
+      settings.viewport = viewport;
+      vt::applyModel(settings, *pinned);
+      settings.model = pinned;
 
+      vt::GlFrameRenderer gl(*scene.cache);
+      for (const vt::ClipSpaceMesh& mesh : frames) gl.draw(mesh, settings);  // compile, warm up
+      const double llvmpipe = medianMilliseconds(repeats, [&] {
+        for (const vt::ClipSpaceMesh& mesh : frames) gl.draw(mesh, settings);
+      });
+      // Like the GL renderer's targets, the oracle's frame is reused from frame to frame.
+      vt::Frame frame;
+      const auto oracle = [&](const vt::RenderSettings& s) {
+        vt::reference::renderFrame(frames.front(), *scene.cache, s, frame);  // warm up
+        return medianMilliseconds(repeats, [&] {
+          for (const vt::ClipSpaceMesh& mesh : frames)
+            vt::reference::renderFrame(mesh, *scene.cache, s, frame);
+        });
+      };
+      settings.threads = 2;
+      const double oracle2 = oracle(settings);
+      settings.threads = 1;
+      const double oracle1 = oracle(settings);
+      vt::RenderSettings bounded = settings;
+      vt::applyModel(bounded, *gl45);
+      bounded.model = gl45;
+      bounded.threads = 2;
+      const double sets2 = oracle(bounded);
+
+      const double count = static_cast<double>(frames.size());
+      const std::string size = std::to_string(viewport.width) + "x" + std::to_string(viewport.height);
+      std::printf("%-12s %-9s %6zu %9.1f %10.1f %10.1f %10.1f %7.2fx %7.2fx %8.2fx\n",
+                  scene.name.c_str(), size.c_str(), frames.size(), llvmpipe / count,
+                  oracle2 / count, oracle1 / count, sets2 / count, oracle2 / llvmpipe,
+                  oracle1 / oracle2, sets2 / oracle2);
+      std::fflush(stdout);
+    }
   std::printf(
-      "scene: generated terrain, %zu triangles, 1280x720, every page resident, trilinear, texel "
-      "fetches\n",
-      mesh.indices.size() / 3);
-  std::printf("%s (%s), LP_NUM_THREADS=2: %.1f ms per frame\n", context.renderer().c_str(),
-              context.version().c_str(), llvmpipe);
-  std::printf("oracle, 2 threads: %.1f ms per frame; 1 thread: %.1f ms\n", oracle2, oracle1);
-  std::printf("oracle / llvmpipe: %.2fx the time per frame (target <= 1.0)\n", oracle2 / llvmpipe);
-  std::printf("oracle scaling 1 -> 2 threads: %.2fx (target >= 1.8)\n", oracle1 / oracle2);
+      "times: ms per frame, median of %d; ratio = oracle-2t / llvmpipe (target <= 1.0), scaling = "
+      "oracle-1t / oracle-2t (target >= 1.8), gl45/pin = gl45-2t / oracle-2t (target <= 2.0)\n",
+      repeats);
 }

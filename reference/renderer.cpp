@@ -6,8 +6,9 @@
 #include <cstring>
 #include <thread>
 
-#include "reference/linear_filter.h"
 #include "common/parallel_for.h"
+#include "reference/lane_shading.h"
+#include "reference/linear_filter.h"
 #include "reference/result_set_builder.h"
 #include "reference/shader_backends.h"
 #include "reference/shader_math.h"
@@ -98,6 +99,7 @@ struct FrameJob {
   SetShading shading;
   shader::VtParameters parameters;
   glm::uvec4 noNeed;
+  bool lanes;  // shade eight pixels at a time (lane_shading.h): only without result sets
   Frame& frame;
 };
 
@@ -111,7 +113,7 @@ struct FrameJob {
 template <class Backend, class Source>
 class TileShader {
  public:
-  static constexpr int kTile = 16;
+  static constexpr int kTile = Visibility::kTile;
   using Fragment = typename shader::ShaderLogic<Backend>::VtFragment;
 
   TileShader(const FrameJob& job, const Source& texture)
@@ -125,9 +127,18 @@ class TileShader {
   void shadeTile(int x0, int y0, TileSets* sets) {
     sets_ = sets;
     const Viewport v = job_.viewport;
+    job_.visibility.tile(x0, y0, tileHits_);
     for (int by = y0; by < std::min(y0 + kTile, v.height); by += Visibility::kBlock)
       for (int bx = x0; bx < std::min(x0 + kTile, v.width); bx += Visibility::kBlock) {
-        const auto hits = job_.visibility.block(bx, by);
+        std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> hits;
+        for (int dy = 0; dy < Visibility::kBlock; ++dy)
+          for (int dx = 0; dx < Visibility::kBlock; ++dx)
+            hits[static_cast<size_t>(dx + Visibility::kBlock * dy)] =
+                tileHits_[static_cast<size_t>((bx - x0 + dx) + kTile * (by - y0 + dy))];
+        if (job_.lanes) {
+          shadeBlockInLanes(bx, by, hits);
+          continue;
+        }
         for (int qy = by; qy < std::min(by + Visibility::kBlock, v.height); qy += 2)
           for (int qx = bx; qx < std::min(bx + Visibility::kBlock, v.width); qx += 2)
             shadeQuad(qx, qy, [&](int px, int py) {
@@ -137,6 +148,71 @@ class TileShader {
   }
 
  private:
+  // The block's pixels eight at a time, two quads side by side per call: lanes 0-3 the left
+  // quad's pixels 0-3, lanes 4-7 the right one's.
+  void shadeBlockInLanes(int bx, int by, const std::array<PixelHit, 16>& hits) {
+    const Viewport v = job_.viewport;
+    for (int row = 0; row < Visibility::kBlock; row += 2) {
+      LaneFragments in{};
+      bool any = false;
+      for (int half = 0; half < 2; ++half) {
+        const int qx = bx + 2 * half, qy = by + row;
+        slots_ = 0;
+        for (int k = 0; k < 4; ++k) {
+          const int lane = 4 * half + k, px = qx + (k & 1), py = qy + (k >> 1);
+          if (px >= v.width || py >= v.height) continue;
+          const PixelHit& hit = hits[static_cast<size_t>((px - bx) + Visibility::kBlock * (py - by))];
+          laneHits_[static_cast<size_t>(lane)] = hit;
+          if (hit.triangle < 0) {
+            writeEmpty(px, py);
+            continue;
+          }
+          const PixelInputs pixel = inputsOf(k, quadAttributes(hit.triangle, qx, qy));
+          in.u[lane] = pixel.uv.x;
+          in.v[lane] = pixel.uv.y;
+          in.dudx[lane] = pixel.dUVdx.x;
+          in.dvdx[lane] = pixel.dUVdx.y;
+          in.dudy[lane] = pixel.dUVdy.x;
+          in.dvdy[lane] = pixel.dUVdy.y;
+          in.active[lane] = any = true;
+        }
+      }
+      if (!any) continue;
+      LaneResults out;
+      shadeLanes(static_cast<Backend&>(shader_), job_.arithmetic.texelConversion,
+                 job_.parameters, job_.settings.needOnly, in, out);
+      for (int lane = 0; lane < lanes::kLanes; ++lane) {
+        if (!in.active[lane]) continue;
+        const int half = lane >> 2, k = lane & 3;
+        const PixelInputs pixel{vec2(in.u[lane], in.v[lane]), vec2(in.dudx[lane], in.dvdx[lane]),
+                                vec2(in.dudy[lane], in.dvdy[lane])};
+        writePixel(bx + 2 * half + (k & 1), by + row + (k >> 1),
+                   laneHits_[static_cast<size_t>(lane)], pixel,
+                   glm::u8vec4(out.color[lane][0], out.color[lane][1], out.color[lane][2],
+                               out.color[lane][3]),
+                   glm::uvec4(out.need[lane][0], out.need[lane][1], out.need[lane][2],
+                              out.need[lane][3]),
+                   out.lod[lane], out.residentLevel[lane]);
+      }
+    }
+  }
+
+  // A pixel's shader inputs: its texture coordinates and their fine derivatives.
+  struct PixelInputs {
+    vec2 uv, dUVdx, dUVdy;
+  };
+
+  // Pixel k of a quad whose attributes are `at`: dUV/dx = right - left in its row, dUV/dy =
+  // above - below in its column.
+  static PixelInputs inputsOf(int k, const std::array<Attributes, 4>& at) {
+    const int column = k & 1, row = k >> 1;
+    const Attributes left = at[static_cast<size_t>(2 * row)],
+                     right = at[static_cast<size_t>(2 * row + 1)];
+    const Attributes below = at[static_cast<size_t>(column)],
+                     above = at[static_cast<size_t>(2 + column)];
+    return {at[static_cast<size_t>(k)].uv, right.uv - left.uv, above.uv - below.uv};
+  }
+
   template <class HitAt>
   void shadeQuad(int qx, int qy, const HitAt& hitAt) {
     slots_ = 0;
@@ -195,38 +271,38 @@ class TileShader {
 
   // The shader at pixel k of its quad, with fine derivatives from the quad's attributes.
   void shadePixel(int px, int py, int k, const PixelHit& hit, const std::array<Attributes, 4>& at) {
-    const int column = k & 1, row = k >> 1;
-    const Attributes here = at[static_cast<size_t>(k)];
-    const Attributes left = at[static_cast<size_t>(2 * row)],
-                     right = at[static_cast<size_t>(2 * row + 1)];
-    const Attributes below = at[static_cast<size_t>(column)],
-                     above = at[static_cast<size_t>(2 + column)];
-    const vec2 dUVdx = right.uv - left.uv, dUVdy = above.uv - below.uv;
+    const PixelInputs pixel = inputsOf(k, at);
     const Fragment f =
-        job_.settings.needOnly ? needOfFragment(here.uv, dUVdx, dUVdy)
-                               : shader_.vtShadeFragment(here.uv, dUVdx, dUVdy, job_.parameters);
+        job_.settings.needOnly
+            ? needOfFragment(pixel.uv, pixel.dUVdx, pixel.dUVdy)
+            : shader_.vtShadeFragment(pixel.uv, pixel.dUVdx, pixel.dUVdy, job_.parameters);
+    const glm::u8vec4 color(toUnorm8(f.color.x), toUnorm8(f.color.y), toUnorm8(f.color.z),
+                            toUnorm8(f.color.w));
+    writePixel(px, py, hit, pixel, color, f.need, f.lod, f.residentLevel);
+    if (job_.model && job_.denormalsOnly)
+      addDenormalSet(px, py, k, hit,
+                     OracleFragment{hit.triangle, color, pixel.uv, f.neededLevel, f.lod});
+    else if (job_.model)
+      addSet(px, py, OracleFragment{hit.triangle, color, pixel.uv, f.neededLevel, f.lod});
+  }
 
+  // A shaded pixel's values into the frame.
+  void writePixel(int px, int py, const PixelHit& hit, const PixelInputs& pixel, glm::u8vec4 color,
+                  glm::uvec4 need, float lod, int residentLevel) {
     Frame& frame = job_.frame;
     const size_t index = indexOf(px, py);
-    for (int c = 0; c < 4; ++c)
-      frame.color[index * 4 + static_cast<size_t>(c)] = toUnorm8(f.color[c]);
-    frame.need[index] = f.need;
+    for (int c = 0; c < 4; ++c) frame.color[index * 4 + static_cast<size_t>(c)] = color[c];
+    frame.need[index] = need;
     frame.depth[index] = hit.depth;
     frame.triangle[index] =
         static_cast<int32_t>(job_.triangles[static_cast<size_t>(hit.triangle)].primitive);
     if (job_.debug) {
-      frame.uv[index] = here.uv;
-      frame.derivatives[index] = vec4(dUVdx.x, dUVdx.y, dUVdy.x, dUVdy.y);
-      frame.lod[index] = f.lod;
-      frame.residentLevel[index] = static_cast<int8_t>(f.residentLevel);
+      frame.uv[index] = pixel.uv;
+      frame.derivatives[index] =
+          vec4(pixel.dUVdx.x, pixel.dUVdx.y, pixel.dUVdy.x, pixel.dUVdy.y);
+      frame.lod[index] = lod;
+      frame.residentLevel[index] = static_cast<int8_t>(residentLevel);
     }
-    const glm::u8vec4 color(frame.color[index * 4], frame.color[index * 4 + 1],
-                            frame.color[index * 4 + 2], frame.color[index * 4 + 3]);
-    if (job_.model && job_.denormalsOnly)
-      addDenormalSet(px, py, k, hit,
-                     OracleFragment{hit.triangle, color, here.uv, f.neededLevel, f.lod});
-    else if (job_.model)
-      addSet(px, py, OracleFragment{hit.triangle, color, here.uv, f.neededLevel, f.lod});
   }
 
   // Under a model whose one free parameter is the denormal mode, the pixel's set holds exactly two
@@ -305,6 +381,8 @@ class TileShader {
   std::array<int32_t, 4> quadTriangle_{};
   std::array<std::array<Attributes, 4>, 4> quadAttributes_{};
   int slots_ = 0;
+  std::array<PixelHit, lanes::kLanes> laneHits_{};  // the pixels of the lanes being shaded
+  std::array<PixelHit, kTile * kTile> tileHits_{};   // the tile's winners
 };
 
 SetShading setShading(const TextureDescription& d, const RenderSettings& settings) {
@@ -343,6 +421,7 @@ void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescr
                      setShading(d, settings),
                      shaderParameters(d, cacheSize, settings),
                      needClearValue(settings.need8),
+                     model == nullptr && !settings.scalarShading && lanes::lanesAvailable(),
                      frame};
 
   constexpr int kTile = TileShader<Backend, Source>::kTile;

@@ -50,6 +50,11 @@ class ResidentBackend {
     return shader::uvec4(0u, 0u, slot.resident.level, 0u);
   }
 
+  // The page the last lookup named, and making it current again: the lanes (lane_shading.h) look
+  // up eight pages before they fetch from any.
+  const void* currentPage() const { return texels_; }
+  void usePage(const void* page) { texels_ = static_cast<const std::vector<std::byte>*>(page); }
+
   glm::u8vec4 fetch8(shader::ivec2 texel) const {
     const TextureDescription& d = texture_->description();
     const int side = static_cast<int>(d.storedPageSide());
@@ -95,6 +100,15 @@ class CacheBackend {
                                                             static_cast<uint32_t>(level)});
     return shader::uvec4(e.x, e.y, e.z, e.w);
   }
+
+  // Texel fetches do not depend on the last lookup.
+  const void* currentPage() const { return nullptr; }
+  void usePage(const void*) {}
+
+  // The cache texture as RGBA8 rows, for reads of many texels at once (lane_shading.h).
+  const uint8_t* texels() const { return state_->texels.data(); }
+  int width() const { return static_cast<int>(state_->widthTexels); }
+  int height() const { return static_cast<int>(state_->heightTexels); }
 
   const uint8_t* texelAt(shader::ivec2 texel) const {
     const int x = std::clamp(texel.x, 0, static_cast<int>(state_->widthTexels) - 1);

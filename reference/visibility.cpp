@@ -69,6 +69,28 @@ void boundsOf(const RTCBoundsFunctionArguments* args) {
   args->bounds_o->upper_z = 1.0f;
 }
 
+// Triangle k (set up as t) as a candidate at pixel (px, py): the GL rules decide whether it covers
+// the pixel and passes the depth test against the clear value and the pixel's winner so far (hit,
+// whose stored key is bestKey); the nearer of the two wins, the earlier drawn on a tie.
+inline void considerCandidate(const SetupTriangle& t, int32_t k, int px, int py, DepthFormat format,
+                              const Arithmetic& arithmetic, PixelHit& hit, uint32_t& bestKey) {
+  if (!t.covers(px, py)) return;
+  const float z = windowDepth(t, px, py, arithmetic);
+  const Depth& depth = arithmetic.depth;
+  const uint32_t key = depthKey(z, format, depth);
+  // GL_LESS against the cleared 1.0
+  if (key == kNever || key >= depthKey(1.0f, format, depth)) return;
+  const float stored = format == DepthFormat::kDepth24 ? static_cast<float>(key) / 16777215.0f : z;
+  if (hit.triangle < 0 || key < bestKey || (key == bestKey && k < hit.triangle)) {
+    if (hit.triangle >= 0) hit.runnerUpDepth = std::min(hit.runnerUpDepth, hit.depth);
+    hit.triangle = k;
+    hit.depth = stored;
+    bestKey = key;
+  } else {
+    hit.runnerUpDepth = std::min(hit.runnerUpDepth, stored);
+  }
+}
+
 // A candidate for some rays of a packet: apply the GL rules per pixel, keep the winner, never
 // report a hit (so that Embree visits every box the rays cross).
 void testCandidate(const RTCIntersectFunctionNArguments* args) {
@@ -84,26 +106,10 @@ void testCandidate(const RTCIntersectFunctionNArguments* args) {
     if (!args->valid[lane]) continue;
     const int px = static_cast<int>(RTCRayN_org_x(rays, args->N, lane));
     const int py = static_cast<int>(RTCRayN_org_y(rays, args->N, lane));
-    if (!t.covers(px, py)) continue;
     const size_t slot =
         static_cast<size_t>((px - query->x0) + Visibility::kBlock * (py - query->y0));
-    const float z = windowDepth(t, px, py, *query->arithmetic);
-    const Depth& depth = query->arithmetic->depth;
-    const uint32_t key = depthKey(z, query->format, depth);
-    // GL_LESS against the cleared 1.0
-    if (key == kNever || key >= depthKey(1.0f, query->format, depth)) continue;
-    const float stored =
-        query->format == DepthFormat::kDepth24 ? static_cast<float>(key) / 16777215.0f : z;
-    PixelHit& hit = query->hits[slot];
-    uint32_t& bestKey = query->keys[slot];
-    if (hit.triangle < 0 || key < bestKey || (key == bestKey && k < hit.triangle)) {
-      if (hit.triangle >= 0) hit.runnerUpDepth = std::min(hit.runnerUpDepth, hit.depth);
-      hit.triangle = k;
-      hit.depth = stored;
-      bestKey = key;
-    } else {
-      hit.runnerUpDepth = std::min(hit.runnerUpDepth, stored);
-    }
+    considerCandidate(t, k, px, py, query->format, *query->arithmetic, query->hits[slot],
+                      query->keys[slot]);
   }
 }
 
@@ -128,32 +134,73 @@ Visibility::Visibility(const std::vector<SetupTriangle>& triangles, Viewport vie
       arithmetic_(arithmetic),
       margin_(margin) {
   boxData_ = std::make_unique<BoxData>(BoxData{&triangles, margin});
+  // Bins by counting: how many triangles each tile holds, then the triangles in draw order.
+  tilesX_ = (viewport.width + kTile - 1) / kTile;
+  const int tilesY = (viewport.height + kTile - 1) / kTile;
+  binStart_.assign(static_cast<size_t>(tilesX_) * static_cast<size_t>(tilesY) + 1, 0);
+  const auto forEachTile = [&](const SetupTriangle& t, const auto& visit) {
+    const int x0 = std::max(t.minX, 0), x1 = std::min(t.maxX, viewport.width - 1);
+    const int y0 = std::max(t.minY, 0), y1 = std::min(t.maxY, viewport.height - 1);
+    if (x0 > x1 || y0 > y1) return;
+    for (int ty = y0 / kTile; ty <= y1 / kTile; ++ty)
+      for (int tx = x0 / kTile; tx <= x1 / kTile; ++tx)
+        visit(static_cast<size_t>(ty) * static_cast<size_t>(tilesX_) + static_cast<size_t>(tx));
+  };
+  for (const SetupTriangle& t : triangles) forEachTile(t, [&](size_t i) { ++binStart_[i + 1]; });
+  for (size_t i = 1; i < binStart_.size(); ++i) binStart_[i] += binStart_[i - 1];
+  binned_.resize(binStart_.back());
+  std::vector<uint32_t> next(binStart_.begin(), binStart_.end() - 1);
+  for (size_t k = 0; k < triangles.size(); ++k)
+    forEachTile(triangles[k], [&](size_t i) { binned_[next[i]++] = static_cast<uint32_t>(k); });
+}
+
+void Visibility::buildScene() const {
+  std::call_once(built_, [this] {
 #ifdef VT_STD_THREAD_WORKERS
-  // The ThreadSanitizer build (parallel_for.h): Embree's scene build runs on TBB, which TSan
-  // cannot follow, so it runs on this thread; the tile workers still trace rays in parallel.
-  device_ = rtcNewDevice("threads=1");
+    // The ThreadSanitizer build (parallel_for.h): Embree's scene build runs on TBB, which TSan
+    // cannot follow, so it runs on this thread; the tile workers still trace rays in parallel.
+    device_ = rtcNewDevice("threads=1");
 #else
-  device_ = rtcNewDevice(nullptr);
+    device_ = rtcNewDevice(nullptr);
 #endif
-  if (!device_) throw std::runtime_error("Embree: cannot create a device");
-  scene_ = rtcNewScene(device_);
-  RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
-  rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(triangles.size()));
-  rtcSetGeometryUserData(geometry, boxData_.get());
-  rtcSetGeometryBoundsFunction(geometry, boundsOf, nullptr);
-  rtcSetGeometryIntersectFunction(geometry, testCandidate);
-  rtcSetGeometryOccludedFunction(geometry, testCandidateOccluded);
-  rtcCommitGeometry(geometry);
-  rtcAttachGeometry(scene_, geometry);
-  rtcReleaseGeometry(geometry);
-  rtcCommitScene(scene_);
-  if (rtcGetDeviceError(device_) != RTC_ERROR_NONE)
-    throw std::runtime_error("Embree: building the scene failed");
+    if (!device_) throw std::runtime_error("Embree: cannot create a device");
+    scene_ = rtcNewScene(device_);
+    RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(triangles_.size()));
+    rtcSetGeometryUserData(geometry, boxData_.get());
+    rtcSetGeometryBoundsFunction(geometry, boundsOf, nullptr);
+    rtcSetGeometryIntersectFunction(geometry, testCandidate);
+    rtcSetGeometryOccludedFunction(geometry, testCandidateOccluded);
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(scene_, geometry);
+    rtcReleaseGeometry(geometry);
+    rtcCommitScene(scene_);
+    if (rtcGetDeviceError(device_) != RTC_ERROR_NONE)
+      throw std::runtime_error("Embree: building the scene failed");
+  });
 }
 
 Visibility::~Visibility() {
-  rtcReleaseScene(scene_);
-  rtcReleaseDevice(device_);
+  if (scene_) rtcReleaseScene(scene_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+void Visibility::tile(int x0, int y0, std::span<PixelHit, kTile * kTile> hits) const {
+  std::fill(hits.begin(), hits.end(), PixelHit{});
+  std::array<uint32_t, kTile * kTile> keys{};
+  const size_t bin =
+      static_cast<size_t>(y0 / kTile) * static_cast<size_t>(tilesX_) + static_cast<size_t>(x0 / kTile);
+  const int xEnd = std::min(x0 + kTile, viewport_.width) - 1,
+            yEnd = std::min(y0 + kTile, viewport_.height) - 1;
+  for (uint32_t i = binStart_[bin]; i < binStart_[bin + 1]; ++i) {
+    const int32_t k = static_cast<int32_t>(binned_[i]);
+    const SetupTriangle& t = triangles_[static_cast<size_t>(k)];
+    for (int py = std::max(t.minY, y0); py <= std::min(t.maxY, yEnd); ++py)
+      for (int px = std::max(t.minX, x0); px <= std::min(t.maxX, xEnd); ++px) {
+        const size_t slot = static_cast<size_t>((px - x0) + kTile * (py - y0));
+        considerCandidate(t, k, px, py, format_, arithmetic_, hits[slot], keys[slot]);
+      }
+  }
 }
 
 std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> Visibility::block(int x0,
@@ -168,6 +215,7 @@ std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> Visibility::block(
   query.arithmetic = &arithmetic_;
   query.hits.fill(PixelHit{});
   query.keys.fill(0);
+  buildScene();
   alignas(64) RTCRayHit16 rays{};
   alignas(64) int valid[16];
   for (int lane = 0; lane < 16; ++lane) {
@@ -191,6 +239,7 @@ std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> Visibility::block(
 
 void Visibility::candidates(int px, int py, std::vector<int32_t>& out) const {
   out.clear();
+  buildScene();
   BlockQuery query;
   rtcInitIntersectContext(&query.context);
   query.triangles = &triangles_;

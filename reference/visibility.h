@@ -1,20 +1,30 @@
 #pragma once
-// Which set-up triangle a GL rasterizer shows at each pixel, found with Embree.
+// Which set-up triangle a GL rasterizer shows at each pixel.
 //
-// Embree supplies the search: every set-up triangle is a user primitive whose box, in window
-// coordinates, spans the pixel centres its snapped vertices can enclose (an integer range, so the
-// box is exact, not estimated). The ray of pixel (px, py) runs along +z through its centre, so it
-// meets the box of every triangle that could cover it. For each such candidate the GL rules
-// decide exactly: the integer edge functions with the tie rule (coverage), depth from the z plane
-// (rule 7) with the depth format's comparison, and GL_LESS against a cleared depth of 1.0, where
-// the earlier drawn triangle wins a tie. Embree's own intersection arithmetic never decides.
-// Pixels are queried in coherent packets of 4 x 4 rays (rtcIntersect16).
+// Frames are drawn tile by tile: every set-up triangle is binned into the tiles of kTile x kTile
+// pixels its box of candidate centres touches (in draw order), and a tile's pixels are decided by
+// walking its triangles' boxes inside it, as a tile-binned GL rasterizer does.
+//
+// Embree supplies the search for single pixels and blocks (the result sets' candidates, tests):
+// every set-up triangle is a user primitive whose box, in window coordinates, spans the pixel
+// centres its snapped vertices can enclose (an integer range, so the box is exact, not estimated).
+// The ray of pixel (px, py) runs along +z through its centre, so it meets the box of every
+// triangle that could cover it. Its scene is built on the first such query, so a frame that needs
+// none pays nothing for it.
+//
+// Either way, for each candidate the GL rules decide exactly, in one function: the integer edge
+// functions with the tie rule (coverage), depth from the z plane (rule 7) with the depth format's
+// comparison, and GL_LESS against a cleared depth of 1.0, where the earlier drawn triangle wins a
+// tie. Embree's own intersection arithmetic never decides. Pixels are queried in coherent packets
+// of 4 x 4 rays (rtcIntersect16).
 
 #include <embree3/rtcore.h>
 
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <mutex>
+#include <span>
 #include <vector>
 
 #include "reference/triangle_setup.h"
@@ -36,6 +46,7 @@ struct BoxData;
 class Visibility {
  public:
   static constexpr int kBlock = 4;  // pixels per side of a packet
+  static constexpr int kTile = 16;  // pixels per side of a tile
 
   // `margin`: pixels by which each triangle's box of candidate centres grows, for a model under
   // which snapping to a coarser grid may cover centres beside those of the oracle's 8-bit grid.
@@ -45,6 +56,9 @@ class Visibility {
   Visibility(const Visibility&) = delete;
   Visibility& operator=(const Visibility&) = delete;
 
+  // The pixels of the tile from (x0, y0) (multiples of kTile): hits[dx + kTile dy]; pixels outside
+  // the viewport get no hit. Thread-safe.
+  void tile(int x0, int y0, std::span<PixelHit, kTile * kTile> hits) const;
   // The triangle shown at pixel (px, py). Thread-safe.
   PixelHit at(int px, int py) const;
   // The 4 x 4 pixels from (x0, y0): hits[dx + 4 dy]; pixels outside the viewport get no hit.
@@ -60,9 +74,16 @@ class Visibility {
   DepthFormat format_;
   Arithmetic arithmetic_;
   int margin_;
+  // The tiles' triangles: those of tile i are binned_[binStart_[i] .. binStart_[i + 1]), in draw
+  // order.
+  int tilesX_ = 0;
+  std::vector<uint32_t> binStart_, binned_;
+  // Embree's scene, built by the first query that needs it.
+  void buildScene() const;
   std::unique_ptr<BoxData> boxData_;
-  RTCDevice device_ = nullptr;
-  RTCScene scene_ = nullptr;
+  mutable std::once_flag built_;
+  mutable RTCDevice device_ = nullptr;
+  mutable RTCScene scene_ = nullptr;
 };
 
 // Window z of a set-up triangle at a pixel centre: offset by + 0.0 and clamped to [0, 1] (rule 7),

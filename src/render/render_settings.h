@@ -31,6 +31,9 @@ struct RenderSettings {
   // left (0, 0, 0, 0). The needbuffer is the same as with colour: it does not depend on texels.
   bool needOnly = false;
   unsigned threads = 0;  // the oracle's worker threads; 0: every core
+  // The oracle shades one pixel at a time even where the CPU runs eight in SIMD lanes (AVX2): the
+  // same bits either way (tests compare them), slower.
+  bool scalarShading = false;
 };
 
 // Settings for rendering under `model`: its arithmetic and the model itself.

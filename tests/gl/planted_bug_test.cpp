@@ -40,21 +40,21 @@ struct PlantedBug {
 const PlantedBug kBugs[] = {
     {"HalfTexelOffset", "precise vec2 texel = origin + inside * float(p.pageSize);",
      "precise vec2 texel = origin + inside * float(p.pageSize) + vec2(0.5, 0.5);", 4, false},
-    {"BorderOffByOne", "int(entry.x) * stored + p.border, int(entry.y) * stored + p.border",
-     "int(entry.x) * stored + p.border - 1, int(entry.y) * stored + p.border - 1", 4, false},
+    {"BorderOffByOne", "vint(entry.x) * stored + p.border, vint(entry.y) * stored + p.border",
+     "vint(entry.x) * stored + p.border - 1, vint(entry.y) * stored + p.border - 1", 4, false},
     {"TrilinearWeightReversed", "precise vec4 color = c0.color + (c1.color - c0.color) * weight;",
      "precise vec4 color = c1.color + (c0.color - c1.color) * weight;", 4, false},
-    {"NeedLevelFloor", "int vtNeededLevel(float lod) { return int(ceil(lod)); }",
-     "int vtNeededLevel(float lod) { return int(floor(lod)); }", 3, false},
+    {"NeedLevelFloor", "vint vtNeededLevel(vfloat lod) { return vint(ceil(lod)); }",
+     "vint vtNeededLevel(vfloat lod) { return vint(floor(lod)); }", 3, false},
     {"NoClampOfOneToLastPage",
-     "return ivec2(int(vtClampOrZero(floor(scaled.x), last)), int(vtClampOrZero(floor(scaled.y), "
-     "last)));",
-     "return ivec2(int(floor(scaled.x)), int(floor(scaled.y)));", 2, false},
-    {"IndirectionAtOwnLevel", "int i = int(entry.z);", "int i = level;", 4, false},
+     "return ivec2(vint(vtClampOrZero(floor(scaled.x), last)),\n"
+     "               vint(vtClampOrZero(floor(scaled.y), last)));",
+     "return ivec2(vint(floor(scaled.x)), vint(floor(scaled.y)));", 2, false},
+    {"IndirectionAtOwnLevel", "vint i = vint(entry.z);", "vint i = level;", 4, false},
     {"BilinearWeightsFourBits", "precise vec2 f = t - base;",
      "precise vec2 f = floor((t - base) * 16.0) / 16.0;", 4, false},
-    {"LodFromSumOfLengths", "precise float eMax = sqrt(larger);",
-     "precise float eMax = sqrt(ex) + sqrt(ey);", 3, false},
+    {"LodFromSumOfLengths", "precise vfloat eMax = sqrt(larger);",
+     "precise vfloat eMax = sqrt(ex) + sqrt(ey);", 3, false},
     // Coarse derivatives written out (llvmpipe's dFdxCoarse returns what its dFdxFine returns in
     // these frames): the lower row's dFdx and the left column's dFdy for the whole quad.
     {"CoarseDerivatives", "dFdxFine(vUV), dFdyFine(vUV)",

@@ -1,0 +1,181 @@
+#pragma once
+// The oracle's shading of eight pixels at once: the shared shader logic over SIMD lanes
+// (shader/shader_lanes.h), one pixel per lane, on the texture views of shader_backends.h. The
+// shader's arithmetic runs lane-wide; the indirection lookups and texel reads are made lane by
+// lane through the same one-pixel backends, and their texels converted lane-wide. Every lane gets
+// the bits the one-pixel shader (ShaderLogic) gets for its pixel: the renderer uses either, and
+// tests compare them frame by frame.
+//
+// Compiled for AVX2 (shader/lanes.h): call only where lanes::lanesAvailable().
+
+#include <cstdint>
+#include <cstring>
+
+#include "render/arithmetic.h"
+#include "shader/shader_lanes.h"
+
+namespace vt::reference {
+
+// One call's pixels: the shader's inputs per lane, and which lanes hold a pixel to shade.
+struct LaneFragments {
+  float u[lanes::kLanes], v[lanes::kLanes];
+  float dudx[lanes::kLanes], dvdx[lanes::kLanes], dudy[lanes::kLanes], dvdy[lanes::kLanes];
+  bool active[lanes::kLanes];
+};
+
+// What the shader returned per lane: the framebuffer's bytes of the colour, the needbuffer value,
+// the LOD and the level actually sampled (-1 when only the needbuffer was computed).
+struct LaneResults {
+  uint8_t color[lanes::kLanes][4];
+  uint32_t need[lanes::kLanes][4];
+  float lod[lanes::kLanes];
+  int32_t residentLevel[lanes::kLanes];
+};
+
+#pragma GCC push_options
+#pragma GCC target("avx2,fma")
+
+// A one-pixel backend (ResidentBackend, CacheBackend) seen by the lanes: each active lane's lookup
+// and reads through it in turn, remembering the page each lane's lookup named for its reads.
+template <class Scalar>
+class LaneBackend {
+ public:
+  LaneBackend(Scalar& scalar, UnormConversion conversion, const bool* active)
+      : scalar_(scalar), conversion_(conversion), active_(active) {}
+
+  lanes::Float8 log2(lanes::Float8 x) {
+    lanes::Float8 result(0.0f);
+    for (int k = 0; k < lanes::kLanes; ++k)
+      if (active_[k]) result.v[k] = scalar_.log2(x[k]);
+    return result;
+  }
+
+  lanes::UVec4 vtFetchIndirection(lanes::IVec2 page, lanes::Int8 level) {
+    lanes::UVec4 entry(0u, 0u, 0u, 0u);
+    for (int k = 0; k < lanes::kLanes; ++k) {
+      if (!active_[k]) continue;
+      const glm::uvec4 e = scalar_.vtFetchIndirection(glm::ivec2(page.x[k], page.y[k]), level[k]);
+      entry.x.v[k] = e.x;
+      entry.y.v[k] = e.y;
+      entry.z.v[k] = e.z;
+      entry.w.v[k] = e.w;
+      pages_[k] = scalar_.currentPage();
+    }
+    return entry;
+  }
+
+  // The texel's bytes, read lane by lane, then converted to float lane-wide as unorm8ToFloat
+  // converts them (reference/linear_filter.h): times the float 1/255, or divided by 255.
+  lanes::Vec4 vtFetchCacheTexel(lanes::IVec2 texel) {
+    if constexpr (requires { scalar_.texels(); }) {
+      // One RGBA8 texture: the eight texels in one gather, at coordinates clamped to its edge
+      // as fetch8 clamps them (every lane's address is inside the texture, active or not).
+      const lanes::Int8 x = clampLanes(texel.x, scalar_.width() - 1);
+      const lanes::Int8 y = clampLanes(texel.y, scalar_.height() - 1);
+      const lanes::Int8 index = y * scalar_.width() + x;
+      const lanes::Int8 rgba = reinterpret_cast<lanes::i32x8>(_mm256_i32gather_epi32(
+          reinterpret_cast<const int*>(scalar_.texels()), reinterpret_cast<__m256i>(index.v), 4));
+      const lanes::Int8 byte(255);
+      return {unorm(rgba & byte), unorm((rgba >> 8) & byte), unorm((rgba >> 16) & byte),
+              unorm((rgba >> 24) & byte)};
+    }
+    lanes::Int8 channel[4] = {0, 0, 0, 0};
+    for (int k = 0; k < lanes::kLanes; ++k) {
+      if (!active_[k]) continue;
+      scalar_.usePage(pages_[k]);
+      const glm::u8vec4 t = scalar_.fetch8(glm::ivec2(texel.x[k], texel.y[k]));
+      for (int c = 0; c < 4; ++c) channel[c].v[k] = t[c];
+    }
+    return {unorm(channel[0]), unorm(channel[1]), unorm(channel[2]), unorm(channel[3])};
+  }
+
+  lanes::Vec4 vtSampleCacheLinear(lanes::Vec2 texel) {
+    lanes::Vec4 result(0.0f, 0.0f, 0.0f, 0.0f);
+    for (int k = 0; k < lanes::kLanes; ++k) {
+      if (!active_[k]) continue;
+      scalar_.usePage(pages_[k]);
+      const glm::vec4 s = scalar_.vtSampleCacheLinear(glm::vec2(texel.x[k], texel.y[k]));
+      result.x.v[k] = s.x;
+      result.y.v[k] = s.y;
+      result.z.v[k] = s.z;
+      result.w.v[k] = s.w;
+    }
+    return result;
+  }
+
+ private:
+  static lanes::Int8 clampLanes(lanes::Int8 v, int hi) {
+    const lanes::Int8 below = mix(lanes::Int8(hi), v, v < lanes::Int8(hi));
+    return mix(lanes::Int8(0), below, lanes::Int8(0) < below);
+  }
+
+  lanes::Float8 unorm(lanes::Int8 byte) const {
+    const lanes::Float8 value(byte);
+    return conversion_ == UnormConversion::kDivided ? value / lanes::Float8(255.0f)
+                                                    : value * lanes::Float8(1.0f / 255.0f);
+  }
+
+  Scalar& scalar_;
+  UnormConversion conversion_;
+  const bool* active_;
+  const void* pages_[lanes::kLanes] = {};
+};
+
+namespace lane_detail {
+
+inline lanes::Float8 load(const float* values) {
+  lanes::Float8 result;
+  std::memcpy(&result.v, values, sizeof result.v);
+  return result;
+}
+
+// The framebuffer's conversion (toUnorm8, shader_backends.h): clamp (NaN to 0), times 255, round
+// to nearest even.
+inline lanes::Int8 toUnorm8(lanes::Float8 c) {
+  const lanes::Float8 below = mix(lanes::Float8(1.0f), c, c <= lanes::Float8(1.0f));
+  const lanes::Float8 clamped = mix(lanes::Float8(0.0f), below, c >= lanes::Float8(0.0f));
+  return lanes::Int8(nearbyint(clamped * lanes::Float8(255.0f)));
+}
+
+}  // namespace lane_detail
+
+// Shades the active lanes of `in` through `scalar` (the tile's one-pixel backend) into `out`:
+// vtShadeFragment, or with `needOnly` its first steps (the LOD and the needbuffer entry, as the
+// renderer's needOfFragment).
+template <class Scalar>
+void shadeLanes(Scalar& scalar, UnormConversion conversion, const shader::VtParameters& p,
+                bool needOnly, const LaneFragments& in, LaneResults& out) {
+  using Logic = shader::LaneShaderLogic<LaneBackend<Scalar>>;
+  Logic shader(scalar, conversion, in.active);
+  using lane_detail::load;
+  const lanes::Vec2 uvIn(load(in.u), load(in.v));
+  const lanes::Vec2 dUVdx(load(in.dudx), load(in.dvdx)), dUVdy(load(in.dudy), load(in.dvdy));
+  typename Logic::VtFragment f;
+  if (needOnly) {
+    const lanes::Vec2 uv(shader.vtClampOrZero(uvIn.x, 1.0f), shader.vtClampOrZero(uvIn.y, 1.0f));
+    f.lod = shader.vtLevelOfDetail(dUVdx, dUVdy, p);
+    f.neededLevel = shader.vtNeededLevel(f.lod);
+    const lanes::IVec2 page = shader.vtPageAt(uv, f.neededLevel);
+    f.need = p.need8 != 0 ? shader.vtEncodeNeed8(page, f.neededLevel)
+                          : shader.vtEncodeNeed32(page, f.neededLevel);
+    f.color = lanes::Vec4(0.0f, 0.0f, 0.0f, 0.0f);
+    f.residentLevel = -1;
+  } else {
+    f = shader.vtShadeFragment(uvIn, dUVdx, dUVdy, p);
+  }
+  const lanes::Int8 color[4] = {lane_detail::toUnorm8(f.color.x), lane_detail::toUnorm8(f.color.y),
+                                lane_detail::toUnorm8(f.color.z), lane_detail::toUnorm8(f.color.w)};
+  for (int k = 0; k < lanes::kLanes; ++k) {
+    for (int c = 0; c < 4; ++c) out.color[k][c] = static_cast<uint8_t>(color[c][k]);
+    out.need[k][0] = f.need.x[k];
+    out.need[k][1] = f.need.y[k];
+    out.need[k][2] = f.need.z[k];
+    out.need[k][3] = f.need.w[k];
+    out.lod[k] = f.lod[k];
+    out.residentLevel[k] = f.residentLevel[k];
+  }
+}
+
+#pragma GCC pop_options
+
+}  // namespace vt::reference

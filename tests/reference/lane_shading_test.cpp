@@ -1,0 +1,197 @@
+// The oracle's two ways of drawing a frame give the same bytes: eight pixels per SIMD call
+// (reference/lane_shading.h) and one at a time (RenderSettings::scalarShading), for every named
+// arithmetic, both texture views, every shader switch and extreme texture coordinates; and its
+// two visibility searches agree: tiles walked by the binned rasterizer and Embree's packets.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "build/synthetic_texture.h"
+#include "reference/renderer.h"
+#include "reference/visibility.h"
+#include "render/arithmetic_points.h"
+#include "render/cache_state.h"
+#include "shader/lanes.h"
+#include "test_support.h"
+
+namespace vt::reference {
+namespace {
+
+// A tilted, perspective height field of 24 x 24 cells over most of the viewport (beyond it at
+// the top and bottom, short of it at the sides), plus
+// triangles whose texture coordinates are extreme: NaN, infinite, far outside [0, 1], and a
+// sliver minified to one texel per screen.
+ClipSpaceMesh scene() {
+  ClipSpaceMesh mesh;
+  constexpr int kCells = 24;
+  for (int j = 0; j <= kCells; ++j)
+    for (int i = 0; i <= kCells; ++i) {
+      const float x = -0.9f + 1.8f * static_cast<float>(i) / kCells;
+      const float y = -1.2f + 2.4f * static_cast<float>(j) / kCells;
+      const float w = 1.0f + 0.6f * (y + 1.2f) + 0.05f * std::sin(7.0f * x);
+      mesh.vertices.push_back({{x * w, y * w, (0.3f * y + 0.1f * std::cos(5.0f * x)) * w, w},
+                               {0.5f + 0.45f * x * std::abs(x), 0.5f + 0.4f * y}});
+    }
+  for (int j = 0; j < kCells; ++j)
+    for (int i = 0; i < kCells; ++i) {
+      const uint32_t a = static_cast<uint32_t>(j * (kCells + 1) + i), b = a + 1,
+                     c = a + kCells + 1, d = c + 1;
+      mesh.indices.insert(mesh.indices.end(), {a, b, c, b, d, c});
+    }
+  const float nan = std::numeric_limits<float>::quiet_NaN(),
+              inf = std::numeric_limits<float>::infinity();
+  const auto triangle = [&](glm::vec2 centre, float size, glm::vec2 uv0, glm::vec2 uv1,
+                            glm::vec2 uv2) {
+    const uint32_t base = static_cast<uint32_t>(mesh.vertices.size());
+    mesh.vertices.push_back({{centre.x - size, centre.y - size, -0.5f, 1.0f}, uv0});
+    mesh.vertices.push_back({{centre.x + size, centre.y - size, -0.5f, 1.0f}, uv1});
+    mesh.vertices.push_back({{centre.x, centre.y + size, -0.5f, 1.0f}, uv2});
+    mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2});
+  };
+  triangle({-0.6f, 0.5f}, 0.15f, {nan, 0.2f}, {0.3f, nan}, {0.5f, 0.5f});
+  triangle({0.0f, 0.5f}, 0.15f, {inf, 0.2f}, {-inf, 0.3f}, {0.5f, 1e30f});
+  triangle({0.6f, 0.5f}, 0.15f, {-3.0f, 7.0f}, {12.0f, -5.0f}, {1.0f, 1.0f});
+  triangle({-0.6f, -0.5f}, 0.2f, {0.25f, 0.25f}, {0.25f + 1e-7f, 0.25f}, {0.25f, 0.25f + 1e-7f});
+  triangle({0.6f, -0.5f}, 0.02f, {0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f});
+  return mesh;
+}
+
+class LaneShading : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+    if (!lanes::lanesAvailable()) GTEST_SKIP() << "this CPU has no AVX2: only scalar shading";
+  }
+
+  // Draws `mesh` both ways with `settings` and the point's arithmetic, and compares every
+  // channel.
+  template <class Texture>
+  void expectSameBytes(const Texture& texture, RenderSettings settings, const std::string& what) {
+    settings.arithmetic = arithmeticPoint(GetParam());
+    settings.viewport = {157, 93};  // tiles, blocks and quads cut at the right and top edges
+    settings.debugChannels = true;
+    settings.threads = 2;
+    settings.scalarShading = true;
+    const Frame scalar = renderFrame(mesh_, texture, settings);
+    settings.scalarShading = false;
+    const Frame lanes = renderFrame(mesh_, texture, settings);
+    EXPECT_EQ(lanes.color, scalar.color) << what;
+    EXPECT_EQ(lanes.need, scalar.need) << what;
+    EXPECT_EQ(lanes.depth, scalar.depth) << what;
+    EXPECT_EQ(lanes.triangle, scalar.triangle) << what;
+    EXPECT_EQ(lanes.lod.size(), scalar.lod.size()) << what;
+    for (size_t i = 0; i < lanes.lod.size(); ++i) {
+      // Bits, so that NaN compares equal to NaN and -0 differs from +0.
+      ASSERT_EQ(std::bit_cast<uint32_t>(lanes.lod[i]), std::bit_cast<uint32_t>(scalar.lod[i]))
+          << what << ", pixel " << i;
+      ASSERT_EQ(lanes.residentLevel[i], scalar.residentLevel[i]) << what << ", pixel " << i;
+    }
+    EXPECT_GT(std::count(scalar.triangle.begin(), scalar.triangle.end(), -1), 0) << what;
+  }
+
+  const ClipSpaceMesh mesh_ = scene();
+  test::ScratchDirectory dir_;
+};
+
+INSTANTIATE_TEST_SUITE_P(NamedPoints, LaneShading, ::testing::ValuesIn(arithmeticPointNames()),
+                         [](const auto& info) { return info.param; });
+
+// Every combination of the shader's switches that changes what a lane computes.
+std::vector<std::pair<std::string, RenderSettings>> switches() {
+  std::vector<std::pair<std::string, RenderSettings>> all;
+  for (const bool trilinear : {true, false})
+    for (const bool exactFilter : {true, false}) {
+      RenderSettings s;
+      s.trilinear = trilinear;
+      s.exactFilter = exactFilter;
+      all.emplace_back(std::string(trilinear ? "trilinear" : "bilinear") +
+                           (exactFilter ? " texel fetches" : " GL_LINEAR"),
+                       s);
+    }
+  RenderSettings need8;
+  need8.need8 = true;
+  need8.depthFormat = DepthFormat::kDepth24;
+  all.emplace_back("8-bit needbuffer, Z24", need8);
+  RenderSettings needOnly;
+  needOnly.needOnly = true;
+  needOnly.needScaleLog2 = 2;
+  all.emplace_back("needbuffer only, need scale 2", needOnly);
+  return all;
+}
+
+TEST_P(LaneShading, EveryPageResidentGivesTheSameBytesAsOnePixelAtATime) {
+  // Three channels: the resident view expands each texel to RGBA lane by lane.
+  for (const uint32_t channels : {4u, 3u}) {
+    const auto file = dir_ / ("t" + std::to_string(channels) + ".vt");
+    writeSyntheticTexture(
+        file, {{.pageSize = 16, .border = 2, .levelCount = 6, .channels = channels}, std::nullopt});
+    const VirtualTextureReader reader(file);
+    const ResidentTexture texture(reader);
+    for (const auto& [what, settings] : switches())
+      expectSameBytes(texture, settings, what + ", " + std::to_string(channels) + " channels");
+  }
+}
+
+TEST_P(LaneShading, ACacheStateWithMissingPagesGivesTheSameBytesAsOnePixelAtATime) {
+  // Every third stored page resident: many lookups fall back to an ancestor, and neighbouring
+  // lanes read different pages of different levels.
+  writeSyntheticTexture(dir_ / "t.vt",
+                        {{.pageSize = 16, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
+  const VirtualTextureReader reader(dir_ / "t.vt");
+  std::vector<uint64_t> pages;
+  for (uint64_t p = 0; p < reader.storedPageCount(); p += 3) pages.push_back(p);
+  const CacheState cache = makeCacheState(reader, pages, 40, 40);
+  for (const auto& [what, settings] : switches()) expectSameBytes(cache, settings, what);
+}
+
+TEST_P(LaneShading, TheTileRasterizerAgreesWithEmbreesPacketsOnEveryPixel) {
+  // Random overlapping triangles, two coplanar copies of one (the earlier drawn wins), both depth
+  // formats: the winner, its stored depth and the runner-up's must be the same bits.
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> coordinate(-1.5f, 1.5f), depth(-0.9f, 0.9f), w(0.5f, 2.0f);
+  ClipSpaceMesh mesh;
+  for (int k = 0; k < 150; ++k)
+    for (int corner = 0; corner < 3; ++corner) {
+      const float vw = w(random);
+      mesh.vertices.push_back(
+          {{coordinate(random) * vw, coordinate(random) * vw, depth(random) * vw, vw}, {0.5f, 0.5f}});
+      mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
+    }
+  for (int copy = 0; copy < 2; ++copy)
+    for (int corner = 0; corner < 3; ++corner) {
+      mesh.vertices.push_back(mesh.vertices[static_cast<size_t>(corner)]);
+      mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
+    }
+  const Arithmetic arithmetic = arithmeticPoint(GetParam());
+  const Viewport viewport{101, 67};
+  const auto triangles = setupTriangles(mesh, viewport, arithmetic);
+  for (const DepthFormat format : {DepthFormat::kDepth32F, DepthFormat::kDepth24}) {
+    const Visibility visibility(triangles, viewport, format, arithmetic);
+    std::array<PixelHit, Visibility::kTile * Visibility::kTile> tile;
+    size_t covered = 0;
+    for (int y0 = 0; y0 < viewport.height; y0 += Visibility::kTile)
+      for (int x0 = 0; x0 < viewport.width; x0 += Visibility::kTile) {
+        visibility.tile(x0, y0, tile);
+        for (int by = y0; by < y0 + Visibility::kTile; by += Visibility::kBlock)
+          for (int bx = x0; bx < x0 + Visibility::kTile; bx += Visibility::kBlock) {
+            const auto block = visibility.block(bx, by);
+            for (int k = 0; k < Visibility::kBlock * Visibility::kBlock; ++k) {
+              const int px = bx + k % Visibility::kBlock, py = by + k / Visibility::kBlock;
+              const PixelHit& a = tile[static_cast<size_t>((px - x0) + Visibility::kTile * (py - y0))];
+              const PixelHit& b = block[static_cast<size_t>(k)];
+              ASSERT_EQ(a.triangle, b.triangle) << px << ", " << py;
+              ASSERT_EQ(std::bit_cast<uint32_t>(a.depth), std::bit_cast<uint32_t>(b.depth));
+              ASSERT_EQ(std::bit_cast<uint32_t>(a.runnerUpDepth),
+                        std::bit_cast<uint32_t>(b.runnerUpDepth));
+              covered += a.triangle >= 0;
+            }
+          }
+      }
+    EXPECT_GT(covered, static_cast<size_t>(viewport.width * viewport.height / 2));
+  }
+}
+
+}  // namespace
+}  // namespace vt::reference
