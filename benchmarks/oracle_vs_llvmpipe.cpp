@@ -7,7 +7,8 @@
 // under the pinned llvmpipe model and with 2 threads under gl45 (result sets for every pixel).
 // Prints one row per scene and size: the medians, the ratio oracle / llvmpipe (target <= 1.0),
 // the oracle's scaling from 1 to 2 threads (target >= 1.8) and the cost of gl45 over the pinned
-// model (target <= 2.0). scripts/oracle-vs-llvmpipe.sh builds the maps and runs this three times.
+// model (target <= 2.0). benchmarks/oracle_vs_llvmpipe.sh builds the maps and runs this three
+// times.
 //   usage: oracle_vs_llvmpipe [--frames N] [--map NAME TEXTURE.vt MESH.obj PATH.json]...
 
 #include <unistd.h>
@@ -186,7 +187,8 @@ int main(int argc, char** argv) {
       const double sets2 = oracle(bounded);
 
       const double count = static_cast<double>(frames.size());
-      const std::string size = std::to_string(viewport.width) + "x" + std::to_string(viewport.height);
+      const std::string size =
+          std::to_string(viewport.width) + "x" + std::to_string(viewport.height);
       std::printf("%-12s %-9s %6zu %9.1f %10.1f %10.1f %10.1f %7.2fx %7.2fx %8.2fx\n",
                   scene.name.c_str(), size.c_str(), frames.size(), llvmpipe / count,
                   oracle2 / count, oracle1 / count, sets2 / count, oracle2 / llvmpipe,

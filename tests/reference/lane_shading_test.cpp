@@ -37,8 +37,8 @@ ClipSpaceMesh scene() {
     }
   for (int j = 0; j < kCells; ++j)
     for (int i = 0; i < kCells; ++i) {
-      const uint32_t a = static_cast<uint32_t>(j * (kCells + 1) + i), b = a + 1,
-                     c = a + kCells + 1, d = c + 1;
+      const uint32_t a = static_cast<uint32_t>(j * (kCells + 1) + i), b = a + 1, c = a + kCells + 1,
+                     d = c + 1;
       mesh.indices.insert(mesh.indices.end(), {a, b, c, b, d, c});
     }
   const float nan = std::numeric_limits<float>::quiet_NaN(),
@@ -137,8 +137,8 @@ TEST_P(LaneShading, EveryPageResidentGivesTheSameBytesAsOnePixelAtATime) {
 TEST_P(LaneShading, ACacheStateWithMissingPagesGivesTheSameBytesAsOnePixelAtATime) {
   // Every third stored page resident: many lookups fall back to an ancestor, and neighbouring
   // lanes read different pages of different levels.
-  writeSyntheticTexture(dir_ / "t.vt",
-                        {{.pageSize = 16, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
+  writeSyntheticTexture(
+      dir_ / "t.vt", {{.pageSize = 16, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
   const VirtualTextureReader reader(dir_ / "t.vt");
   std::vector<uint64_t> pages;
   for (uint64_t p = 0; p < reader.storedPageCount(); p += 3) pages.push_back(p);
@@ -156,7 +156,8 @@ TEST_P(LaneShading, TheTileRasterizerAgreesWithEmbreesPacketsOnEveryPixel) {
     for (int corner = 0; corner < 3; ++corner) {
       const float vw = w(random);
       mesh.vertices.push_back(
-          {{coordinate(random) * vw, coordinate(random) * vw, depth(random) * vw, vw}, {0.5f, 0.5f}});
+          {{coordinate(random) * vw, coordinate(random) * vw, depth(random) * vw, vw},
+           {0.5f, 0.5f}});
       mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
     }
   for (int copy = 0; copy < 2; ++copy)
@@ -179,7 +180,8 @@ TEST_P(LaneShading, TheTileRasterizerAgreesWithEmbreesPacketsOnEveryPixel) {
             const auto block = visibility.block(bx, by);
             for (int k = 0; k < Visibility::kBlock * Visibility::kBlock; ++k) {
               const int px = bx + k % Visibility::kBlock, py = by + k / Visibility::kBlock;
-              const PixelHit& a = tile[static_cast<size_t>((px - x0) + Visibility::kTile * (py - y0))];
+              const PixelHit& a =
+                  tile[static_cast<size_t>((px - x0) + Visibility::kTile * (py - y0))];
               const PixelHit& b = block[static_cast<size_t>(k)];
               ASSERT_EQ(a.triangle, b.triangle) << px << ", " << py;
               ASSERT_EQ(std::bit_cast<uint32_t>(a.depth), std::bit_cast<uint32_t>(b.depth));
