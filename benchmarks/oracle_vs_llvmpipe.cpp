@@ -9,7 +9,9 @@
 // the oracle's scaling from 1 to 2 threads (target >= 1.8) and the cost of gl45 over the pinned
 // model (target <= 2.0). benchmarks/oracle_vs_llvmpipe.sh builds the maps and runs this three
 // times.
-//   usage: oracle_vs_llvmpipe [--frames N] [--map NAME TEXTURE.vt MESH.obj PATH.json]...
+// --pinned-only leaves gl45 out (quick runs, profiles of the pinned path).
+//   usage: oracle_vs_llvmpipe [--frames N] [--pinned-only] [--map NAME TEXTURE.vt MESH.obj
+//          PATH.json]...
 
 #include <unistd.h>
 
@@ -108,8 +110,8 @@ Scene mapScene(const std::string& name, const std::filesystem::path& texture,
 
 int usage() {
   std::fprintf(stderr,
-               "usage: oracle_vs_llvmpipe [--frames N] [--map NAME TEXTURE.vt MESH.obj "
-               "PATH.json]...\n");
+               "usage: oracle_vs_llvmpipe [--frames N] [--pinned-only] [--map NAME TEXTURE.vt "
+               "MESH.obj PATH.json]...\n");
   return 2;
 }
 
@@ -117,12 +119,15 @@ int usage() {
 
 int main(int argc, char** argv) {
   int repeats = 5;
+  bool pinnedOnly = false;
   struct MapArguments {
     std::string name, texture, mesh, path;
   };
   std::vector<MapArguments> maps;
   for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--frames") == 0 && i + 1 < argc) {
+    if (std::strcmp(argv[i], "--pinned-only") == 0) {
+      pinnedOnly = true;
+    } else if (std::strcmp(argv[i], "--frames") == 0 && i + 1 < argc) {
       repeats = std::max(1, std::atoi(argv[++i]));
     } else if (std::strcmp(argv[i], "--map") == 0 && i + 4 < argc) {
       maps.push_back({argv[i + 1], argv[i + 2], argv[i + 3], argv[i + 4]});
@@ -184,7 +189,7 @@ int main(int argc, char** argv) {
       vt::applyModel(bounded, *gl45);
       bounded.model = gl45;
       bounded.threads = 2;
-      const double sets2 = oracle(bounded);
+      const double sets2 = pinnedOnly ? std::nan("") : oracle(bounded);
 
       const double count = static_cast<double>(frames.size());
       const std::string size =

@@ -4,10 +4,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-bash scripts/install-deps.sh
-# A unity build (8 sources of a target per translation unit), as scripts/test.sh configures the
-# same folder: the build of `vt` alone is most of a first demo's time.
+# Only the packages `vt` needs, and a unity build (8 sources of a target per translation unit) of
+# `vt` alone without the tests and benchmarks (scripts/test.sh configures the same folder with
+# them): on a fresh machine the packages and this build are most of a first demo's time.
+bash scripts/install-deps.sh --demo
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON \
-  -DCMAKE_UNITY_BUILD_BATCH_SIZE=8
+  -DCMAKE_UNITY_BUILD_BATCH_SIZE=8 -DVT_BUILD_TESTS=OFF -DVT_BUILD_BENCHMARKS=OFF
 cmake --build build --parallel "$(nproc)" --target vt
 ./build/src/vt demo --output out/demo "$@"

@@ -37,7 +37,7 @@ run_suite() {  # build folder, tests to leave out (a ctest regex, or ''), extra 
   shift 2
   echo "== configure and build $folder"
   cmake -S . -B "$folder" -G Ninja -DCMAKE_BUILD_TYPE=Release -DVT_WARNINGS_AS_ERRORS=ON \
-    -DVT_BUILD_BENCHMARKS=ON "${unity[@]}" "$@"
+    -DVT_BUILD_TESTS=ON -DVT_BUILD_BENCHMARKS=ON "${unity[@]}" "$@"
   cmake --build "$folder" --parallel "$jobs"
   echo "== test $folder"
   ctest --test-dir "$folder" --output-on-failure --parallel "$jobs" --timeout 600 \
