@@ -8,8 +8,9 @@ set -euo pipefail
 demo_packages=(
   # toolchain
   g++ cmake ninja-build pkg-config
-  # geometry, images, ray tracing, meshes
-  libglm-dev libopenimageio-dev libembree-dev libtinyobjloader-dev
+  # geometry, images, ray tracing, meshes; Debian 12's OpenImageIO CMake package names the
+  # command-line tools as imported targets and fails without them (openimageio-tools)
+  libglm-dev libopenimageio-dev openimageio-tools libembree-dev libtinyobjloader-dev
   # Quake 3 maps: .pk3 archives are zip files
   libzip-dev
   # headless OpenGL through EGL (Mesa llvmpipe) with libepoxy
@@ -24,8 +25,6 @@ test_packages=(
   clang-format
   # fuzzing (scripts/fuzz.sh): clang with libFuzzer's runtime, llvm-symbolizer for the reports
   clang libclang-rt-14-dev llvm
-  # images on the command line (the tests' and benchmarks' peers: oiiotool, maketx)
-  openimageio-tools
   # the interactive viewer, tested under a virtual X server
   xvfb xauth
   # report scripts and the plots of `vt eval` (matplotlib, with numpy), and scikit-image: the
