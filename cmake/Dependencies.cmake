@@ -34,3 +34,11 @@ foreach(_property INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTO
     set_target_properties(OpenImageIO::OpenImageIO PROPERTIES ${_property} "${_existing}")
   endif()
 endforeach()
+
+# libsquish (block-compressed pages): Debian 12's libsquish.pc has an empty prefix (it names
+# /include), so the header and the library are found directly.
+find_path(SQUISH_INCLUDE_DIR squish.h REQUIRED)
+find_library(SQUISH_LIBRARY squish REQUIRED)
+add_library(squish::squish UNKNOWN IMPORTED)
+set_target_properties(squish::squish PROPERTIES IMPORTED_LOCATION "${SQUISH_LIBRARY}"
+                                                INTERFACE_INCLUDE_DIRECTORIES "${SQUISH_INCLUDE_DIR}")

@@ -13,6 +13,8 @@ demo_packages=(
   libglm-dev libopenimageio-dev openimageio-tools libembree-dev libtinyobjloader-dev
   # Quake 3 maps: .pk3 archives are zip files
   libzip-dev
+  # block-compressed pages (BC1, BC3)
+  libsquish-dev
   # headless OpenGL through EGL (Mesa llvmpipe) with libepoxy
   libegl-dev libegl1-mesa-dev libgl1-mesa-dri libopengl-dev libgl-dev libepoxy-dev
   # the interactive viewer (GLFW)

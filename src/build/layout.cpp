@@ -124,6 +124,8 @@ void finish(Layout& layout, std::optional<uint64_t> side, std::optional<uint32_t
   if (layout.images.empty()) throw InputError(file, "the layout places no images");
   if (channels) {
     d.channels = *channels;
+  } else if (isBlockCompressed(d.format)) {
+    d.channels = 4;  // blocks hold RGBA
   } else {
     d.channels = 0;
     for (const Placement& image : layout.images) d.channels = std::max(d.channels, image.channels);
@@ -221,6 +223,8 @@ Layout parseLayout(std::string_view text, const std::filesystem::path& file,
         parseColorSpace(root.value("color_space", std::string("srgb"))));
     layout.filter =
         overrides.filter.value_or(parseMipFilter(root.value("filter", std::string("box"))));
+    d.format =
+        overrides.format.value_or(parsePageFormat(root.value("format", std::string("rgba8"))));
     if (root.contains("background")) {
       const json& background = root["background"];
       if (!background.is_array() || background.size() != 4)
@@ -285,6 +289,7 @@ Layout singleImageLayout(const std::filesystem::path& image, const LayoutOverrid
   layout.description.border = overrides.border.value_or(4);
   layout.description.colorSpace = overrides.colorSpace.value_or(ColorSpace::kSrgb);
   layout.filter = overrides.filter.value_or(MipFilter::kBox);
+  layout.description.format = overrides.format.value_or(PixelFormat::kUnorm8);
   Placement placement;
   placement.file = image;
   setImage(placement, probeImageFile(image, "the command line"), std::nullopt, std::nullopt);
@@ -297,6 +302,12 @@ MipFilter parseMipFilter(const std::string& name) {
   if (const auto filter = findByName(kMipFilterNames, name)) return *filter;
   throw std::invalid_argument("filter: '" + name + "' is not one of " +
                               joinedNames(kMipFilterNames));
+}
+
+PixelFormat parsePageFormat(const std::string& name) {
+  if (const auto format = findByName(kPageFormatNames, name)) return *format;
+  throw std::invalid_argument("format: '" + name + "' is not one of " +
+                              joinedNames(kPageFormatNames));
 }
 
 ColorSpace parseColorSpace(const std::string& name) {

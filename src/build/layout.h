@@ -11,6 +11,7 @@
 //     "channels": 3,               // 1..4 (default: the most channels of any image)
 //     "color_space": "srgb",       // "srgb" (default) or "linear": how texels are encoded
 //     "filter": "box",             // "box" (default) or "tent": the mip filter
+//     "format": "rgba8",           // "rgba8" (default), "bc1" or "bc3": the stored pages
 //     "background": [0, 0, 0, 0],  // texels no image covers (default transparent black)
 //     "images": [ { "file": "wall.tga", "x": 0, "y": 0 }, ... ]
 //   }
@@ -80,6 +81,7 @@ struct LayoutOverrides {
   std::optional<uint64_t> side = std::nullopt;
   std::optional<ColorSpace> colorSpace = std::nullopt;
   std::optional<MipFilter> filter = std::nullopt;
+  std::optional<PixelFormat> format = std::nullopt;
 };
 
 // An image's size and channels, as its header states them.
@@ -116,10 +118,18 @@ inline constexpr EnumNames<ColorSpace, 2> kColorSpaceNames = {{
     {ColorSpace::kSrgb, "srgb"},
     {ColorSpace::kLinear, "linear"},
 }};
+// The stored pages' format: unorm8 texels of the texture's channels, or blocks (BC1 for opaque
+// colour, BC3 where alpha matters) of RGBA.
+inline constexpr EnumNames<PixelFormat, 3> kPageFormatNames = {{
+    {PixelFormat::kUnorm8, "rgba8"},
+    {PixelFormat::kBc1, "bc1"},
+    {PixelFormat::kBc3, "bc3"},
+}};
 
 // Throw std::invalid_argument naming the field, the value and the table's names.
 MipFilter parseMipFilter(const std::string& name);
 ColorSpace parseColorSpace(const std::string& name);
+PixelFormat parsePageFormat(const std::string& name);
 std::string toString(MipFilter filter);
 
 }  // namespace vt

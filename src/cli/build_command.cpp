@@ -18,7 +18,7 @@ void addBuildCommand(CLI::App& app) {
     std::string input, output;
     std::optional<uint32_t> pageSize, border, channels;
     std::optional<uint64_t> side;
-    std::string colorSpace, filter;
+    std::string colorSpace, filter, format;
     unsigned threads = 0;
     uint64_t keepFree = 0;
     bool quiet = false;
@@ -44,6 +44,11 @@ void addBuildCommand(CLI::App& app) {
       ->check(CLI::IsMember(namesOf(kColorSpaceNames)));
   command->add_option("--filter", options->filter, "Mip filter: box (default) or tent")
       ->check(CLI::IsMember(namesOf(kMipFilterNames)));
+  command
+      ->add_option("--format", options->format,
+                   "Stored pages: rgba8 (default), bc1 (opaque colour, 8:1 against RGBA8) or bc3 "
+                   "(with alpha, 4:1); the block formats need P + 2B a multiple of 4")
+      ->check(CLI::IsMember(namesOf(kPageFormatNames)));
   command->add_option("--threads", options->threads, "Worker threads (0: every core)")
       ->check(workerCount());
   command->add_option("--keep-free", options->keepFree,
@@ -54,6 +59,7 @@ void addBuildCommand(CLI::App& app) {
                               options->side,     std::nullopt,    std::nullopt};
     if (!options->colorSpace.empty()) overrides.colorSpace = parseColorSpace(options->colorSpace);
     if (!options->filter.empty()) overrides.filter = parseMipFilter(options->filter);
+    if (!options->format.empty()) overrides.format = parsePageFormat(options->format);
     const std::filesystem::path input = options->input;
     // Arguments against each other, and against the page size of an image's layout (128 unless
     // given); a layout file's own page size is checked with the file.

@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "common/error.h"
 #include "common/json_text.h"
+#include "format/file_header.h"
 
 #ifndef VT_VERSION
 #error "VT_VERSION must be defined by the build"
@@ -45,7 +46,8 @@ int main(int argc, char** argv) {
       "build virtual-texture files and inspect them.",
       "vt");
   app.set_version_flag("--version",
-                       std::string("vt " VT_VERSION " (virtual-texture file format 1)"));
+                       std::string("vt " VT_VERSION " (virtual-texture file formats 1 to ") +
+                           std::to_string(vt::kFileVersion) + ")");
   app.require_subcommand(1);
   vt::addBuildCommand(app);
   vt::addCalibrateCommand(app);

@@ -47,7 +47,7 @@ FileLayout layoutFor(const TextureDescription& description, bool sparse, uint64_
   layout.noiseOffset = layout.indexOffset + (sparse ? 8 * storedPages : 0);
   layout.checksumOffset = layout.noiseOffset + 4 * storedPages;
   layout.dataOffset = layout.checksumOffset + 8 * storedPages;
-  layout.fileBytes = layout.dataOffset + storedPages * description.pageBytes();
+  layout.fileBytes = layout.dataOffset + storedPages * description.storedPageBytes();
   return layout;
 }
 
@@ -60,7 +60,7 @@ std::array<std::byte, kHeaderBytes> encodeHeader(const FileHeader& header) {
   std::byte* p = bytes.data();
   for (size_t i = 0; i < kFileMagic.size(); ++i) p[kMagic + i] = std::byte(kFileMagic[i]);
   const TextureDescription& d = header.description;
-  storeU32(p + kVersion, kFileVersion);
+  storeU32(p + kVersion, fileVersionOf(d.format));
   storeU32(p + kHeaderBytesField, kHeaderBytes);
   storeU32(p + kPageSize, d.pageSize);
   storeU32(p + kBorder, d.border);
@@ -92,8 +92,9 @@ FileHeader decodeHeader(std::span<const std::byte> bytes, uint64_t fileBytes,
   const std::byte* p = bytes.data();
   if (std::memcmp(p + kMagic, kFileMagic.data(), kFileMagic.size()) != 0)
     throw InputError(path, "not a virtual-texture file (wrong magic number)");
-  if (const uint32_t version = loadU32(p + kVersion); version != kFileVersion)
-    fail("version", std::to_string(version) + " is not supported (this build reads version " +
+  const uint32_t version = loadU32(p + kVersion);
+  if (version < 1 || version > kFileVersion)
+    fail("version", std::to_string(version) + " is not supported (this build reads versions 1 to " +
                         std::to_string(kFileVersion) + ")");
   if (const uint32_t size = loadU32(p + kHeaderBytesField); size != kHeaderBytes)
     fail("header_bytes", std::to_string(size) + " is not " + std::to_string(kHeaderBytes));
@@ -107,6 +108,10 @@ FileHeader decodeHeader(std::span<const std::byte> bytes, uint64_t fileBytes,
   d.format = static_cast<PixelFormat>(loadU32(p + kPixelFormat));
   d.colorSpace = static_cast<ColorSpace>(loadU32(p + kColorSpace));
   if (const auto problem = findProblem(d)) fail(problem->field, problem->problem);
+  if (version < fileVersionOf(d.format))
+    fail("pixel_format", toString(d.format) + " needs version " +
+                             std::to_string(fileVersionOf(d.format)) + ", the file is version " +
+                             std::to_string(version));
 
   const uint32_t flags = loadU32(p + kFlags);
   if ((flags & ~kFlagSparse) != 0) fail("flags", "unknown bits set in " + std::to_string(flags));
@@ -157,7 +162,7 @@ FileHeader decodeHeader(std::span<const std::byte> bytes, uint64_t fileBytes,
     fail("file_bytes", std::to_string(layout.fileBytes) + " is not the " +
                            std::to_string(expected.fileBytes) + " bytes that " +
                            std::to_string(header.storedPageCount) + " pages of " +
-                           std::to_string(d.pageBytes()) + " bytes need");
+                           std::to_string(d.storedPageBytes()) + " bytes need");
   if (fileBytes < layout.fileBytes)
     throw InputError(path, "truncated: the header declares " + std::to_string(layout.fileBytes) +
                                " bytes, the file has " + std::to_string(fileBytes));

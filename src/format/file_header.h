@@ -1,13 +1,15 @@
 #pragma once
-// The on-disk layout of a virtual-texture file, version 1 (DESIGN section 2). All integers are
-// little-endian. Sections follow each other without gaps, in this order:
+// The on-disk layout of a virtual-texture file, versions 1 and 2 (DESIGN section 2). All integers
+// are little-endian. Sections follow each other without gaps, in this order:
 //
 //   offset            size                      what
 //   0                 128                       header (below)
 //   index_offset      8 * n, sparse only        absolute indices p_abs of the stored pages, rising
 //   noise_offset      4 * n                     NoiseValue of each stored page (float32)
 //   checksum_offset   8 * n                     XXH3-64 of each stored page's bytes
-//   data_offset       n * (P + 2B)^2 * c        the stored pages, in rising p_abs
+//   data_offset       n * page bytes            the stored pages, in rising p_abs: (P + 2B)^2 * c
+//                                               for unorm8, ((P + 2B) / 4)^2 blocks of 8 (bc1)
+//                                               or 16 (bc3) bytes
 //   file_bytes                                  end of file
 //
 // n is stored_page_count: every page of every level for a dense texture, the pages listed in the
@@ -17,11 +19,12 @@
 //
 // Header (128 bytes):
 //    0  magic            89 'V' 'T' 'X' 0D 0A 1A 0A   (the PNG trick: detects text-mode damage)
-//    8  u32 version      1
+//    8  u32 version      1 for unorm8 (every file before block compression), 2 for bc1 and bc3
 //   12  u32 header_bytes 128
 //   16  u32 page_size    P        20  u32 border        B
 //   24  u32 level_count  L + 1    28  u32 channels      1..4
-//   32  u32 pixel_format 1 unorm8 36  u32 color_space   0 linear, 1 sRGB
+//   32  u32 pixel_format 1 unorm8, 2 bc1, 3 bc3 (channels 4, P + 2B a multiple of 4)
+//   36  u32 color_space   0 linear, 1 sRGB
 //   40  u32 flags        bit 0: sparse            44  u32 reserved, zero
 //   48  u64 stored_page_count     56  u64 index_offset  64  u64 noise_offset
 //   72  u64 checksum_offset       80  u64 data_offset   88  u64 file_bytes
@@ -41,7 +44,10 @@
 
 namespace vt {
 
-inline constexpr uint32_t kFileVersion = 1;
+// The newest version this build reads. A file is written in the oldest version that holds its
+// pixel format, so unorm8 files stay version 1, byte for byte as before.
+inline constexpr uint32_t kFileVersion = 2;
+constexpr uint32_t fileVersionOf(PixelFormat format) { return isBlockCompressed(format) ? 2 : 1; }
 inline constexpr uint32_t kHeaderBytes = 128;
 inline constexpr std::array<uint8_t, 8> kFileMagic = {0x89, 'V', 'T', 'X', 0x0D, 0x0A, 0x1A, 0x0A};
 inline constexpr uint32_t kFlagSparse = 1u << 0;

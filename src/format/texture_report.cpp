@@ -21,7 +21,7 @@ nlohmann::json textureReport(const VirtualTextureReader& reader) {
   const TextureDescription& d = reader.description();
   nlohmann::json report;
   report["file"] = reader.path().string();
-  report["format_version"] = kFileVersion;
+  report["format_version"] = fileVersionOf(d.format);
   report["identity"] = "xxh3:" + checksumText(reader.identity());
   report["file_bytes"] = reader.fileBytes();
   report["page_size"] = d.pageSize;

@@ -1,5 +1,7 @@
 #include "format/virtual_texture_reader.h"
 
+#include "format/block_compression.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -91,13 +93,27 @@ float VirtualTextureReader::noiseValue(PageId page) const {
 }
 
 void VirtualTextureReader::readPage(PageId page, std::span<std::byte> texels) const {
-  const uint64_t slot = requireSlot(page);
-  const uint64_t pageBytes = description().pageBytes();
-  if (texels.size() != pageBytes)
+  const TextureDescription& d = description();
+  if (texels.size() != d.pageBytes())
     throw std::invalid_argument("readPage: buffer of " + std::to_string(texels.size()) +
-                                " bytes for a page of " + std::to_string(pageBytes));
-  file_.readExact(header_.layout.dataOffset + slot * pageBytes, texels);
-  if (checksum64(texels) != pageChecksums_[slot])
+                                " bytes for a page of " + std::to_string(d.pageBytes()));
+  if (!isBlockCompressed(d.format)) {
+    readStoredPage(page, texels);
+    return;
+  }
+  std::vector<std::byte> blocks(d.storedPageBytes());
+  readStoredPage(page, blocks);
+  decodeBlocks(d.format, d.storedPageSide(), blocks, texels);
+}
+
+void VirtualTextureReader::readStoredPage(PageId page, std::span<std::byte> bytes) const {
+  const uint64_t slot = requireSlot(page);
+  const uint64_t storedBytes = description().storedPageBytes();
+  if (bytes.size() != storedBytes)
+    throw std::invalid_argument("readStoredPage: buffer of " + std::to_string(bytes.size()) +
+                                " bytes for a page of " + std::to_string(storedBytes));
+  file_.readExact(header_.layout.dataOffset + slot * storedBytes, bytes);
+  if (checksum64(bytes) != pageChecksums_[slot])
     throw InputError(path(), describe(page) + ": checksum mismatch (the page data is corrupted)");
 }
 

@@ -45,10 +45,14 @@ class VirtualTextureReader {
   std::span<const float> noiseValues() const { return noiseValues_; }
 
   // Reads the stored page's (P + 2B)^2 texels into `texels` (exactly description().pageBytes()
-  // bytes) and verifies its checksum. Throws InputError for a page that is not stored, a failed
+  // bytes), verifying its checksum and decoding the block formats to RGBA8
+  // (format/block_compression.h). Throws InputError for a page that is not stored, a failed
   // read, or a checksum mismatch (naming the page).
   void readPage(PageId page, std::span<std::byte> texels) const;
   std::vector<std::byte> readPage(PageId page) const;
+  // The page's bytes as stored (description().storedPageBytes(): its blocks where the format
+  // compresses), checksum verified: what travels from the file.
+  void readStoredPage(PageId page, std::span<std::byte> bytes) const;
 
  private:
   uint64_t requireSlot(PageId page) const;

@@ -1,5 +1,7 @@
 #include "format/virtual_texture_writer.h"
 
+#include "format/block_compression.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -75,8 +77,16 @@ void VirtualTextureWriter::writePage(PageId page, std::span<const std::byte> tex
                                   " written twice");
     written_[slot] = 1;
   }
-  const uint64_t checksum = checksum64(texels);
-  output_.file().writeAll(header_.layout.dataOffset + slot * pageBytes, texels);
+  const TextureDescription& d = description();
+  std::vector<std::byte> blocks;
+  std::span<const std::byte> stored = texels;
+  if (isBlockCompressed(d.format)) {
+    blocks.resize(d.storedPageBytes());
+    encodeBlocks(d.format, d.storedPageSide(), texels, blocks);
+    stored = blocks;
+  }
+  const uint64_t checksum = checksum64(stored);
+  output_.file().writeAll(header_.layout.dataOffset + slot * d.storedPageBytes(), stored);
   const std::lock_guard lock(mutex_);
   noiseValues_[slot] = noiseValue;
   pageChecksums_[slot] = checksum;

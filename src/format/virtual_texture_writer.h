@@ -30,8 +30,9 @@ class VirtualTextureWriter {
   const TextureDescription& description() const { return header_.description; }
   const std::filesystem::path& destination() const { return output_.destination(); }
 
-  // Stores one page: (P + 2B)^2 texels, rows of increasing t, and its NoiseValue (>= 0). Each
-  // stored page is written exactly once. Thread-safe.
+  // Stores one page: (P + 2B)^2 texels, rows of increasing t (RGBA8 for the block formats, which
+  // it encodes on the calling thread: format/block_compression.h), and its NoiseValue (>= 0).
+  // Each stored page is written exactly once. Thread-safe.
   void writePage(PageId page, std::span<const std::byte> texels, float noiseValue);
 
   // Writes the tables and the header, flushes, and renames the file to its destination. Throws if

@@ -131,6 +131,7 @@ TEST_F(VtCommand, BadArgumentValuesPrintTheUsageAndExitTwo) {
       {{"build", "image.png", "-o", "x.vt", "--page-size", "256", "--side", "128"},
        "--side: 128 is not the page size 256 times 2^L"},
       {{"build", "image.png", "-o", "x.vt", "--channels", "17"}, "--channels: Value 17"},
+      {{"build", "image.png", "-o", "x.vt", "--format", "bc7"}, "--format: bc7 not in"},
   };
   for (const auto& [args, message] : cases) {
     const auto result = vt(args);
@@ -143,8 +144,9 @@ TEST_F(VtCommand, BadArgumentValuesPrintTheUsageAndExitTwo) {
 TEST_F(VtCommand, HelpAndVersion) {
   const auto version = vt({"--version"});
   EXPECT_EQ(version.exitCode, 0);
-  EXPECT_THAT(version.out,
-              MatchesRegex("vt [0-9]+\\.[0-9]+\\.[0-9]+ \\(virtual-texture file format 1\\)\n"));
+  EXPECT_THAT(
+      version.out,
+      MatchesRegex("vt [0-9]+\\.[0-9]+\\.[0-9]+ \\(virtual-texture file formats 1 to 2\\)\n"));
   for (const char* command : {"build", "info", "demo", "export-level", "render"}) {
     const auto help = vt({command, "--help"});
     EXPECT_EQ(help.exitCode, 0) << command;
@@ -192,6 +194,53 @@ TEST_F(VtCommand, BuildCompilesALayoutThatInfoAccepts) {
   EXPECT_EQ(VirtualTextureReader(output).description().sideTexels(), 32u);
 }
 
+TEST_F(VtCommand, BuildStoresBlockCompressedPages) {
+  // A smooth 64 x 64 RGB gradient: BC1 keeps it within a few units.
+  std::vector<std::byte> texels(64 * 64 * 3);
+  for (size_t i = 0; i < texels.size(); ++i)
+    texels[i] = std::byte(static_cast<uint8_t>((i / 3 % 64) * 2 + (i / 192) + (i % 3) * 20));
+  writeImage8(dir_ / "wall.png", 64, 64, 3, texels);
+  const auto plain = (dir_ / "plain.vt").string(), bc1 = (dir_ / "bc1.vt").string(),
+             bc3 = (dir_ / "bc3.vt").string();
+  for (const auto& [format, output] : {std::pair{"rgba8", plain}, {"bc1", bc1}, {"bc3", bc3}}) {
+    const auto result = vt({"build", (dir_ / "wall.png").string(), "-o", output, "--page-size",
+                            "16", "--border", "2", "--format", format});
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+  }
+  EXPECT_THAT(vt({"info", "--verify", plain}).out, HasSubstr("3 x unorm8"));
+  const auto info = vt({"info", "--verify", bc1});
+  EXPECT_EQ(info.exitCode, 0) << info.err;
+  EXPECT_THAT(info.out, HasSubstr("virtual texture v2, 4 x bc1, sRGB"));
+  EXPECT_THAT(vt({"info", bc3}).out, HasSubstr("4 x bc3"));
+  // 20 x 20 stored texels: 3 bytes each, against 25 blocks of 8 (BC1) or 16 (BC3) bytes.
+  const VirtualTextureReader plainReader(plain), bc1Reader(bc1), bc3Reader(bc3);
+  EXPECT_EQ(plainReader.description().storedPageBytes(), 1200u);
+  EXPECT_EQ(bc1Reader.description().storedPageBytes(), 200u);
+  EXPECT_EQ(bc3Reader.description().storedPageBytes(), 400u);
+  // The finest level exported from BC1 is the gradient within BC1's error, alpha 255.
+  const auto png = (dir_ / "level2.png").string();
+  ASSERT_EQ(vt({"export-level", bc1, "--level", "2", "-o", png}).exitCode, 0);
+  const LevelImage original = assembleLevel(plainReader, 2), decoded = assembleLevel(bc1Reader, 2);
+  ASSERT_EQ(decoded.texels.size() / 4, original.texels.size() / 3);
+  int worst = 0;
+  for (size_t t = 0; t < decoded.texels.size() / 4; ++t) {
+    for (size_t c = 0; c < 3; ++c)
+      worst = std::max(worst, std::abs(static_cast<int>(decoded.texels[t * 4 + c]) -
+                                       static_cast<int>(original.texels[t * 3 + c])));
+    ASSERT_EQ(decoded.texels[t * 4 + 3], std::byte{255});
+  }
+  EXPECT_GT(worst, 0);
+  EXPECT_LE(worst, 12);  // RGB565 end points (8 levels of 255 in red and blue) and 2-bit indices
+
+  // A border that does not make whole blocks is refused, naming the source and the field.
+  const auto odd = vt({"build", (dir_ / "wall.png").string(), "-o", (dir_ / "odd.vt").string(),
+                       "--page-size", "16", "--border", "1", "--format", "bc1"});
+  EXPECT_EQ(odd.exitCode, 1);
+  EXPECT_THAT(odd.err, HasSubstr("wall.png: field border: stored pages of 18 texels (P + 2B) are "
+                                 "not whole 4 x 4 blocks of pixel format bc1"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "odd.vt"));
+}
+
 TEST_F(VtCommand, BuildPeakMemoryStaysFarBelowTheFinestLevel) {
 #if defined(__SANITIZE_ADDRESS__)
   GTEST_SKIP() << "AddressSanitizer's shadow memory and quarantine make RSS meaningless";
@@ -208,8 +257,7 @@ TEST_F(VtCommand, BuildPeakMemoryStaysFarBelowTheFinestLevel) {
   ASSERT_EQ(build.exitCode, 0) << build.err;
   const long baselineKb = vt({"--version"}).maxRssKb;
   const Layout layout = readLayout(dir_ / "layout.json");
-  const long boundKb =
-      static_cast<long>(ringBytesBound(layout) / 1024) + 32 * 1024;
+  const long boundKb = static_cast<long>(ringBytesBound(layout) / 1024) + 32 * 1024;
   EXPECT_LT(build.maxRssKb - baselineKb, boundKb)
       << "build " << build.maxRssKb << " KB, vt --version " << baselineKb << " KB";
   EXPECT_LT(boundKb, 1024 * 1024 / 16);

@@ -113,8 +113,44 @@ TEST_F(MalformedFile, WrongMagic) {
 }
 
 TEST_F(MalformedFile, UnknownVersion) {
-  EXPECT_THAT(openError(withU32(valid_, 8, 2)),
-              HasSubstr("header field version: 2 is not supported (this build reads version 1)"));
+  EXPECT_THAT(openError(withU32(valid_, 8, 3)),
+              HasSubstr("header field version: 3 is not supported (this build reads versions 1 "
+                        "to 2)"));
+  EXPECT_THAT(openError(withU32(valid_, 8, 0)), HasSubstr("header field version: 0"));
+}
+
+// The block formats (bc1, bc3): their fields against each other and the file's version, and a
+// damaged block caught by the page's checksum.
+TEST_F(MalformedFile, BlockFormatsThatBreakTheirRules) {
+  // An unorm8 file claiming bc1: its version 1 cannot hold it; version 2 then finds 4-channel
+  // blocks need P + 2B = 10 a multiple of 4.
+  EXPECT_THAT(openError(withU32(valid_, kPixelFormatAt, 2)),
+              HasSubstr("header field border: stored pages of 10 texels (P + 2B) are not whole 4 "
+                        "x 4 blocks of pixel format bc1"));
+  SyntheticTexture bc1 = texture_;
+  bc1.description.border = 2;
+  bc1.description.format = PixelFormat::kBc1;
+  writeSyntheticTexture(dir_ / "bc1.vt", bc1);
+  const auto valid = test::readBytes(dir_ / "bc1.vt");
+  EXPECT_EQ(loadU32(valid.data() + 8), 2u);
+  EXPECT_THAT(openError(withU32(valid, 8, 1)),
+              HasSubstr("header field pixel_format: bc1 needs version 2, the file is version 1"));
+  EXPECT_THAT(openError(withU32(valid, kChannelsAt, 3)),
+              HasSubstr("header field channels: 3 with pixel format bc1, which stores 4"));
+  // bc3 pages are twice as large: the declared size no longer matches.
+  EXPECT_THAT(openError(withU32(valid, kPixelFormatAt, 3)), HasSubstr("header field file_bytes"));
+  // A page whose blocks are one byte short: the file ends early.
+  auto truncated = valid;
+  truncated.pop_back();
+  EXPECT_THAT(openError(truncated), HasSubstr("truncated"));
+
+  auto bytes = valid;
+  const uint64_t dataAt = loadU64(valid.data() + kDataOffsetAt);
+  bytes[dataAt + 2 * bc1.description.storedPageBytes() + 5] ^= std::byte{0x01};
+  test::writeBytes(dir_ / "corrupt.vt", bytes);
+  const VirtualTextureReader reader(dir_ / "corrupt.vt");
+  EXPECT_THAT([&] { reader.readPage(fromAbsoluteIndex(reader.storedPage(2))); },
+              ::testing::ThrowsMessage<InputError>(HasSubstr("checksum mismatch")));
 }
 
 TEST_F(MalformedFile, AbsurdPageSizes) {

@@ -1,0 +1,32 @@
+#pragma once
+// The block formats' pages (texture_description.h: bc1, bc3) to and from RGBA8 texels, with
+// libsquish, one 4 x 4 block at a time (its image calls run OpenMP loops of their own; pages are
+// already encoded and decoded on the callers' threads, each page on one).
+//
+// Encoding uses libsquish's range fit: each block's palette spans the extremes of its colours
+// along their principal axis, and every texel takes the nearest entry. The library's default,
+// the cluster fit (every ordered split of the 16 texels into palette entries, least squares), is
+// better on gradients and noise, but on the benchmark image (benchmarks/build_formats.sh, 8192^2)
+// it made `vt build --format bc1` take about 6 times as long as the range fit, far past the budget
+// of 3 times an uncompressed build; the range fit takes about 2 times. BC1 pages are opaque:
+// alpha is set to 255 before encoding, so no block takes BC1's punch-through mode.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "format/texture_description.h"
+
+namespace vt {
+
+// Encodes a stored page of side x side RGBA8 texels (side a multiple of 4) into blocks of
+// `format`: rows of side / 4 blocks, of increasing t. `blocks` holds exactly the page's stored
+// bytes (TextureDescription::storedPageBytes).
+void encodeBlocks(PixelFormat format, uint32_t side, std::span<const std::byte> rgba,
+                  std::span<std::byte> blocks);
+
+// Decodes a stored page's blocks into side x side RGBA8 texels.
+void decodeBlocks(PixelFormat format, uint32_t side, std::span<const std::byte> blocks,
+                  std::span<std::byte> rgba);
+
+}  // namespace vt
