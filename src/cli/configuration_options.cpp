@@ -37,6 +37,7 @@ struct ConfigurationOptions::Values {
   std::string config, heuristic = "pixelsum", ancestors = "none", lookAhead = "none",
                       hotSpot = "shifted", needScale = "1", readback = "sync";
   uint32_t budget = 10, latency = 0, lockedLevels = 0, initialLevels = 3, frames = 16;
+  uint64_t budgetBytes = 0;
   float noiseThreshold = -1.0f;
   bool noiseSkipping = false, preloadVisible = false, trilinearParents = false;
 };
@@ -49,6 +50,12 @@ ConfigurationOptions::ConfigurationOptions(CLI::App* command)
                       "well override it");
   command->add_option("--budget", v.budget, "Pages streamed per frame (thesis 4.1.1)")
       ->check(wholeNumbersIn(0, 1 << 20))
+      ->capture_default_str();
+  command
+      ->add_option("--budget-bytes", v.budgetBytes,
+                   "Bytes streamed per frame instead of pages, at the pages' stored size "
+                   "(compressed pages are smaller); 0: the page budget")
+      ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 40))
       ->capture_default_str();
   command->add_option("--latency", v.latency, "Frames between a request and its page's arrival")
       ->check(wholeNumbersIn(0, 1000))
@@ -133,6 +140,9 @@ FlightConfiguration ConfigurationOptions::configuration() const {
   if (given("--lookahead")) options["lookahead"] = v.lookAhead;
   if (given("--hotspot")) options["hotspot"] = v.hotSpot;
   if (given("--budget")) options["budget"] = v.budget;
+  // Only where given or set: a configuration without it reads as before byte budgets.
+  if (command_->count("--budget-bytes") > 0 || (all && v.budgetBytes > 0))
+    options["budget_bytes"] = v.budgetBytes;
   if (given("--latency")) options["latency"] = v.latency;
   if (given("--cache-frames")) options["cache_frames"] = v.frames;
   if (given("--locked-levels")) options["locked_levels"] = v.lockedLevels;

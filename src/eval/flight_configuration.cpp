@@ -15,7 +15,8 @@ std::string FlightConfiguration::label() const {
   const auto add = [&text](const std::string& key, const std::string& value) {
     text.append(" ").append(key).append(value);
   };
-  add("", std::to_string(budget) + "/frame");
+  add("", budgetBytes > 0 ? std::to_string(budgetBytes) + "B/frame"
+                         : std::to_string(budget) + "/frame");
   if (lookAhead != LookAhead::kNone) add("lookahead=", toString(lookAhead));
   if (heuristic.uses(PriorityFactor::kHotSpot) && hotSpot != HotSpotMode::kShifted)
     add("hotspot=", toString(hotSpot));
@@ -31,7 +32,7 @@ std::string FlightConfiguration::label() const {
 }
 
 nlohmann::json FlightConfiguration::toJson() const {
-  return {{"name", label()},
+  nlohmann::json object = {{"name", label()},
           {"heuristic", heuristic.text()},
           {"ancestors", toString(ancestors)},
           {"noise_skipping", noiseSkipping},
@@ -48,6 +49,9 @@ nlohmann::json FlightConfiguration::toJson() const {
           {"readback", std::string(nameOf(kReadbackNames, asyncReadback))},
           {"trilinear_parents", trilinearParents},
           {"seed", seed}};
+  // Only where set: every configuration written before byte budgets reads the same.
+  if (budgetBytes > 0) object["budget_bytes"] = budgetBytes;
+  return object;
 }
 
 FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
@@ -87,6 +91,11 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
       c.hotSpot = parseHotSpotMode(text());
     } else if (key == "budget") {
       c.budget = count(0, 1u << 20);
+    } else if (key == "budget_bytes") {
+      if (!value.is_number_integer() || value.get<int64_t>() < 0 ||
+          value.get<int64_t>() > (int64_t{1} << 40))
+        throw std::invalid_argument("'budget_bytes' must be a whole number from 0 to 2^40");
+      c.budgetBytes = static_cast<uint64_t>(value.get<int64_t>());
     } else if (key == "latency") {
       c.latency = count(0, 1000);
     } else if (key == "cache_frames") {

@@ -28,6 +28,8 @@ struct FlightConfiguration {
   LookAhead lookAhead = LookAhead::kNone;
   HotSpotMode hotSpot = HotSpotMode::kShifted;
   uint32_t budget = 10;           // pages streamed per frame
+  uint64_t budgetBytes = 0;       // or, when not zero, bytes per frame at the pages' stored size
+                                  // (runtime/page_streamer.h: FrameBudget); JSON "budget_bytes"
   uint32_t latency = 0;           // frames between a request and its page's arrival
   uint32_t cacheFrames = 16;      // the cache holds cacheFrames x cacheFrames frames
   uint32_t lockedLevels = 0;      // levels 0..K-1 never leave the cache (4.3.1)

@@ -68,8 +68,9 @@ FlightRun::FlightRun(const VirtualTextureReader& reader, const FlightConfigurati
   if (options.threadedStreaming)
     streamer_ = std::make_unique<ThreadedStreamer>(reader, options.link);
   else
-    streamer_ = std::make_unique<BudgetStreamer>(reader, configuration.budget,
-                                                 configuration.latency);
+    streamer_ = std::make_unique<BudgetStreamer>(
+        reader, FrameBudget{configuration.budget, configuration.budgetBytes},
+        configuration.latency);
 }
 
 FlightRun::~FlightRun() = default;

@@ -6,19 +6,33 @@ namespace vt {
 
 BudgetStreamer::BudgetStreamer(const VirtualTextureReader& reader, uint32_t pagesPerFrame,
                                uint32_t latencyFrames)
-    : reader_(reader), pagesPerFrame_(pagesPerFrame), latencyFrames_(latencyFrames) {}
+    : BudgetStreamer(reader, FrameBudget{pagesPerFrame, 0}, latencyFrames) {}
+
+BudgetStreamer::BudgetStreamer(const VirtualTextureReader& reader, FrameBudget budget,
+                               uint32_t latencyFrames)
+    : reader_(reader), budget_(budget), latencyFrames_(latencyFrames) {}
 
 std::vector<StreamedPage> BudgetStreamer::frame(const std::vector<StreamRequest>& requests) {
   std::vector<StreamedPage> loaded;
-  for (size_t k = 0; k < requests.size() && loaded.size() < pagesPerFrame_; ++k) {
+  const uint64_t pageBytes = reader_.description().storedPageBytes();
+  uint64_t credit = carried_ + budget_.bytes;
+  const auto roomForAnother = [&] {
+    return budget_.bytes > 0 ? credit >= pageBytes : loaded.size() < budget_.pages;
+  };
+  size_t k = 0;
+  for (; k < requests.size() && roomForAnother(); ++k) {
     // A page still on its way is not requested twice.
     const uint64_t page = requests[k].page;
     const bool inFlight = std::any_of(inFlight_.begin(), inFlight_.end(), [&](const auto& batch) {
       return std::any_of(batch.begin(), batch.end(),
                          [&](const StreamedPage& p) { return p.page == page; });
     });
-    if (!inFlight) loaded.push_back({page, reader_.readPage(fromAbsoluteIndex(page))});
+    if (inFlight) continue;
+    loaded.push_back({page, reader_.readPage(fromAbsoluteIndex(page))});
+    credit -= budget_.bytes > 0 ? pageBytes : 0;
   }
+  // The unused bytes carry over only if requests were left that they could not pay for.
+  carried_ = budget_.bytes > 0 && k < requests.size() ? credit : 0;
   inFlight_.push_back(std::move(loaded));
   if (inFlight_.size() <= latencyFrames_) return {};
   std::vector<StreamedPage> arrived = std::move(inFlight_.front());
@@ -97,7 +111,8 @@ void ThreadedStreamer::run() {
       Clock::time_point sent = std::max(Clock::now(), linkFree_);
       if (link_.bytesPerSecond > 0.0)
         sent += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
-            static_cast<double>(texels.size()) / link_.bytesPerSecond));
+            static_cast<double>(reader_.description().storedPageBytes()) /
+            link_.bytesPerSecond));
       linkFree_ = sent;
       wake_.wait_until(lock, sent, [this] { return stop_; });
       if (stop_) return;

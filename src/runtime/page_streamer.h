@@ -3,8 +3,9 @@
 // streamed pages that the management step applies to the cache.
 //
 // BudgetStreamer is the deterministic mode of the evaluations (thesis 4.1.1): each frame at most
-// `pagesPerFrame` of the frame's requests, in order, optionally arriving `latencyFrames` frames
-// later (a link with latency and bandwidth measured in pages per frame). ThreadedStreamer is the
+// `pagesPerFrame` of the frame's requests, in order, or as many as `bytesPerFrame` carries at the
+// pages' stored size (compressed pages are smaller: format/texture_description.h), optionally
+// arriving `latencyFrames` frames later (a link with latency and bandwidth measured per frame). ThreadedStreamer is the
 // interactive mode: a thread pops the most important request, reads it and hands it over; every
 // frame's requests replace the previous ones, so requests no longer needed are dropped. Its link
 // model makes it a slow network in real time (internet-like streaming, thesis chapter 4).
@@ -36,10 +37,20 @@ class PageStreamer {
   virtual std::vector<StreamedPage> exchange(const std::vector<StreamRequest>& requests) = 0;
 };
 
+// What a frame of BudgetStreamer may send: a number of pages, or of bytes (when not zero; the
+// page count then does not apply). Bytes a frame could not use because the next page did not fit
+// carry over to the next frame, as a link that was busy to the end of the frame; bytes left when
+// the requests ran out do not (an idle link banks nothing).
+struct FrameBudget {
+  uint32_t pages = 10;
+  uint64_t bytes = 0;
+};
+
 class BudgetStreamer final : public PageStreamer {
  public:
   BudgetStreamer(const VirtualTextureReader& reader, uint32_t pagesPerFrame,
                  uint32_t latencyFrames = 0);
+  BudgetStreamer(const VirtualTextureReader& reader, FrameBudget budget, uint32_t latencyFrames);
 
   // Takes this frame's requests (most important first) and returns the pages that arrive now.
   std::vector<StreamedPage> frame(const std::vector<StreamRequest>& requests);
@@ -49,13 +60,15 @@ class BudgetStreamer final : public PageStreamer {
 
  private:
   const VirtualTextureReader& reader_;
-  uint32_t pagesPerFrame_, latencyFrames_;
+  FrameBudget budget_;
+  uint32_t latencyFrames_;
+  uint64_t carried_ = 0;  // bytes carried over from the last frame
   std::deque<std::vector<StreamedPage>> inFlight_;  // front arrives next
 };
 
 // A link between the file and the cache: pages cross it one after another, each occupying it for
-// (its bytes) / bytesPerSecond, and arrive latencySeconds after they left. Zero bandwidth means
-// unlimited.
+// (its stored bytes: blocks for the compressed formats, decoded after they arrive) /
+// bytesPerSecond, and arrive latencySeconds after they left. Zero bandwidth means unlimited.
 struct LinkModel {
   double latencySeconds = 0.0;
   double bytesPerSecond = 0.0;

@@ -53,6 +53,21 @@ TEST(ConfigurationsFile, APlainListIsAFileWithoutDefaultsOrFigures) {
   EXPECT_TRUE(file.figures.empty());
 }
 
+TEST(ConfigurationsFile, AByteBudgetIsLabelledAndWrittenOnlyWhereSet) {
+  const ConfigurationsFile file = parseConfigurationsFile(
+      nlohmann::json::parse(R"([{"budget": 3}, {"budget_bytes": 740000}])"));
+  ASSERT_EQ(file.configurations.size(), 2u);
+  EXPECT_EQ(file.configurations[1].budgetBytes, 740000u);
+  EXPECT_EQ(file.configurations[1].label(), "pixelsum 740000B/frame");
+  EXPECT_FALSE(file.configurations[0].toJson().contains("budget_bytes"));
+  EXPECT_EQ(file.configurations[1].toJson()["budget_bytes"], 740000u);
+  const FlightConfiguration back =
+      FlightConfiguration::fromJson(file.configurations[1].toJson(), FlightConfiguration{});
+  EXPECT_EQ(back.budgetBytes, 740000u);
+  EXPECT_EQ(configurationsError(R"([{"budget_bytes": -1}])"),
+            "configuration 1: 'budget_bytes' must be a whole number from 0 to 2^40");
+}
+
 TEST(ConfigurationsFile, RefusesEachMistakeWithItsMessage) {
   EXPECT_EQ(configurationsError(R"({"configurations": [{"budgt": 3}]})"),
             "configuration 1: unknown configuration key 'budgt'");

@@ -91,6 +91,39 @@ TEST_F(Runtime, BudgetStreamerLoadsAtMostItsBudgetAfterTheLatency) {
   EXPECT_EQ(next[0].page, 9u);
 }
 
+TEST_F(Runtime, ABudgetOfBytesSendsWhatItPaysForAtThePagesStoredSize) {
+  // Pages of 10 x 10 texels of 3 bytes: 300 bytes each. 700 bytes a frame send two pages and
+  // carry 100 over while requests wait; the third frame has 800 and sends two more, carrying 200.
+  const uint64_t pageBytes = reader_->description().storedPageBytes();
+  ASSERT_EQ(pageBytes, 300u);
+  BudgetStreamer streamer(*reader_, FrameBudget{.pages = 1, .bytes = 700}, 0);
+  std::vector<StreamRequest> requests;
+  for (uint64_t p = 10; p < 40; ++p) requests.push_back({p, 1.0});
+  std::vector<size_t> sent;
+  for (int frame = 0; frame < 4; ++frame) {
+    const auto arrived = streamer.frame(requests);
+    sent.push_back(arrived.size());
+    for (const StreamedPage& page : arrived)
+      requests.erase(std::find_if(requests.begin(), requests.end(),
+                                  [&](const StreamRequest& r) { return r.page == page.page; }));
+  }
+  // 700, 800, 900 (3 pages, 0 left), 700.
+  EXPECT_EQ(sent, (std::vector<size_t>{2, 2, 3, 2}));
+  // Bytes left when the requests run out are not banked: a frame with one request sends one,
+  // and the next frame has 700 again, not 1100.
+  EXPECT_EQ(streamer.frame({{50, 1.0}}).size(), 1u);
+  EXPECT_EQ(streamer.frame(requests).size(), 2u);
+
+  // Compressed pages of the same texture cost less: BC1 stores 12 x 12 texels in 72 bytes.
+  TextureDescription bc1{.pageSize = 8, .border = 2, .levelCount = 4, .channels = 4};
+  bc1.format = PixelFormat::kBc1;
+  writeSyntheticTexture(dir_ / "bc1.vt", {bc1, std::nullopt});
+  const VirtualTextureReader compressed(dir_ / "bc1.vt");
+  ASSERT_EQ(compressed.description().storedPageBytes(), 72u);
+  BudgetStreamer blocks(compressed, FrameBudget{.pages = 1, .bytes = 700}, 0);
+  EXPECT_EQ(blocks.frame(requests).size(), 9u);  // 648 of 700 bytes
+}
+
 TEST_F(Runtime, ThreadedStreamerReadsTheLatestRequests) {
   ThreadedStreamer streamer(*reader_);
   streamer.request({{3, 1.0}, {4, 1.0}, {5, 1.0}});
