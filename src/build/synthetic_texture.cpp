@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 
+#include "build/block_encoding.h"
 #include "build/noise_value.h"
 #include "common/level_hues.h"
 #include "format/virtual_texture_writer.h"
@@ -67,7 +68,8 @@ void writeSyntheticTexture(const std::filesystem::path& path, const SyntheticTex
   const TextureDescription& d = texture.description;
   const std::vector<uint64_t> pages = syntheticStoredPages(texture);
   VirtualTextureWriter writer =
-      texture.discRadius ? VirtualTextureWriter(path, d, pages) : VirtualTextureWriter(path, d);
+      texture.discRadius ? VirtualTextureWriter(path, d, pages, encodeBlocks)
+                         : VirtualTextureWriter(path, d, encodeBlocks);
   for (const uint64_t p : pages) {
     const PageId page = fromAbsoluteIndex(p);
     const std::vector<std::byte> texels = syntheticPage(d, page);

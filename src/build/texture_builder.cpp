@@ -8,6 +8,7 @@
 #include <chrono>
 #include <thread>
 
+#include "build/block_encoding.h"
 #include "build/image_rows.h"
 #include "build/mip_kernel.h"
 #include "build/noise_value.h"
@@ -357,7 +358,8 @@ BuildReport buildVirtualTexture(const Layout& layout, const std::filesystem::pat
   const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
                                         std::max(1u, threads));
   VirtualTextureWriter writer =
-      sparse ? VirtualTextureWriter(output, d, stored) : VirtualTextureWriter(output, d);
+      sparse ? VirtualTextureWriter(output, d, stored, encodeBlocks)
+             : VirtualTextureWriter(output, d, encodeBlocks);
   Builder builder(layout, std::move(stored), writer);
   ImageRows images(layout);
   {

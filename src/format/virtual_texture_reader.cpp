@@ -1,6 +1,6 @@
 #include "format/virtual_texture_reader.h"
 
-#include "format/block_compression.h"
+#include "format/block_decoding.h"
 
 #include <algorithm>
 #include <cmath>

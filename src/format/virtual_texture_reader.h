@@ -46,7 +46,7 @@ class VirtualTextureReader {
 
   // Reads the stored page's (P + 2B)^2 texels into `texels` (exactly description().pageBytes()
   // bytes), verifying its checksum and decoding the block formats to RGBA8
-  // (format/block_compression.h). Throws InputError for a page that is not stored, a failed
+  // (format/block_decoding.h). Throws InputError for a page that is not stored, a failed
   // read, or a checksum mismatch (naming the page).
   void readPage(PageId page, std::span<std::byte> texels) const;
   std::vector<std::byte> readPage(PageId page) const;

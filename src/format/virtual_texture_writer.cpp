@@ -1,6 +1,5 @@
 #include "format/virtual_texture_writer.h"
 
-#include "format/block_compression.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,19 +19,25 @@ void requireValid(const std::filesystem::path& destination, const TextureDescrip
 }  // namespace
 
 VirtualTextureWriter::VirtualTextureWriter(const std::filesystem::path& destination,
-                                           const TextureDescription& description)
-    : VirtualTextureWriter(destination, description, {}, false) {}
+                                           const TextureDescription& description,
+                                           BlockEncoder encoder)
+    : VirtualTextureWriter(destination, description, {}, false, encoder) {}
 
 VirtualTextureWriter::VirtualTextureWriter(const std::filesystem::path& destination,
                                            const TextureDescription& description,
-                                           std::vector<uint64_t> storedPages)
-    : VirtualTextureWriter(destination, description, std::move(storedPages), true) {}
+                                           std::vector<uint64_t> storedPages, BlockEncoder encoder)
+    : VirtualTextureWriter(destination, description, std::move(storedPages), true, encoder) {}
 
 VirtualTextureWriter::VirtualTextureWriter(const std::filesystem::path& destination,
                                            const TextureDescription& description,
-                                           std::vector<uint64_t> storedPages, bool sparse)
+                                           std::vector<uint64_t> storedPages, bool sparse,
+                                           BlockEncoder encoder)
     : output_((requireValid(destination, description), destination)),
-      index_(std::move(storedPages)) {
+      index_(std::move(storedPages)),
+      encoder_(encoder) {
+  if (isBlockCompressed(description.format) && !encoder_)
+    throw std::invalid_argument("VirtualTextureWriter: pixel format " +
+                                toString(description.format) + " needs a block encoder");
   if (sparse) {
     if (const auto problem = findIndexProblem(index_, description.totalPages()))
       throw InputError(destination, "cannot write sparse index: " + *problem);
@@ -82,7 +87,7 @@ void VirtualTextureWriter::writePage(PageId page, std::span<const std::byte> tex
   std::span<const std::byte> stored = texels;
   if (isBlockCompressed(d.format)) {
     blocks.resize(d.storedPageBytes());
-    encodeBlocks(d.format, d.storedPageSide(), texels, blocks);
+    encoder_(d.format, d.storedPageSide(), texels, blocks);
     stored = blocks;
   }
   const uint64_t checksum = checksum64(stored);

@@ -17,21 +17,27 @@
 
 namespace vt {
 
+// Encodes a stored page of side x side RGBA8 texels into blocks of a block format (the tool
+// chain's build/block_encoding.h: the format part itself only decodes).
+using BlockEncoder = void (*)(PixelFormat format, uint32_t side, std::span<const std::byte> rgba,
+                              std::span<std::byte> blocks);
+
 class VirtualTextureWriter {
  public:
-  // A dense texture: every page of every level is stored.
+  // A dense texture: every page of every level is stored. A block format needs `encoder`.
   VirtualTextureWriter(const std::filesystem::path& destination,
-                       const TextureDescription& description);
+                       const TextureDescription& description, BlockEncoder encoder = nullptr);
   // A sparse texture storing only `storedPages` (absolute indices, rising, holding the root and
   // the parent of every page they hold).
   VirtualTextureWriter(const std::filesystem::path& destination,
-                       const TextureDescription& description, std::vector<uint64_t> storedPages);
+                       const TextureDescription& description, std::vector<uint64_t> storedPages,
+                       BlockEncoder encoder = nullptr);
 
   const TextureDescription& description() const { return header_.description; }
   const std::filesystem::path& destination() const { return output_.destination(); }
 
   // Stores one page: (P + 2B)^2 texels, rows of increasing t (RGBA8 for the block formats, which
-  // it encodes on the calling thread: format/block_compression.h), and its NoiseValue (>= 0).
+  // it encodes on the calling thread with the encoder), and its NoiseValue (>= 0).
   // Each stored page is written exactly once. Thread-safe.
   void writePage(PageId page, std::span<const std::byte> texels, float noiseValue);
 
@@ -42,12 +48,13 @@ class VirtualTextureWriter {
  private:
   VirtualTextureWriter(const std::filesystem::path& destination,
                        const TextureDescription& description, std::vector<uint64_t> storedPages,
-                       bool sparse);
+                       bool sparse, BlockEncoder encoder);
   uint64_t slotOf(PageId page) const;
 
   TemporaryFile output_;
   FileHeader header_;
   std::vector<uint64_t> index_;
+  BlockEncoder encoder_;
   std::mutex mutex_;  // guards the tables below
   std::vector<float> noiseValues_;
   std::vector<uint64_t> pageChecksums_;

@@ -4,10 +4,11 @@
 #include <algorithm>
 #include <thread>
 
+#include "build/block_encoding.h"
 #include "build/synthetic_texture.h"
 #include "common/error.h"
 #include "common/little_endian.h"
-#include "format/block_compression.h"
+#include "format/block_decoding.h"
 #include "format/file_header.h"
 #include "format/level_image.h"
 #include "format/virtual_texture_reader.h"
@@ -131,18 +132,18 @@ TEST(VirtualTextureFile, BytesDoNotDependOnWriteOrderOrThreads) {
     std::vector<uint64_t> order(d.totalPages());
     for (uint64_t p = 0; p < order.size(); ++p) order[p] = p;
     {
-      VirtualTextureWriter writer(dir / "forward.vt", d);
+      VirtualTextureWriter writer(dir / "forward.vt", d, encodeBlocks);
       writePages(writer, d, order);
       writer.commit();
     }
     {
       std::reverse(order.begin(), order.end());
-      VirtualTextureWriter writer(dir / "backward.vt", d);
+      VirtualTextureWriter writer(dir / "backward.vt", d, encodeBlocks);
       writePages(writer, d, order);
       writer.commit();
     }
     {
-      VirtualTextureWriter writer(dir / "threads.vt", d);
+      VirtualTextureWriter writer(dir / "threads.vt", d, encodeBlocks);
       std::vector<std::thread> threads;
       for (uint64_t t = 0; t < 4; ++t)
         threads.emplace_back([&, t] {
@@ -197,6 +198,48 @@ TEST(VirtualTextureFile, UncommittedWriterLeavesNothingAndKeepsThePreviousFile) 
             1);
 }
 
+// The decoding of format/block_decoding.h on blocks worked out by hand.
+TEST(VirtualTextureFile, BlocksDecodeAsTheSpecificationWithThirdsRoundedToNearest) {
+  const auto decodeOne = [](PixelFormat format, std::vector<uint8_t> block) {
+    std::vector<std::byte> bytes(block.size()), texels(4 * 4 * 4);
+    for (size_t k = 0; k < block.size(); ++k) bytes[k] = std::byte{block[k]};
+    decodeBlocks(format, 4, bytes, texels);
+    std::vector<int> values;
+    for (const std::byte b : texels) values.push_back(static_cast<int>(b));
+    return values;
+  };
+  const auto texel = [](const std::vector<int>& t, int k) {
+    return std::vector<int>(t.begin() + 4 * k, t.begin() + 4 * k + 4);
+  };
+  // BC1, c0 = 0xF800 (red 31 -> 255) > c1 = 0x001F (blue 31 -> 255): four colours. Texel k takes
+  // index k % 4: red, blue, round(2/3 255) = 170 red + 85 blue, and the reverse.
+  const auto four = decodeOne(PixelFormat::kBc1, {0x00, 0xF8, 0x1F, 0x00, 0xE4, 0xE4, 0xE4, 0xE4});
+  EXPECT_EQ(texel(four, 0), (std::vector<int>{255, 0, 0, 255}));
+  EXPECT_EQ(texel(four, 1), (std::vector<int>{0, 0, 255, 255}));
+  EXPECT_EQ(texel(four, 2), (std::vector<int>{170, 0, 85, 255}));
+  EXPECT_EQ(texel(four, 3), (std::vector<int>{85, 0, 170, 255}));
+  // c0 = 0x0841 (1, 2, 1 -> 8, 8, 8) <= c1 = 0x1082 (2, 4, 2 -> 16, 16, 16): three colours, the
+  // half way 12 and black, opaque.
+  const auto three = decodeOne(PixelFormat::kBc1, {0x41, 0x08, 0x82, 0x10, 0xE4, 0xE4, 0xE4, 0xE4});
+  EXPECT_EQ(texel(three, 0), (std::vector<int>{8, 8, 8, 255}));
+  EXPECT_EQ(texel(three, 2), (std::vector<int>{12, 12, 12, 255}));
+  EXPECT_EQ(texel(three, 3), (std::vector<int>{0, 0, 0, 255}));
+  // BC3: alpha 200 > 100, eight values (index i of texel i % 8: 200, 100, round((6 * 200 +
+  // 100) / 7) = 186 (185.7), ..., round((200 + 6 * 100) / 7) = 114 (114.3)); its colour block is
+  // the first BC1 block, four colours although c0 > c1 does not matter for BC3.
+  // Indices 0..7 repeated: bits 000 001 010 011 100 101 110 111 = 0x88 0xC6 0xFA twice.
+  const auto eight = decodeOne(PixelFormat::kBc3, {200, 100, 0x88, 0xC6, 0xFA, 0x88, 0xC6, 0xFA,
+                                                   0x41, 0x08, 0x82, 0x10, 0xE4, 0xE4, 0xE4, 0xE4});
+  const std::vector<int> alphas = {200, 100, 186, 171, 157, 143, 129, 114};
+  for (int k = 0; k < 16; ++k) EXPECT_EQ(texel(eight, k)[3], alphas[k % 8]) << k;
+  EXPECT_EQ(texel(eight, 2), (std::vector<int>{11, 11, 11, 186}));  // round((16 + 16) / 3) = 11
+  // Alpha 100 <= 200: six values, then 0 and 255.
+  const auto six = decodeOne(PixelFormat::kBc3, {100, 200, 0x88, 0xC6, 0xFA, 0x88, 0xC6, 0xFA, 0x41,
+                                                 0x08, 0x82, 0x10, 0xE4, 0xE4, 0xE4, 0xE4});
+  const std::vector<int> sixAlphas = {100, 200, 120, 140, 160, 180, 0, 255};
+  for (int k = 0; k < 16; ++k) EXPECT_EQ(texel(six, k)[3], sixAlphas[k % 8]) << k;
+}
+
 TEST(VirtualTextureFile, WriterRejectsMisuse) {
   test::ScratchDirectory dir;
   const TextureDescription d = smallDescription();
@@ -209,6 +252,11 @@ TEST(VirtualTextureFile, WriterRejectsMisuse) {
                std::invalid_argument);
   EXPECT_THROW(writer.writePage(PageId{1, 0, 1}, root, std::nanf("")), std::invalid_argument);
   EXPECT_THROW(writer.writePage(PageId{1, 0, 1}, root, -1.0f), std::invalid_argument);
+  TextureDescription blocks = d;
+  blocks.format = PixelFormat::kBc3;
+  EXPECT_THAT([&] { VirtualTextureWriter(dir / "bc3.vt", blocks); },
+              ::testing::ThrowsMessage<std::invalid_argument>(
+                  HasSubstr("pixel format bc3 needs a block encoder")));
 
   EXPECT_THAT(
       [&] {

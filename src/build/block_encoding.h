@@ -1,7 +1,8 @@
 #pragma once
-// The block formats' pages (texture_description.h: bc1, bc3) to and from RGBA8 texels, with
-// libsquish, one 4 x 4 block at a time (its image calls run OpenMP loops of their own; pages are
-// already encoded and decoded on the callers' threads, each page on one).
+// The block formats' pages (texture_description.h: bc1, bc3) from RGBA8 texels, with libsquish,
+// one 4 x 4 block at a time (its image calls run OpenMP loops of their own; pages are already
+// encoded on the build's workers, each page on one). Only the tool chain encodes: the readers
+// decode with format/block_decoding.h, which needs no library (vt-capture links no libsquish).
 //
 // Encoding uses libsquish's range fit: each block's palette spans the extremes of its colours
 // along their principal axis, and every texel takes the nearest entry. The library's default,
@@ -25,9 +26,5 @@ namespace vt {
 // bytes (TextureDescription::storedPageBytes).
 void encodeBlocks(PixelFormat format, uint32_t side, std::span<const std::byte> rgba,
                   std::span<std::byte> blocks);
-
-// Decodes a stored page's blocks into side x side RGBA8 texels.
-void decodeBlocks(PixelFormat format, uint32_t side, std::span<const std::byte> blocks,
-                  std::span<std::byte> rgba);
 
 }  // namespace vt

@@ -1,4 +1,4 @@
-#include "format/block_compression.h"
+#include "build/block_encoding.h"
 
 #include <squish.h>
 
@@ -43,21 +43,6 @@ void encodeBlocks(PixelFormat format, uint32_t side, std::span<const std::byte> 
         for (size_t k = 3; k < texels.size(); k += 4) texels[k] = 255;
       squish::Compress(texels.data(), blocks.data() + (by * perRow + bx) * bytes,
                        squishFlags(format));
-    }
-}
-
-void decodeBlocks(PixelFormat format, uint32_t side, std::span<const std::byte> blocks,
-                  std::span<std::byte> rgba) {
-  checkSizes(format, side, rgba.size(), blocks.size());
-  const size_t perRow = side / 4, bytes = blockBytes(format);
-  std::array<uint8_t, 64> texels;
-  for (size_t by = 0; by < perRow; ++by)
-    for (size_t bx = 0; bx < perRow; ++bx) {
-      squish::Decompress(texels.data(), blocks.data() + (by * perRow + bx) * bytes,
-                         squishFlags(format));
-      for (size_t row = 0; row < 4; ++row)
-        std::memcpy(rgba.data() + ((by * 4 + row) * side + bx * 4) * 4, texels.data() + row * 16,
-                    16);
     }
 }
 
