@@ -8,8 +8,10 @@
 //
 // Compiled for AVX2 (shader/lanes.h): call only where lanes::lanesAvailable().
 
+#include <bit>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 #include "render/arithmetic.h"
 #include "shader/shader_lanes.h"
@@ -35,15 +37,67 @@ struct LaneResults {
 #pragma GCC push_options
 #pragma GCC target("avx2,fma")
 
+namespace lane_detail {
+
+// polynomialLog2 (reference/shader_math.h) lane-wide, step by step the same operations.
+inline lanes::Float8 polynomialLog2(lanes::Float8 x, bool fused) {
+  using lanes::Float8;
+  using lanes::Int8;
+  const Int8 bits = reinterpret_cast<lanes::i32x8>(x.v);
+  const Float8 e(
+      Int8(reinterpret_cast<lanes::i32x8>(reinterpret_cast<lanes::u32x8>(bits.v) >> 23)) -
+      Int8(127));
+  const Float8 m = reinterpret_cast<lanes::f32x8>(((bits & Int8(0x007fffff)) | 0x3f800000).v);
+  const Float8 one(1.0f);
+  const Float8 y = (m - one) / (m + one);
+  const Float8 z = y * y;
+  const Float8 z2 = z * z;
+  const Float8 c0(2.88539009343309178325f), c1(0.961791550404184197881f),
+      c2(0.577440339438736392009f), c3(0.403343858251329912514f), c4(0.406718052498846252698f);
+  const auto madd = [fused](Float8 a, Float8 b, Float8 c) {
+    if (!fused) return a * b + c;
+    return Float8(reinterpret_cast<lanes::f32x8>(_mm256_fmadd_ps(reinterpret_cast<__m256>(a.v),
+                                                                 reinterpret_cast<__m256>(b.v),
+                                                                 reinterpret_cast<__m256>(c.v))));
+  };
+  const Float8 p = madd(madd(z2, c3, c1), z, madd(z2, madd(z2, c4, c2), c0));
+  Float8 result = madd(y, p, e);
+  // The scalar function's special cases, the first that applies winning: NaN or negative x
+  // gives NaN, +Inf itself, zero and denormals -Inf.
+  const float inf = std::numeric_limits<float>::infinity();
+  const lanes::Bool8 expZero{(bits & Int8(0x7f800000)).v == 0};
+  result = mix(result, Float8(-inf), expZero);
+  result = mix(result, Float8(inf), lanes::Bool8{x.v == Float8(inf).v});
+  const lanes::Bool8 nanOrNegative{(x.v != x.v) | (x.v < Float8(0.0f).v)};
+  return mix(result, Float8(std::bit_cast<float>(0x7fc00000u)), nanOrNegative);
+}
+
+}  // namespace lane_detail
+
+// polynomialLog2 of eight values at once (tests compare it with the scalar function).
+inline void polynomialLog2EightAtOnce(const float* x, float* out, bool fused) {
+  lanes::Float8 in;
+  std::memcpy(&in.v, x, sizeof in.v);
+  const lanes::Float8 result = lane_detail::polynomialLog2(in, fused);
+  std::memcpy(out, &result.v, sizeof result.v);
+}
+
 // A one-pixel backend (ResidentBackend, CacheBackend) seen by the lanes: each active lane's lookup
 // and reads through it in turn, remembering the page each lane's lookup named for its reads.
 template <class Scalar>
 class LaneBackend {
  public:
-  LaneBackend(Scalar& scalar, UnormConversion conversion, const bool* active)
-      : scalar_(scalar), conversion_(conversion), active_(active) {}
+  LaneBackend(Scalar& scalar, const Arithmetic& arithmetic, const bool* active)
+      : scalar_(scalar),
+        conversion_(arithmetic.texelConversion),
+        log2Form_(arithmetic.log2),
+        active_(active) {}
 
+  // The log2 member: the polynomial lane-wide (polynomialLog2, reference/shader_math.h, step by
+  // step), the library's functions lane by lane.
   lanes::Float8 log2(lanes::Float8 x) {
+    if (log2Form_ == Log2Form::kPolynomialFused || log2Form_ == Log2Form::kPolynomialUnfused)
+      return lane_detail::polynomialLog2(x, log2Form_ == Log2Form::kPolynomialFused);
     lanes::Float8 result(0.0f);
     for (int k = 0; k < lanes::kLanes; ++k)
       if (active_[k]) result.v[k] = scalar_.log2(x[k]);
@@ -117,6 +171,7 @@ class LaneBackend {
 
   Scalar& scalar_;
   UnormConversion conversion_;
+  Log2Form log2Form_;
   const bool* active_;
   const void* pages_[lanes::kLanes] = {};
 };
@@ -143,10 +198,10 @@ inline lanes::Int8 toUnorm8(lanes::Float8 c) {
 // vtShadeFragment, or with `needOnly` its first steps (the LOD and the needbuffer entry, as the
 // renderer's needOfFragment).
 template <class Scalar>
-void shadeLanes(Scalar& scalar, UnormConversion conversion, const shader::VtParameters& p,
+void shadeLanes(Scalar& scalar, const Arithmetic& arithmetic, const shader::VtParameters& p,
                 bool needOnly, const LaneFragments& in, LaneResults& out) {
   using Logic = shader::LaneShaderLogic<LaneBackend<Scalar>>;
-  Logic shader(scalar, conversion, in.active);
+  Logic shader(scalar, arithmetic, in.active);
   using lane_detail::load;
   const lanes::Vec2 uvIn(load(in.u), load(in.v));
   const lanes::Vec2 dUVdx(load(in.dudx), load(in.dvdx)), dUVdy(load(in.dudy), load(in.dvdy));

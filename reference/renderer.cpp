@@ -179,7 +179,7 @@ class TileShader {
       }
       if (!any) continue;
       LaneResults out;
-      shadeLanes(static_cast<Backend&>(shader_), job_.arithmetic.texelConversion,
+      shadeLanes(static_cast<Backend&>(shader_), job_.arithmetic,
                  job_.parameters, job_.settings.needOnly, in, out);
       for (int lane = 0; lane < lanes::kLanes; ++lane) {
         if (!in.active[lane]) continue;

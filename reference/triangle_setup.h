@@ -113,6 +113,35 @@ struct SetupTriangle {
     }
     return edges[0].at(px, py) > 0 && edges[1].at(px, py) > 0 && edges[2].at(px, py) > 0;
   }
+
+  // The pixels of row py within [lo, hi] whose centres the triangle covers, first and last
+  // (first > last when none): exactly those where covers() holds, solved per edge in integers
+  // (each edge function is linear in px along a row) instead of tested pixel by pixel.
+  std::array<int, 2> coveredSpan(int py, int lo, int hi) const {
+    if (scanline) {
+      for (const ScanlineHalf* half : {&halves[1], &halves[0]}) {
+        const std::array<int, 2> span = half->span(py, width);
+        if (span[0] < span[1]) return {std::max(span[0], lo), std::min(span[1] - 1, hi)};
+      }
+      return {1, 0};
+    }
+    // floor(n / d) for d > 0.
+    const auto floorDiv = [](int64_t n, int64_t d) { return n / d - (n % d != 0 && n < 0); };
+    int64_t first = lo, last = hi;
+    for (const Edge& e : edges) {
+      // at(px, py) = row - step * px, which must be > 0.
+      const int64_t scale = int64_t{1} << e.bits;
+      const int64_t row = e.c + e.b * py * scale, step = e.a * scale;
+      if (step > 0)
+        last = std::min(last, floorDiv(row - 1, step));
+      else if (step < 0)
+        first = std::max(first, floorDiv(-row, -step) + 1);
+      else if (row <= 0)
+        return {1, 0};
+    }
+    if (first > last) return {1, 0};
+    return {static_cast<int>(first), static_cast<int>(last)};
+  }
 };
 
 // The texture coordinates (s/w and t/w over 1/w) of a set-up triangle at pixel (px, py), and 1/w:

@@ -69,12 +69,11 @@ void boundsOf(const RTCBoundsFunctionArguments* args) {
   args->bounds_o->upper_z = 1.0f;
 }
 
-// Triangle k (set up as t) as a candidate at pixel (px, py): the GL rules decide whether it covers
-// the pixel and passes the depth test against the clear value and the pixel's winner so far (hit,
-// whose stored key is bestKey); the nearer of the two wins, the earlier drawn on a tie.
-inline void considerCandidate(const SetupTriangle& t, int32_t k, int px, int py, DepthFormat format,
-                              const Arithmetic& arithmetic, PixelHit& hit, uint32_t& bestKey) {
-  if (!t.covers(px, py)) return;
+// Triangle k (set up as t), which covers pixel (px, py), against the depth test: against the
+// clear value and the pixel's winner so far (hit, whose stored key is bestKey), the nearer of the
+// two wins, the earlier drawn on a tie. considerCandidate first asks the coverage rule.
+inline void considerCovering(const SetupTriangle& t, int32_t k, int px, int py, DepthFormat format,
+                             const Arithmetic& arithmetic, PixelHit& hit, uint32_t& bestKey) {
   const float z = windowDepth(t, px, py, arithmetic);
   const Depth& depth = arithmetic.depth;
   const uint32_t key = depthKey(z, format, depth);
@@ -89,6 +88,11 @@ inline void considerCandidate(const SetupTriangle& t, int32_t k, int px, int py,
   } else {
     hit.runnerUpDepth = std::min(hit.runnerUpDepth, stored);
   }
+}
+
+inline void considerCandidate(const SetupTriangle& t, int32_t k, int px, int py, DepthFormat format,
+                              const Arithmetic& arithmetic, PixelHit& hit, uint32_t& bestKey) {
+  if (t.covers(px, py)) considerCovering(t, k, px, py, format, arithmetic, hit, bestKey);
 }
 
 // A candidate for some rays of a packet: apply the GL rules per pixel, keep the winner, never
@@ -195,11 +199,13 @@ void Visibility::tile(int x0, int y0, std::span<PixelHit, kTile * kTile> hits) c
   for (uint32_t i = binStart_[bin]; i < binStart_[bin + 1]; ++i) {
     const int32_t k = static_cast<int32_t>(binned_[i]);
     const SetupTriangle& t = triangles_[static_cast<size_t>(k)];
-    for (int py = std::max(t.minY, y0); py <= std::min(t.maxY, yEnd); ++py)
-      for (int px = std::max(t.minX, x0); px <= std::min(t.maxX, xEnd); ++px) {
+    for (int py = std::max(t.minY, y0); py <= std::min(t.maxY, yEnd); ++py) {
+      const auto [first, last] = t.coveredSpan(py, std::max(t.minX, x0), std::min(t.maxX, xEnd));
+      for (int px = first; px <= last; ++px) {
         const size_t slot = static_cast<size_t>((px - x0) + kTile * (py - y0));
-        considerCandidate(t, k, px, py, format_, arithmetic_, hits[slot], keys[slot]);
+        considerCovering(t, k, px, py, format_, arithmetic_, hits[slot], keys[slot]);
       }
+    }
   }
 }
 

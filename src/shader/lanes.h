@@ -89,6 +89,7 @@ inline Int8 operator+(Int8 a, Int8 b) { return a.v + b.v; }
 inline Int8 operator-(Int8 a, Int8 b) { return a.v - b.v; }
 inline Int8 operator*(Int8 a, Int8 b) { return a.v * b.v; }
 inline Int8 operator&(Int8 a, Int8 b) { return a.v & b.v; }
+inline Int8 operator|(Int8 a, Int8 b) { return a.v | b.v; }
 inline Int8 operator<<(Int8 a, Int8 b) { return a.v << b.v; }
 inline Int8 operator>>(Int8 a, Int8 b) { return a.v >> b.v; }
 inline Bool8 operator<(Int8 a, Int8 b) { return {a.v < b.v}; }

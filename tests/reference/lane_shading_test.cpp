@@ -3,6 +3,8 @@
 // arithmetic, both texture views, every shader switch and extreme texture coordinates; and its
 // two visibility searches agree: tiles walked by the binned rasterizer and Embree's packets.
 
+#include "reference/lane_shading.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +13,7 @@
 
 #include "build/synthetic_texture.h"
 #include "reference/renderer.h"
+#include "reference/shader_math.h"
 #include "reference/visibility.h"
 #include "render/arithmetic_points.h"
 #include "render/cache_state.h"
@@ -146,6 +149,33 @@ TEST_P(LaneShading, ACacheStateWithMissingPagesGivesTheSameBytesAsOnePixelAtATim
   for (const auto& [what, settings] : switches()) expectSameBytes(cache, settings, what);
 }
 
+TEST(LanePolynomialLog2, EveryLaneGivesTheScalarFunctionsBits) {
+  if (!lanes::lanesAvailable()) GTEST_SKIP() << "this CPU has no AVX2";
+  // Special values (zeros, denormals, infinities, NaNs, negatives, powers of two and their
+  // neighbours) and random bit patterns of every exponent, under both denormal modes.
+  std::vector<uint32_t> bits = {0x00000000u, 0x80000000u, 0x00000001u, 0x007fffffu, 0x00800000u,
+                                0x3f800000u, 0x3f7fffffu, 0x3f800001u, 0x7f7fffffu, 0x7f800000u,
+                                0xff800000u, 0x7fc00000u, 0x7f800001u, 0xbf800000u, 0x80000001u,
+                                0x40000000u, 0x3f000000u};
+  std::mt19937 random(17);
+  for (int k = 0; k < 20000; ++k) bits.push_back(static_cast<uint32_t>(random()));
+  while (bits.size() % 8 != 0) bits.push_back(0x3f800000u);
+  for (const bool flush : {false, true}) {
+    const DenormalMode mode(flush);
+    for (const bool fused : {false, true})
+      for (size_t i = 0; i < bits.size(); i += 8) {
+        float in[8], out[8];
+        for (size_t k = 0; k < 8; ++k) in[k] = std::bit_cast<float>(bits[i + k]);
+        polynomialLog2EightAtOnce(in, out, fused);
+        for (size_t k = 0; k < 8; ++k)
+          ASSERT_EQ(std::bit_cast<uint32_t>(out[k]),
+                    std::bit_cast<uint32_t>(polynomialLog2(in[k], fused)))
+              << std::hex << bits[i + k] << (fused ? " fused" : " unfused")
+              << (flush ? ", flushing denormals" : "");
+      }
+  }
+}
+
 TEST_P(LaneShading, TheTileRasterizerAgreesWithEmbreesPacketsOnEveryPixel) {
   // Random overlapping triangles, two coplanar copies of one (the earlier drawn wins), both depth
   // formats: the winner, its stored depth and the runner-up's must be the same bits.
@@ -168,6 +198,18 @@ TEST_P(LaneShading, TheTileRasterizerAgreesWithEmbreesPacketsOnEveryPixel) {
   const Arithmetic arithmetic = arithmeticPoint(GetParam());
   const Viewport viewport{101, 67};
   const auto triangles = setupTriangles(mesh, viewport, arithmetic);
+  // The rasterizer walks each row's covered span, solved per edge: exactly the pixels covers()
+  // accepts, including rows cut short by the window given.
+  size_t spans = 0;
+  for (const SetupTriangle& t : triangles)
+    for (int py = t.minY; py <= t.maxY; ++py)
+      for (const auto& [lo, hi] : {std::pair{t.minX, t.maxX}, std::pair{t.minX + 3, t.maxX - 2}}) {
+        const auto [first, last] = t.coveredSpan(py, lo, hi);
+        for (int px = lo; px <= hi; ++px)
+          ASSERT_EQ(px >= first && px <= last, t.covers(px, py)) << px << ", " << py;
+        spans += first <= last;
+      }
+  EXPECT_GT(spans, 1000u);
   for (const DepthFormat format : {DepthFormat::kDepth32F, DepthFormat::kDepth24}) {
     const Visibility visibility(triangles, viewport, format, arithmetic);
     std::array<PixelHit, Visibility::kTile * Visibility::kTile> tile;
