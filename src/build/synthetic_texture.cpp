@@ -68,8 +68,8 @@ void writeSyntheticTexture(const std::filesystem::path& path, const SyntheticTex
   const TextureDescription& d = texture.description;
   const std::vector<uint64_t> pages = syntheticStoredPages(texture);
   VirtualTextureWriter writer =
-      texture.discRadius ? VirtualTextureWriter(path, d, pages, encodeBlocks)
-                         : VirtualTextureWriter(path, d, encodeBlocks);
+      texture.discRadius ? VirtualTextureWriter(path, d, pages, BlockEncoder(encodeBlocks))
+                         : VirtualTextureWriter(path, d, BlockEncoder(encodeBlocks));
   for (const uint64_t p : pages) {
     const PageId page = fromAbsoluteIndex(p);
     const std::vector<std::byte> texels = syntheticPage(d, page);

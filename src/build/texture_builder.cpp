@@ -358,8 +358,8 @@ BuildReport buildVirtualTexture(const Layout& layout, const std::filesystem::pat
   const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
                                         std::max(1u, threads));
   VirtualTextureWriter writer =
-      sparse ? VirtualTextureWriter(output, d, stored, encodeBlocks)
-             : VirtualTextureWriter(output, d, encodeBlocks);
+      sparse ? VirtualTextureWriter(output, d, stored, BlockEncoder(encodeBlocks))
+             : VirtualTextureWriter(output, d, BlockEncoder(encodeBlocks));
   Builder builder(layout, std::move(stored), writer);
   ImageRows images(layout);
   {

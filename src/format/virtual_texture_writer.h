@@ -6,6 +6,7 @@
 // depend on that order.
 
 #include <cstddef>
+#include <concepts>
 #include <cstdint>
 #include <filesystem>
 #include <mutex>
@@ -17,21 +18,38 @@
 
 namespace vt {
 
-// Encodes a stored page of side x side RGBA8 texels into blocks of a block format (the tool
-// chain's build/block_encoding.h: the format part itself only decodes).
-using BlockEncoder = void (*)(PixelFormat format, uint32_t side, std::span<const std::byte> rgba,
-                              std::span<std::byte> blocks);
+// Encodes a stored page of side x side RGBA8 texels into blocks of a block format: the tool
+// chain's encodeBlocks (build/block_encoding.h; the format part itself only decodes). A class,
+// so that a brace list meant as a sparse index ({0}) never becomes a null encoder.
+class BlockEncoder {
+ public:
+  using Function = void (*)(PixelFormat format, uint32_t side, std::span<const std::byte> rgba,
+                            std::span<std::byte> blocks);
+  BlockEncoder() = default;
+  // A template only so that nothing but a function converts: not 0, not a brace list.
+  template <class F>
+    requires std::same_as<F, Function>
+  explicit BlockEncoder(F encode) : encode_(encode) {}
+  explicit operator bool() const { return encode_ != nullptr; }
+  void operator()(PixelFormat format, uint32_t side, std::span<const std::byte> rgba,
+                  std::span<std::byte> blocks) const {
+    encode_(format, side, rgba, blocks);
+  }
+
+ private:
+  Function encode_ = nullptr;
+};
 
 class VirtualTextureWriter {
  public:
   // A dense texture: every page of every level is stored. A block format needs `encoder`.
   VirtualTextureWriter(const std::filesystem::path& destination,
-                       const TextureDescription& description, BlockEncoder encoder = nullptr);
+                       const TextureDescription& description, BlockEncoder encoder = {});
   // A sparse texture storing only `storedPages` (absolute indices, rising, holding the root and
   // the parent of every page they hold).
   VirtualTextureWriter(const std::filesystem::path& destination,
                        const TextureDescription& description, std::vector<uint64_t> storedPages,
-                       BlockEncoder encoder = nullptr);
+                       BlockEncoder encoder = {});
 
   const TextureDescription& description() const { return header_.description; }
   const std::filesystem::path& destination() const { return output_.destination(); }

@@ -132,18 +132,18 @@ TEST(VirtualTextureFile, BytesDoNotDependOnWriteOrderOrThreads) {
     std::vector<uint64_t> order(d.totalPages());
     for (uint64_t p = 0; p < order.size(); ++p) order[p] = p;
     {
-      VirtualTextureWriter writer(dir / "forward.vt", d, encodeBlocks);
+      VirtualTextureWriter writer(dir / "forward.vt", d, BlockEncoder(encodeBlocks));
       writePages(writer, d, order);
       writer.commit();
     }
     {
       std::reverse(order.begin(), order.end());
-      VirtualTextureWriter writer(dir / "backward.vt", d, encodeBlocks);
+      VirtualTextureWriter writer(dir / "backward.vt", d, BlockEncoder(encodeBlocks));
       writePages(writer, d, order);
       writer.commit();
     }
     {
-      VirtualTextureWriter writer(dir / "threads.vt", d, encodeBlocks);
+      VirtualTextureWriter writer(dir / "threads.vt", d, BlockEncoder(encodeBlocks));
       std::vector<std::thread> threads;
       for (uint64_t t = 0; t < 4; ++t)
         threads.emplace_back([&, t] {
