@@ -13,6 +13,7 @@
 #include <cstring>
 #include <limits>
 
+#include "reference/shader_math.h"
 #include "render/arithmetic.h"
 #include "shader/shader_lanes.h"
 
@@ -52,8 +53,8 @@ inline lanes::Float8 polynomialLog2(lanes::Float8 x, bool fused) {
   const Float8 y = (m - one) / (m + one);
   const Float8 z = y * y;
   const Float8 z2 = z * z;
-  const Float8 c0(2.88539009343309178325f), c1(0.961791550404184197881f),
-      c2(0.577440339438736392009f), c3(0.403343858251329912514f), c4(0.406718052498846252698f);
+  const Float8 c0(kLog2Coefficients[0]), c1(kLog2Coefficients[1]), c2(kLog2Coefficients[2]),
+      c3(kLog2Coefficients[3]), c4(kLog2Coefficients[4]);
   const auto madd = [fused](Float8 a, Float8 b, Float8 c) {
     if (!fused) return a * b + c;
     return Float8(reinterpret_cast<lanes::f32x8>(_mm256_fmadd_ps(reinterpret_cast<__m256>(a.v),

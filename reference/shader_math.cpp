@@ -21,9 +21,7 @@ float polynomialLog2(float x, bool fused) {
   const float y = (m - 1.0f) / (m + 1.0f);
   const float z = y * y;
   const float z2 = z * z;
-  constexpr float c0 = 2.88539009343309178325f, c1 = 0.961791550404184197881f,
-                  c2 = 0.577440339438736392009f, c3 = 0.403343858251329912514f,
-                  c4 = 0.406718052498846252698f;
+  const auto [c0, c1, c2, c3, c4] = kLog2Coefficients;
   const auto madd = [fused](float a, float b, float c) {
     return fused ? std::fma(a, b, c) : a * b + c;
   };

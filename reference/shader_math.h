@@ -7,7 +7,11 @@
 namespace vt::reference {
 
 // log2 as a degree-4 minimax polynomial in y = (m - 1) / (m + 1) (DESIGN section 7, rule 8),
-// evaluated with fused multiply-adds or with a product and a sum in their place.
+// evaluated with fused multiply-adds or with a product and a sum in their place. Its coefficients
+// c0..c4, which the lanes' version (lane_shading.h) shares:
+inline constexpr float kLog2Coefficients[5] = {
+    2.88539009343309178325f, 0.961791550404184197881f, 0.577440339438736392009f,
+    0.403343858251329912514f, 0.406718052498846252698f};
 float polynomialLog2(float x, bool fused);
 
 // logf(x) * 1.442695f (reference/softpipe-arithmetic.md, 5.2), bit for bit on the machine whose
