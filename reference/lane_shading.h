@@ -35,10 +35,16 @@ struct LaneResults {
   int32_t residentLevel[lanes::kLanes];
 };
 
-#pragma GCC push_options
-#pragma GCC target("avx2,fma")
+VT_LANES_BEGIN
 
 namespace lane_detail {
+
+// a * b + c, as one fused operation or as a product and a sum.
+inline lanes::Float8 multiplyAdd(lanes::Float8 a, lanes::Float8 b, lanes::Float8 c, bool fused) {
+  if (!fused) return a * b + c;
+  return reinterpret_cast<lanes::f32x8>(_mm256_fmadd_ps(
+      reinterpret_cast<__m256>(a.v), reinterpret_cast<__m256>(b.v), reinterpret_cast<__m256>(c.v)));
+}
 
 // polynomialLog2 (reference/shader_math.h) lane-wide, step by step the same operations.
 inline lanes::Float8 polynomialLog2(lanes::Float8 x, bool fused) {
@@ -55,14 +61,9 @@ inline lanes::Float8 polynomialLog2(lanes::Float8 x, bool fused) {
   const Float8 z2 = z * z;
   const Float8 c0(kLog2Coefficients[0]), c1(kLog2Coefficients[1]), c2(kLog2Coefficients[2]),
       c3(kLog2Coefficients[3]), c4(kLog2Coefficients[4]);
-  const auto madd = [fused](Float8 a, Float8 b, Float8 c) {
-    if (!fused) return a * b + c;
-    return Float8(reinterpret_cast<lanes::f32x8>(_mm256_fmadd_ps(reinterpret_cast<__m256>(a.v),
-                                                                 reinterpret_cast<__m256>(b.v),
-                                                                 reinterpret_cast<__m256>(c.v))));
-  };
-  const Float8 p = madd(madd(z2, c3, c1), z, madd(z2, madd(z2, c4, c2), c0));
-  Float8 result = madd(y, p, e);
+  const Float8 p = multiplyAdd(multiplyAdd(z2, c3, c1, fused), z,
+                               multiplyAdd(z2, multiplyAdd(z2, c4, c2, fused), c0, fused), fused);
+  Float8 result = multiplyAdd(y, p, e, fused);
   // The scalar function's special cases, the first that applies winning: NaN or negative x
   // gives NaN, +Inf itself, zero and denormals -Inf.
   const float inf = std::numeric_limits<float>::infinity();
@@ -232,6 +233,6 @@ void shadeLanes(Scalar& scalar, const Arithmetic& arithmetic, const shader::VtPa
   }
 }
 
-#pragma GCC pop_options
+VT_LANES_END
 
 }  // namespace vt::reference

@@ -23,8 +23,19 @@
 
 #include <cstdint>
 
-#pragma GCC push_options
-#pragma GCC target("avx2,fma")
+// The AVX2 target region: every function defined between VT_LANES_BEGIN and VT_LANES_END is
+// compiled for AVX2 and FMA, with GCC's target pragma or clang's attribute push (the fuzzing
+// build).
+#if defined(__clang__)
+#define VT_LANES_BEGIN \
+  _Pragma("clang attribute push (__attribute__((target(\"avx2,fma\"))), apply_to = function)")
+#define VT_LANES_END _Pragma("clang attribute pop")
+#else
+#define VT_LANES_BEGIN _Pragma("GCC push_options") _Pragma("GCC target(\"avx2,fma\")")
+#define VT_LANES_END _Pragma("GCC pop_options")
+#endif
+
+VT_LANES_BEGIN
 
 namespace vt::lanes {
 
@@ -159,7 +170,7 @@ inline Vec4 operator*(Vec4 a, Float8 s) { return {a.x * s, a.y * s, a.z * s, a.w
 
 }  // namespace vt::lanes
 
-#pragma GCC pop_options
+VT_LANES_END
 
 namespace vt::lanes {
 

@@ -14,8 +14,7 @@
 #include "shader/lanes.h"
 #include "shader/shader_cpp.h"
 
-#pragma GCC push_options
-#pragma GCC target("avx2,fma")
+VT_LANES_BEGIN
 
 namespace vt::shader {
 
@@ -47,4 +46,4 @@ class LaneShaderLogic : public Backend {
 
 }  // namespace vt::shader
 
-#pragma GCC pop_options
+VT_LANES_END
