@@ -27,7 +27,9 @@ nlohmann::json textureReport(const VirtualTextureReader& reader) {
   report["page_size"] = d.pageSize;
   report["border"] = d.border;
   report["stored_page_side"] = d.storedPageSide();
-  report["page_bytes"] = d.pageBytes();
+  // A page as the file holds it; a block format's pages are read decoded, larger.
+  report["page_bytes"] = d.storedPageBytes();
+  if (isBlockCompressed(d.format)) report["decoded_page_bytes"] = d.pageBytes();
   report["levels"] = d.levelCount;
   report["side_texels"] = d.sideTexels();
   report["channels"] = d.channels;
@@ -77,7 +79,10 @@ std::string formatTextureReport(const nlohmann::json& r) {
   line("identity", str(r["identity"]));
   line("pages", str(r["page_size"]) + "^2 texels + " + str(r["border"]) +
                     " border = " + str(r["stored_page_side"]) + "^2 stored, " +
-                    str(r["page_bytes"]) + " bytes each");
+                    str(r["page_bytes"]) + " bytes each" +
+                    (r.contains("decoded_page_bytes")
+                         ? " (" + str(r["decoded_page_bytes"]) + " decoded)"
+                         : std::string()));
   const uint32_t levels = r["levels"].get<uint32_t>();
   line("texture", str(r["side_texels"]) + " x " + str(r["side_texels"]) + " texels, levels 0.." +
                       std::to_string(levels - 1) + " (0 coarsest)");

@@ -211,6 +211,7 @@ TEST_F(VtCommand, BuildStoresBlockCompressedPages) {
   const auto info = vt({"info", "--verify", bc1});
   EXPECT_EQ(info.exitCode, 0) << info.err;
   EXPECT_THAT(info.out, HasSubstr("virtual texture v2, 4 x bc1, sRGB"));
+  EXPECT_THAT(info.out, HasSubstr("20^2 stored, 200 bytes each (1600 decoded)"));
   EXPECT_THAT(vt({"info", bc3}).out, HasSubstr("4 x bc3"));
   // 20 x 20 stored texels: 3 bytes each, against 25 blocks of 8 (BC1) or 16 (BC3) bytes.
   const VirtualTextureReader plainReader(plain), bc1Reader(bc1), bc3Reader(bc3);
