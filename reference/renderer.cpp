@@ -103,9 +103,10 @@ struct FrameJob {
   Frame& frame;
 };
 
-// One worker's shading of a frame: a tile of pixels at a time, block by block (one Embree packet
-// of 4 x 4 rays), quad by quad. A triangle's planes are evaluated once at its quad's four pixels
-// (helpers included) and serve every pixel of the quad that shows it. Pixel k of quad (qx, qy) is
+// One worker's shading of a frame: a tile of pixels at a time, its winners from the tile
+// rasterizer (visibility.h), then quad by quad, or two quads side by side per SIMD call
+// (lane_shading.h). A triangle's planes are evaluated once at its quad's four pixels (helpers
+// included) and serve every pixel of the quad that shows it. Pixel k of quad (qx, qy) is
 // (qx + column, qy + row), column = k & 1, row = k >> 1; window y points up:
 //
 //     row 1:  2 3    dUV/dx = right - left in the pixel's row
@@ -128,72 +129,63 @@ class TileShader {
     sets_ = sets;
     const Viewport v = job_.viewport;
     job_.visibility.tile(x0, y0, tileHits_);
-    for (int by = y0; by < std::min(y0 + kTile, v.height); by += Visibility::kBlock)
-      for (int bx = x0; bx < std::min(x0 + kTile, v.width); bx += Visibility::kBlock) {
-        std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> hits;
-        for (int dy = 0; dy < Visibility::kBlock; ++dy)
-          for (int dx = 0; dx < Visibility::kBlock; ++dx)
-            hits[static_cast<size_t>(dx + Visibility::kBlock * dy)] =
-                tileHits_[static_cast<size_t>((bx - x0 + dx) + kTile * (by - y0 + dy))];
-        if (job_.lanes) {
-          shadeBlockInLanes(bx, by, hits);
-          continue;
-        }
-        for (int qy = by; qy < std::min(by + Visibility::kBlock, v.height); qy += 2)
-          for (int qx = bx; qx < std::min(bx + Visibility::kBlock, v.width); qx += 2)
-            shadeQuad(qx, qy, [&](int px, int py) {
-              return hits[static_cast<size_t>((px - bx) + Visibility::kBlock * (py - by))];
-            });
-      }
+    const auto hitAt = [&](int px, int py) -> const PixelHit& {
+      return tileHits_[static_cast<size_t>((px - x0) + kTile * (py - y0))];
+    };
+    const int step = job_.lanes ? 4 : 2;  // columns of a step: one quad, or two per SIMD call
+    for (int qy = y0; qy < std::min(y0 + kTile, v.height); qy += 2)
+      for (int qx = x0; qx < std::min(x0 + kTile, v.width); qx += step)
+        if (job_.lanes)
+          shadeQuadPairInLanes(qx, qy, hitAt);
+        else
+          shadeQuad(qx, qy, hitAt);
   }
 
  private:
-  // The block's pixels eight at a time, two quads side by side per call: lanes 0-3 the left
-  // quad's pixels 0-3, lanes 4-7 the right one's.
-  void shadeBlockInLanes(int bx, int by, const std::array<PixelHit, 16>& hits) {
+  // The quads at (qx, qy) and (qx + 2, qy) in one call: lanes 0-3 the left quad's pixels 0-3,
+  // lanes 4-7 the right one's.
+  template <class HitAt>
+  void shadeQuadPairInLanes(int qx0, int qy, const HitAt& hitAt) {
     const Viewport v = job_.viewport;
-    for (int row = 0; row < Visibility::kBlock; row += 2) {
-      LaneFragments in{};
-      bool any = false;
-      for (int half = 0; half < 2; ++half) {
-        const int qx = bx + 2 * half, qy = by + row;
-        slots_ = 0;
-        for (int k = 0; k < 4; ++k) {
-          const int lane = 4 * half + k, px = qx + (k & 1), py = qy + (k >> 1);
-          if (px >= v.width || py >= v.height) continue;
-          const PixelHit& hit = hits[static_cast<size_t>((px - bx) + Visibility::kBlock * (py - by))];
-          laneHits_[static_cast<size_t>(lane)] = hit;
-          if (hit.triangle < 0) {
-            writeEmpty(px, py);
-            continue;
-          }
-          const PixelInputs pixel = inputsOf(k, quadAttributes(hit.triangle, qx, qy));
-          in.u[lane] = pixel.uv.x;
-          in.v[lane] = pixel.uv.y;
-          in.dudx[lane] = pixel.dUVdx.x;
-          in.dvdx[lane] = pixel.dUVdx.y;
-          in.dudy[lane] = pixel.dUVdy.x;
-          in.dvdy[lane] = pixel.dUVdy.y;
-          in.active[lane] = any = true;
+    LaneFragments in{};
+    bool any = false;
+    for (int half = 0; half < 2; ++half) {
+      const int qx = qx0 + 2 * half;
+      slots_ = 0;
+      for (int k = 0; k < 4; ++k) {
+        const int lane = 4 * half + k, px = qx + (k & 1), py = qy + (k >> 1);
+        if (px >= v.width || py >= v.height) continue;
+        const PixelHit& hit = hitAt(px, py);
+        if (hit.triangle < 0) {
+          writeEmpty(px, py);
+          continue;
         }
+        const PixelInputs pixel = inputsOf(k, quadAttributes(hit.triangle, qx, qy));
+        in.u[lane] = pixel.uv.x;
+        in.v[lane] = pixel.uv.y;
+        in.dudx[lane] = pixel.dUVdx.x;
+        in.dvdx[lane] = pixel.dUVdx.y;
+        in.dudy[lane] = pixel.dUVdy.x;
+        in.dvdy[lane] = pixel.dUVdy.y;
+        in.active[lane] = any = true;
       }
-      if (!any) continue;
-      LaneResults out;
-      shadeLanes(static_cast<Backend&>(shader_), job_.arithmetic,
-                 job_.parameters, job_.settings.needOnly, in, out);
-      for (int lane = 0; lane < lanes::kLanes; ++lane) {
-        if (!in.active[lane]) continue;
-        const int half = lane >> 2, k = lane & 3;
-        const PixelInputs pixel{vec2(in.u[lane], in.v[lane]), vec2(in.dudx[lane], in.dvdx[lane]),
-                                vec2(in.dudy[lane], in.dvdy[lane])};
-        writePixel(bx + 2 * half + (k & 1), by + row + (k >> 1),
-                   laneHits_[static_cast<size_t>(lane)], pixel,
-                   glm::u8vec4(out.color[lane][0], out.color[lane][1], out.color[lane][2],
-                               out.color[lane][3]),
-                   glm::uvec4(out.need[lane][0], out.need[lane][1], out.need[lane][2],
-                              out.need[lane][3]),
-                   out.lod[lane], out.residentLevel[lane]);
-      }
+    }
+    if (!any) return;
+    LaneResults out;
+    shadeLanes(static_cast<Backend&>(shader_), job_.arithmetic, job_.parameters,
+               job_.settings.needOnly, in, out);
+    for (int lane = 0; lane < lanes::kLanes; ++lane) {
+      if (!in.active[lane]) continue;
+      const int half = lane >> 2, k = lane & 3;
+      const int px = qx0 + 2 * half + (k & 1), py = qy + (k >> 1);
+      const PixelInputs pixel{vec2(in.u[lane], in.v[lane]), vec2(in.dudx[lane], in.dvdx[lane]),
+                              vec2(in.dudy[lane], in.dvdy[lane])};
+      writePixel(
+          px, py, hitAt(px, py), pixel,
+          glm::u8vec4(out.color[lane][0], out.color[lane][1], out.color[lane][2],
+                      out.color[lane][3]),
+          glm::uvec4(out.need[lane][0], out.need[lane][1], out.need[lane][2], out.need[lane][3]),
+          out.lod[lane], out.residentLevel[lane]);
     }
   }
 
@@ -298,8 +290,7 @@ class TileShader {
         static_cast<int32_t>(job_.triangles[static_cast<size_t>(hit.triangle)].primitive);
     if (job_.debug) {
       frame.uv[index] = pixel.uv;
-      frame.derivatives[index] =
-          vec4(pixel.dUVdx.x, pixel.dUVdx.y, pixel.dUVdy.x, pixel.dUVdy.y);
+      frame.derivatives[index] = vec4(pixel.dUVdx.x, pixel.dUVdx.y, pixel.dUVdy.x, pixel.dUVdy.y);
       frame.lod[index] = lod;
       frame.residentLevel[index] = static_cast<int8_t>(residentLevel);
     }
@@ -381,8 +372,7 @@ class TileShader {
   std::array<int32_t, 4> quadTriangle_{};
   std::array<std::array<Attributes, 4>, 4> quadAttributes_{};
   int slots_ = 0;
-  std::array<PixelHit, lanes::kLanes> laneHits_{};  // the pixels of the lanes being shaded
-  std::array<PixelHit, kTile * kTile> tileHits_{};   // the tile's winners
+  std::array<PixelHit, kTile * kTile> tileHits_{};  // the tile's winners
 };
 
 SetShading setShading(const TextureDescription& d, const RenderSettings& settings) {
