@@ -12,6 +12,7 @@
 #include <random>
 
 #include "build/synthetic_texture.h"
+#include "reference/random_triangles.h"
 #include "reference/renderer.h"
 #include "reference/shader_math.h"
 #include "reference/visibility.h"
@@ -179,22 +180,7 @@ TEST(LanePolynomialLog2, EveryLaneGivesTheScalarFunctionsBits) {
 TEST_P(LaneShading, TheTileRasterizerAgreesWithEmbreesPacketsOnEveryPixel) {
   // Random overlapping triangles, two coplanar copies of one (the earlier drawn wins), both depth
   // formats: the winner, its stored depth and the runner-up's must be the same bits.
-  std::mt19937 random(11);
-  std::uniform_real_distribution<float> coordinate(-1.5f, 1.5f), depth(-0.9f, 0.9f), w(0.5f, 2.0f);
-  ClipSpaceMesh mesh;
-  for (int k = 0; k < 150; ++k)
-    for (int corner = 0; corner < 3; ++corner) {
-      const float vw = w(random);
-      mesh.vertices.push_back(
-          {{coordinate(random) * vw, coordinate(random) * vw, depth(random) * vw, vw},
-           {0.5f, 0.5f}});
-      mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
-    }
-  for (int copy = 0; copy < 2; ++copy)
-    for (int corner = 0; corner < 3; ++corner) {
-      mesh.vertices.push_back(mesh.vertices[static_cast<size_t>(corner)]);
-      mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
-    }
+  const ClipSpaceMesh mesh = test::randomTrianglesWithCoplanarCopies(150, 11);
   const Arithmetic arithmetic = arithmeticPoint(GetParam());
   const Viewport viewport{101, 67};
   const auto triangles = setupTriangles(mesh, viewport, arithmetic);

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "build/synthetic_texture.h"
+#include "reference/random_triangles.h"
 #include "reference/renderer.h"
 #include "reference/visibility.h"
 #include "render/arithmetic_points.h"
@@ -82,17 +83,19 @@ class OracleAtPoint : public Oracle, public ::testing::WithParamInterface<std::s
   Arithmetic arithmetic() const { return arithmeticPoint(GetParam()); }
 };
 
-INSTANTIATE_TEST_SUITE_P(NamedPoints, OracleAtPoint,
-                         ::testing::ValuesIn(arithmeticPointNames()),
+INSTANTIATE_TEST_SUITE_P(NamedPoints, OracleAtPoint, ::testing::ValuesIn(arithmeticPointNames()),
                          [](const auto& info) { return info.param; });
 
 TEST_P(OracleAtPoint, SharedEdgesCoverEveryPixelExactlyOnce) {
   const Viewport viewport{97, 61};
   // Off-centre fans, and fans around the pixel centre (48.5, 30.5) = NDC (0, 0) whose horizontal
   // and vertical spokes run through rows and columns of pixel centres: the tie rule decides them.
-  for (const auto& [n, centre] : std::vector<std::pair<int, glm::vec2>>{
-           {3, {0.123f, -0.271f}}, {7, {0.123f, -0.271f}}, {40, {0.123f, -0.271f}},
-           {4, {0.0f, 0.0f}}, {8, {0.0f, 0.0f}}, {12, {0.0f, 0.0f}}}) {
+  for (const auto& [n, centre] : std::vector<std::pair<int, glm::vec2>>{{3, {0.123f, -0.271f}},
+                                                                        {7, {0.123f, -0.271f}},
+                                                                        {40, {0.123f, -0.271f}},
+                                                                        {4, {0.0f, 0.0f}},
+                                                                        {8, {0.0f, 0.0f}},
+                                                                        {12, {0.0f, 0.0f}}}) {
     const auto triangles = setupTriangles(fan(n, centre), viewport, arithmetic());
     for (int py = 0; py < viewport.height; ++py)
       for (int px = 0; px < viewport.width; ++px) {
@@ -105,24 +108,7 @@ TEST_P(OracleAtPoint, SharedEdgesCoverEveryPixelExactlyOnce) {
 }
 
 TEST_P(OracleAtPoint, VisibilityMatchesBruteForceOnRandomTriangles) {
-  std::mt19937 random(5);
-  std::uniform_real_distribution<float> coordinate(-1.5f, 1.5f), depth(-0.9f, 0.9f), w(0.5f, 2.0f);
-  ClipSpaceMesh mesh;
-  for (int k = 0; k < 60; ++k) {
-    for (int corner = 0; corner < 3; ++corner) {
-      const float vw = w(random);
-      mesh.vertices.push_back(
-          {{coordinate(random) * vw, coordinate(random) * vw, depth(random) * vw, vw},
-           {0.5f, 0.5f}});
-      mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
-    }
-  }
-  // Two coplanar copies of one triangle: the first drawn must win everywhere.
-  for (int copy = 0; copy < 2; ++copy)
-    for (int corner = 0; corner < 3; ++corner) {
-      mesh.vertices.push_back(mesh.vertices[static_cast<size_t>(corner)]);
-      mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
-    }
+  const ClipSpaceMesh mesh = test::randomTrianglesWithCoplanarCopies(60, 5);
   const Viewport viewport{80, 50};
   const auto triangles = setupTriangles(mesh, viewport, arithmetic());
   const Visibility visibility(triangles, viewport, DepthFormat::kDepth32F, arithmetic());
