@@ -4,7 +4,6 @@
 
 #include <gtest/gtest.h>
 
-#include <random>
 
 #include "build/synthetic_texture.h"
 #include "reference/random_triangles.h"
@@ -83,19 +82,17 @@ class OracleAtPoint : public Oracle, public ::testing::WithParamInterface<std::s
   Arithmetic arithmetic() const { return arithmeticPoint(GetParam()); }
 };
 
-INSTANTIATE_TEST_SUITE_P(NamedPoints, OracleAtPoint, ::testing::ValuesIn(arithmeticPointNames()),
+INSTANTIATE_TEST_SUITE_P(NamedPoints, OracleAtPoint,
+                         ::testing::ValuesIn(arithmeticPointNames()),
                          [](const auto& info) { return info.param; });
 
 TEST_P(OracleAtPoint, SharedEdgesCoverEveryPixelExactlyOnce) {
   const Viewport viewport{97, 61};
   // Off-centre fans, and fans around the pixel centre (48.5, 30.5) = NDC (0, 0) whose horizontal
   // and vertical spokes run through rows and columns of pixel centres: the tie rule decides them.
-  for (const auto& [n, centre] : std::vector<std::pair<int, glm::vec2>>{{3, {0.123f, -0.271f}},
-                                                                        {7, {0.123f, -0.271f}},
-                                                                        {40, {0.123f, -0.271f}},
-                                                                        {4, {0.0f, 0.0f}},
-                                                                        {8, {0.0f, 0.0f}},
-                                                                        {12, {0.0f, 0.0f}}}) {
+  for (const auto& [n, centre] : std::vector<std::pair<int, glm::vec2>>{
+           {3, {0.123f, -0.271f}}, {7, {0.123f, -0.271f}}, {40, {0.123f, -0.271f}},
+           {4, {0.0f, 0.0f}}, {8, {0.0f, 0.0f}}, {12, {0.0f, 0.0f}}}) {
     const auto triangles = setupTriangles(fan(n, centre), viewport, arithmetic());
     for (int py = 0; py < viewport.height; ++py)
       for (int px = 0; px < viewport.width; ++px) {
