@@ -39,6 +39,20 @@ VT_LANES_BEGIN
 
 namespace lane_detail {
 
+inline lanes::Float8 load(const float* values) {
+  lanes::Float8 result;
+  std::memcpy(&result.v, values, sizeof result.v);
+  return result;
+}
+
+// The framebuffer's conversion (toUnorm8, shader_backends.h): clamp (NaN to 0), times 255, round
+// to nearest even.
+inline lanes::Int8 toUnorm8(lanes::Float8 c) {
+  const lanes::Float8 below = mix(lanes::Float8(1.0f), c, c <= lanes::Float8(1.0f));
+  const lanes::Float8 clamped = mix(lanes::Float8(0.0f), below, c >= lanes::Float8(0.0f));
+  return lanes::Int8(nearbyint(clamped * lanes::Float8(255.0f)));
+}
+
 // a * b + c, as one fused operation or as a product and a sum.
 inline lanes::Float8 multiplyAdd(lanes::Float8 a, lanes::Float8 b, lanes::Float8 c, bool fused) {
   if (!fused) return a * b + c;
@@ -78,9 +92,7 @@ inline lanes::Float8 polynomialLog2(lanes::Float8 x, bool fused) {
 
 // polynomialLog2 of eight values at once (tests compare it with the scalar function).
 inline void polynomialLog2EightAtOnce(const float* x, float* out, bool fused) {
-  lanes::Float8 in;
-  std::memcpy(&in.v, x, sizeof in.v);
-  const lanes::Float8 result = lane_detail::polynomialLog2(in, fused);
+  const lanes::Float8 result = lane_detail::polynomialLog2(lane_detail::load(x), fused);
   std::memcpy(out, &result.v, sizeof result.v);
 }
 
@@ -177,24 +189,6 @@ class LaneBackend {
   const bool* active_;
   const void* pages_[lanes::kLanes] = {};
 };
-
-namespace lane_detail {
-
-inline lanes::Float8 load(const float* values) {
-  lanes::Float8 result;
-  std::memcpy(&result.v, values, sizeof result.v);
-  return result;
-}
-
-// The framebuffer's conversion (toUnorm8, shader_backends.h): clamp (NaN to 0), times 255, round
-// to nearest even.
-inline lanes::Int8 toUnorm8(lanes::Float8 c) {
-  const lanes::Float8 below = mix(lanes::Float8(1.0f), c, c <= lanes::Float8(1.0f));
-  const lanes::Float8 clamped = mix(lanes::Float8(0.0f), below, c >= lanes::Float8(0.0f));
-  return lanes::Int8(nearbyint(clamped * lanes::Float8(255.0f)));
-}
-
-}  // namespace lane_detail
 
 // Shades the active lanes of `in` through `scalar` (the tile's one-pixel backend) into `out`:
 // vtShadeFragment, or with `needOnly` its first steps (the LOD and the needbuffer entry, as the
