@@ -38,6 +38,9 @@ class BackendTexels : public TexelSource {
     return backend_.vtFetchIndirection(page, level);
   }
   glm::u8vec4 texel(glm::ivec2 position) override { return backend_.fetch8(position); }
+  std::array<glm::u8vec4, 2> texelRange(glm::ivec2 position) override {
+    return backend_.fetchRange(position);
+  }
 
  private:
   Backend& backend_;
@@ -383,6 +386,7 @@ SetShading setShading(const TextureDescription& d, const RenderSettings& setting
   shading.trilinear = settings.trilinear;
   shading.exactFilter = settings.exactFilter;
   shading.needScaleLog2 = settings.needScaleLog2;
+  shading.blockCompressed = isBlockCompressed(d.format);
   return shading;
 }
 
@@ -440,6 +444,11 @@ void renderFrame(const ClipSpaceMesh& mesh, const ResidentTexture& texture,
 
 void renderFrame(const ClipSpaceMesh& mesh, const CacheState& cache, const RenderSettings& settings,
                  Frame& frame) {
+  // The oracle samples texels decoded as its arithmetic decodes blocks.
+  if (decodesDifferently(cache, settings.arithmetic.blockDecoding)) {
+    renderFrame(mesh, withDecoding(cache, settings.arithmetic.blockDecoding), settings, frame);
+    return;
+  }
   render<CacheBackend>(
       mesh, cache, cache.description,
       glm::vec2(static_cast<float>(cache.widthTexels), static_cast<float>(cache.heightTexels)),

@@ -502,6 +502,14 @@ class Builder {
     };
     Stops xs, ys;
     Colour c = nothing();
+    // Each texel as the least and greatest value it may have: one value unless the block
+    // decoding is free.
+    using Range = std::array<glm::u8vec4, 2>;
+    const auto fetch = [&](glm::ivec2 at) -> Range {
+      if (!model_.decodingPinned && shading_.blockCompressed) return source_.texelRange(at);
+      const glm::u8vec4 v = source_.texel(at);
+      return {v, v};
+    };
     if (!stops(x, xs) || !stops(y, ys) || xs.count * ys.count > kMaxPoints) {
       // A wide box: every texel it reaches bounds the filter (a convex combination of them);
       // beyond 16 x 16 texels, the whole range (cheaper than reading them, and still a bound).
@@ -510,8 +518,10 @@ class Builder {
            ty <= static_cast<int>(std::floor(y.hi - 0.5)) + 1; ++ty)
         for (int tx = static_cast<int>(std::floor(x.lo - 0.5));
              tx <= static_cast<int>(std::floor(x.hi - 0.5)) + 1; ++tx) {
-          const glm::u8vec4 v = source_.texel({tx, ty});
-          for (size_t k = 0; k < 4; ++k) c[k] = hull(c[k], Interval::point(v[static_cast<int>(k)]));
+          const Range v = fetch({tx, ty});
+          for (size_t k = 0; k < 4; ++k)
+            c[k] = hull(c[k], Interval{static_cast<double>(v[0][static_cast<int>(k)]),
+                                       static_cast<double>(v[1][static_cast<int>(k)])});
         }
       return c;
     }
@@ -520,15 +530,15 @@ class Builder {
                             static_cast<int>(std::floor(y.lo - 0.5)));
     const int width = static_cast<int>(std::floor(x.hi - 0.5)) + 2 - origin.x;
     const int height = static_cast<int>(std::floor(y.hi - 0.5)) + 2 - origin.y;
-    std::array<glm::u8vec4, 4 * kMaxPoints> block;
+    std::array<Range, 4 * kMaxPoints> block;
     const bool cached = width * height <= static_cast<int>(block.size());
     if (cached)
       for (int ty = 0; ty < height; ++ty)
         for (int tx = 0; tx < width; ++tx)
-          block[static_cast<size_t>(ty * width + tx)] = source_.texel(origin + glm::ivec2(tx, ty));
+          block[static_cast<size_t>(ty * width + tx)] = fetch(origin + glm::ivec2(tx, ty));
     const auto texel = [&](glm::ivec2 at) {
       const glm::ivec2 local = at - origin;
-      return cached ? block[static_cast<size_t>(local.y * width + local.x)] : source_.texel(at);
+      return cached ? block[static_cast<size_t>(local.y * width + local.x)] : fetch(at);
     };
     for (size_t j = 0; j < ys.count; ++j)
       for (size_t i = 0; i < xs.count; ++i) {
@@ -536,13 +546,18 @@ class Builder {
         const double bx = std::floor(tx), by = std::floor(ty);
         const double fx = tx - bx, fy = ty - by;
         const glm::ivec2 i0(static_cast<int>(bx), static_cast<int>(by));
-        const glm::u8vec4 c00 = texel(i0), c10 = texel(i0 + glm::ivec2(1, 0)),
-                          c01 = texel(i0 + glm::ivec2(0, 1)), c11 = texel(i0 + glm::ivec2(1, 1));
+        const Range c00 = texel(i0), c10 = texel(i0 + glm::ivec2(1, 0)),
+                    c01 = texel(i0 + glm::ivec2(0, 1)), c11 = texel(i0 + glm::ivec2(1, 1));
+        // The filter's weights are not negative: it grows with every texel, so its least value
+        // comes from the least texels and its greatest from the greatest.
         for (int k = 0; k < 4; ++k) {
-          const double row0 = c00[k] + (c10[k] - c00[k]) * fx;
-          const double row1 = c01[k] + (c11[k] - c01[k]) * fx;
-          const double v = row0 + (row1 - row0) * fy;
-          c[static_cast<size_t>(k)] = hull(c[static_cast<size_t>(k)], Interval::point(v));
+          double bound[2];
+          for (size_t e = 0; e < 2; ++e) {
+            const double row0 = c00[e][k] + (c10[e][k] - c00[e][k]) * fx;
+            const double row1 = c01[e][k] + (c11[e][k] - c01[e][k]) * fx;
+            bound[e] = row0 + (row1 - row0) * fy;
+          }
+          c[static_cast<size_t>(k)] = hull(c[static_cast<size_t>(k)], Interval{bound[0], bound[1]});
         }
       }
     return c;

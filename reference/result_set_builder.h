@@ -19,6 +19,7 @@
 // Which triangle may own a pixel follows the GL rules on the candidates Embree gathers: it must
 // possibly cover the centre and possibly pass GL_LESS against every candidate that surely covers.
 
+#include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>
@@ -38,6 +39,12 @@ class TexelSource {
   virtual glm::uvec4 entry(glm::ivec2 page, int level) = 0;
   // One cache texel, clamped to the cache's edge, 8-bit channels.
   virtual glm::u8vec4 texel(glm::ivec2 position) = 0;
+  // The least and greatest value the texel may have when the block decoding is free
+  // (PrecisionModel::decodingPinned false); its one value for texels that are not decoded.
+  virtual std::array<glm::u8vec4, 2> texelRange(glm::ivec2 position) {
+    const glm::u8vec4 v = texel(position);
+    return {v, v};
+  }
 };
 
 // What the shader settings fix for every pixel.
@@ -45,6 +52,7 @@ struct SetShading {
   int pageSize = 128, border = 4, finestLevel = 0;
   bool trilinear = true, exactFilter = true;
   int needScaleLog2 = 0;
+  bool blockCompressed = false;  // the cache's texels are decoded from blocks
 };
 
 // What the oracle itself drew at the pixel: the index (set-up list) of the triangle it shows, -1

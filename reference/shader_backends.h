@@ -19,6 +19,15 @@
 
 namespace vt::reference {
 
+// The range decodeTexelRange gives texel (x, y) (in block coordinates modulo 4) of `block`.
+inline std::array<glm::u8vec4, 2> rangeOf(PixelFormat format, const std::byte* block, int x,
+                                          int y) {
+  const std::array<BlockTexel, 2> r =
+      decodeTexelRange(format, block, static_cast<uint32_t>((y % 4) * 4 + x % 4));
+  return {glm::u8vec4(r[0][0], r[0][1], r[0][2], r[0][3]),
+          glm::u8vec4(r[1][0], r[1][1], r[1][2], r[1][3])};
+}
+
 // The shader's view of a ResidentTexture: the indirection names the page (or its stored
 // ancestor) in frame (0, 0) of a cache of one frame and remembers it; texel fetches read that
 // page. The shader fetches texels only of the page it just looked up.
@@ -39,6 +48,7 @@ class ResidentBackend {
     for (size_t k = 0; k < remembered_; ++k)
       if (recent_[k].wanted == wanted) {
         texels_ = recent_[k].texels;
+        resident_ = recent_[k].resident;
         return shader::uvec4(0u, 0u, recent_[k].resident.level, 0u);
       }
     Lookup& slot = recent_[next_];
@@ -46,7 +56,8 @@ class ResidentBackend {
     remembered_ = std::min(remembered_ + 1, kRemembered);
     slot.wanted = wanted;
     slot.resident = texture_->residentPage(wanted);
-    slot.texels = texels_ = &texture_->texels(slot.resident);
+    slot.texels = texels_ = &texture_->texels(slot.resident, arithmetic_.blockDecoding);
+    resident_ = slot.resident;
     return shader::uvec4(0u, 0u, slot.resident.level, 0u);
   }
 
@@ -61,6 +72,18 @@ class ResidentBackend {
     const int x = std::clamp(texel.x, 0, side - 1), y = std::clamp(texel.y, 0, side - 1);
     return expandToRgba(texels_->data() + (static_cast<size_t>(y) * side + x) * d.channels,
                         d.channels);
+  }
+
+  // What a free block decoding may make of a texel of the page the last scalar lookup named.
+  std::array<glm::u8vec4, 2> fetchRange(shader::ivec2 texel) const {
+    const TextureDescription& d = texture_->description();
+    if (!isBlockCompressed(d.format)) return {fetch8(texel), fetch8(texel)};
+    const int side = static_cast<int>(d.storedPageSide());
+    const int x = std::clamp(texel.x, 0, side - 1), y = std::clamp(texel.y, 0, side - 1);
+    const size_t block = static_cast<size_t>(y / 4) * static_cast<size_t>(side / 4) +
+                         static_cast<size_t>(x / 4);
+    return rangeOf(d.format, texture_->blocks(resident_).data() + block * blockBytes(d.format),
+                   x, y);
   }
 
   shader::vec4 vtFetchCacheTexel(shader::ivec2 texel) {
@@ -84,6 +107,7 @@ class ResidentBackend {
   std::array<Lookup, kRemembered> recent_{};
   size_t remembered_ = 0, next_ = 0;
   const std::vector<std::byte>* texels_ = nullptr;  // the last lookup's page
+  PageId resident_;                                 // and its name
 };
 
 // The shader's view of a CacheState: the indirection table and the cache texture as uploaded.
@@ -120,6 +144,18 @@ class CacheBackend {
   glm::u8vec4 fetch8(shader::ivec2 texel) const {
     const uint8_t* t = texelAt(texel);
     return {t[0], t[1], t[2], t[3]};
+  }
+
+  // What a free block decoding may make of a cache texel (its one value in a texture that is not
+  // block-compressed).
+  std::array<glm::u8vec4, 2> fetchRange(shader::ivec2 texel) const {
+    const TextureDescription& d = state_->description;
+    if (!isBlockCompressed(d.format)) return {fetch8(texel), fetch8(texel)};
+    const int x = std::clamp(texel.x, 0, static_cast<int>(state_->widthTexels) - 1);
+    const int y = std::clamp(texel.y, 0, static_cast<int>(state_->heightTexels) - 1);
+    const size_t block = static_cast<size_t>(y / 4) * (state_->widthTexels / 4) +
+                         static_cast<size_t>(x / 4);
+    return rangeOf(d.format, state_->blocks.data() + block * blockBytes(d.format), x, y);
   }
 
   shader::vec4 vtFetchCacheTexel(shader::ivec2 texel) {

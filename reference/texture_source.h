@@ -30,14 +30,21 @@ class ResidentTexture {
   // The page that serves (px, py) of `level`: itself or its nearest stored ancestor.
   PageId residentPage(PageId page) const;
 
-  // The stored texels of a page (borders included), decoded once and kept. Thread-safe.
-  const std::vector<std::byte>& texels(PageId page) const;
+  // The stored texels of a page (borders included), decoded once per block decoding and kept.
+  // Thread-safe.
+  const std::vector<std::byte>& texels(PageId page, BlockDecoding decoding = {}) const;
+  // Block formats: the page's blocks as stored, read once and kept. Thread-safe.
+  const std::vector<std::byte>& blocks(PageId page) const;
 
  private:
+  const std::vector<std::byte>& kept(uint64_t key,
+                                     const std::function<std::vector<std::byte>()>& load) const;
+
   const TextureDescription description_;
   const VirtualTextureReader* reader_ = nullptr;  // or, for a texture made in memory, makePage_
   PageMaker makePage_;
   mutable std::shared_mutex mutex_;
+  // By page and what the bytes are: texels under one decoding, or the stored blocks.
   mutable std::unordered_map<uint64_t, std::unique_ptr<std::vector<std::byte>>> pages_;
 };
 

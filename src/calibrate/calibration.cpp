@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "calibrate/decoding_fit.h"
 #include "calibrate/filter_fit.h"
 #include "calibrate/probe_draws.h"
 #include "calibrate/raster_fit.h"
@@ -94,7 +95,8 @@ ParameterFit fitDepthTest() {
 
 // What breaks a rule of the specification, one line each, with the probe that showed it.
 std::vector<std::string> nonConformance(const PrecisionModel& m,
-                                        const std::vector<ParameterFit>& fits) {
+                                        const std::vector<ParameterFit>& fits,
+                                        const DecodingFit& decoding) {
   std::vector<std::string> lines;
   const auto fit = [&](const std::string& parameter) -> const ParameterFit& {
     return fitNamed(fits, parameter);
@@ -109,6 +111,13 @@ std::vector<std::string> nonConformance(const PrecisionModel& m,
         "colour conversion (GL 4.5 core, section 2.3.5.2: one of the two nearest "
         "unorm values): " +
         colour.finding + "; probe: " + colour.probe);
+  if (decoding.outsideRange > 0)
+    lines.push_back("block decoding (EXT_texture_compression_s3tc: the palette's fractions of the "
+                    "end points; no known decoder strays further): " +
+                    std::to_string(decoding.outsideRange) +
+                    " channels beyond every known decoder and the fraction rounded either way; "
+                    "probe: " +
+                    decoding.colour.probe);
   for (const Gl45Excess& excess : excessesOverGl45(m)) {
     const ParameterFit& measured = fit(excess.parameter);
     lines.push_back(excess.text + "; probe: " + measured.probe + "; measured: " + measured.finding);
@@ -128,6 +137,7 @@ Calibration calibrate() {
   const FilterFit filter = fitFilter(math.conversion);
   const ParameterFit colour = fitColourConversion();
   const ParameterFit depthTest = fitDepthTest();
+  const DecodingFit decoding = fitBlockDecoding();
   Arithmetic shaderMembers;
   shaderMembers.log2 = math.log2Form;
   shaderMembers.texelConversion = math.conversion;
@@ -157,14 +167,17 @@ Calibration calibrate() {
   m.filterErrorUnits = filter.fit.pinned ? 0 : filter.errorUnits;
   m.colorRoundsToNearest = colour.pinned;
   m.denormalsPinned = math.denormalsAlike;
+  m.arithmetic.blockDecoding = decoding.decoding;
+  m.decodingPinned = decoding.pinned();
 
   c.fits = raster.fits;
   c.fits.insert(c.fits.begin() + 2, raster.attributes);
   c.fits.insert(c.fits.begin() + 3, raster.depth);
   for (const ParameterFit& f : {math.log2, math.sqrt, math.texelConversion, math.lerp, filter.fit,
-                                colour, math.denormals, depthTest})
+                                colour, math.denormals, depthTest, decoding.colour,
+                                decoding.alpha})
     c.fits.push_back(f);
-  c.conformance = nonConformance(m, c.fits);
+  c.conformance = nonConformance(m, c.fits, decoding);
 
   const std::string by = "measured by vt calibrate on " + c.renderer + ": ";
   const auto source = [&](const char* parameter, const ParameterFit& fit) {
@@ -183,6 +196,11 @@ Calibration calibrate() {
   source("filter", filter.fit);
   source("color_conversion", colour);
   source("denormals", math.denormals);
+  m.sources["block_decoding"] =
+      decoding.pinned()
+          ? by + "colour " + decoding.colour.finding + "; alpha " + decoding.alpha.finding
+          : m.sources["block_decoding"] + " (not pinned by " + by + "colour " +
+                decoding.colour.finding + "; alpha " + decoding.alpha.finding + ")";
   return c;
 }
 

@@ -4,6 +4,7 @@
 #include <bit>
 #include <random>
 
+#include "calibrate/decoding_fit.h"
 #include "calibrate/filter_fit.h"
 #include "calibrate/float_bits.h"
 #include "calibrate/probe_draws.h"
@@ -26,6 +27,7 @@ struct FingerprintDraws {
   ClipSpaceMesh mesh;
   RasterReadback raster;
   std::array<std::vector<glm::vec4>, 2> denormals;  // a clipped and an unclipped draw
+  std::vector<glm::vec4> bc1, bc3;                  // the block-decoding probes
 };
 
 constexpr Viewport kRasterViewport{64, 48};
@@ -73,6 +75,8 @@ FingerprintDraws drawFingerprint() {
     probe.clipped = clipped;
     d.denormals[clipped ? 0 : 1] = runShaderProbe(probe);
   }
+  d.bc1 = drawDecodingProbe(PixelFormat::kBc1);
+  d.bc3 = drawDecodingProbe(PixelFormat::kBc3);
   return d;
 }
 
@@ -103,6 +107,7 @@ std::string differs(const FingerprintDraws& d, const reference::ResidentTexture&
     for (const std::vector<glm::vec4>& out : d.denormals)
       for (const glm::vec4& v : out)
         if ((v.x == 0.0f) != a.flushDenormals) return "the denormal mode differs";
+  if (!reproducesDecoding(d.bc1, d.bc3, a.blockDecoding)) return "block decoding differs";
   return "";
 }
 

@@ -85,10 +85,21 @@ std::vector<Texel> drawProbe(const ShaderProbe& probe, GLenum format, GLenum rea
   const GLuint inputs = names.texture(GL_RGBA32F, width, height);
   glTextureSubImage2D(inputs, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, probe.inputs.data());
   glBindTextureUnit(0, inputs);
-  if (!probe.texels.empty()) {
-    const GLuint texture = names.texture(GL_RGBA8, probe.textureSize.x, probe.textureSize.y);
-    glTextureSubImage2D(texture, 0, 0, 0, probe.textureSize.x, probe.textureSize.y, GL_RGBA,
-                        GL_UNSIGNED_BYTE, probe.texels.data());
+  if (!probe.texels.empty() || !probe.blocks.empty()) {
+    GLuint texture = 0;
+    if (probe.blocks.empty()) {
+      texture = names.texture(GL_RGBA8, probe.textureSize.x, probe.textureSize.y);
+      glTextureSubImage2D(texture, 0, 0, 0, probe.textureSize.x, probe.textureSize.y, GL_RGBA,
+                          GL_UNSIGNED_BYTE, probe.texels.data());
+    } else {
+      const GLenum format = probe.blockFormat == PixelFormat::kBc1
+                                ? GL_COMPRESSED_RGB_S3TC_DXT1_EXT
+                                : GL_COMPRESSED_RGBA_S3TC_DXT5_EXT;
+      texture = names.texture(format, probe.textureSize.x, probe.textureSize.y);
+      glCompressedTextureSubImage2D(texture, 0, 0, 0, probe.textureSize.x, probe.textureSize.y,
+                                    format, static_cast<GLsizei>(probe.blocks.size()),
+                                    probe.blocks.data());
+    }
     const GLint filter = probe.linear ? GL_LINEAR : GL_NEAREST;
     glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, filter);
     glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, filter);

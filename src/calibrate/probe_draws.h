@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "format/texture_description.h"
 #include "render/render_settings.h"
 #include "scene/clip_space_mesh.h"
 
@@ -22,6 +23,11 @@ struct ShaderProbe {
   int width = 256;
   std::vector<glm::u8vec4> texels;  // empty: no texture bound
   glm::ivec2 textureSize{0, 0};
+  // Instead of `texels`: a texture of a block format (bc1 as GL_COMPRESSED_RGB_S3TC_DXT1_EXT,
+  // bc3 as GL_COMPRESSED_RGBA_S3TC_DXT5_EXT, as the GL renderer's cache), `textureSize` texels
+  // (multiples of 4) of these blocks, rows of increasing t.
+  PixelFormat blockFormat = PixelFormat::kUnorm8;
+  std::vector<std::byte> blocks;
   bool linear = false;
   // The viewport covered by one triangle larger than it (the clipper cuts it), or by two that
   // fit it exactly (nothing is clipped): implementations may shade the two kinds of batch with

@@ -10,6 +10,7 @@
 #include "common/input_file.h"
 #include "common/json_text.h"
 #include "common/posix_file.h"
+#include "format/block_decoding.h"
 
 namespace vt::capture {
 namespace {
@@ -87,6 +88,7 @@ bool sameRequest(const ProbeRequest& a, const ProbeRequest& b) {
   const calibrate::ShaderProbe &p = a.shader, &q = b.shader;
   return p.body == q.body && p.width == q.width && p.textureSize == q.textureSize &&
          p.linear == q.linear && p.clipped == q.clipped && p.texels == q.texels &&
+         p.blockFormat == q.blockFormat && p.blocks == q.blocks &&
          p.inputs.size() == q.inputs.size() &&
          std::memcmp(p.inputs.data(), q.inputs.data(), p.inputs.size() * sizeof(glm::vec4)) == 0;
 }
@@ -119,6 +121,13 @@ void writeProbeRequest(const std::filesystem::path& folder, size_t index,
     if (!p.texels.empty()) {
       writeArray(folder / (name + ".texels.rgba8"), p.texels);
       j["texels"] = name + ".texels.rgba8";
+      j["texture_size"] = {p.textureSize.x, p.textureSize.y};
+    }
+    if (!p.blocks.empty()) {
+      const std::string format = toString(p.blockFormat);
+      writeArray(folder / (name + ".blocks." + format), p.blocks);
+      j["blocks"] = name + ".blocks." + format;
+      j["block_format"] = format;
       j["texture_size"] = {p.textureSize.x, p.textureSize.y};
     }
     j["linear"] = p.linear;
@@ -181,6 +190,20 @@ ProbeRequest readProbeRequest(const std::filesystem::path& folder, size_t index)
         throw InputError(file, "texture_size is not from 1 x 1 to 4096 x 4096");
       p.textureSize = {static_cast<int>(w), static_cast<int>(h)};
       p.texels = readArray<glm::u8vec4>(folder / (name + ".texels.rgba8"), w * h, "texels");
+    }
+    if (j.contains("blocks")) {
+      if (j.contains("texels")) throw InputError(file, "has both texels and blocks");
+      const std::string format = j.at("block_format").get<std::string>();
+      if (format != "bc1" && format != "bc3")
+        throw InputError(file, "block_format '" + format + "' is not bc1 or bc3");
+      p.blockFormat = format == "bc1" ? PixelFormat::kBc1 : PixelFormat::kBc3;
+      const size_t w = j.at("texture_size").at(0).get<uint32_t>();
+      const size_t h = j.at("texture_size").at(1).get<uint32_t>();
+      if (w < 4 || h < 4 || w > kMaxSide || h > kMaxSide || w % 4 || h % 4)
+        throw InputError(file, "texture_size is not whole blocks from 4 x 4 to 4096 x 4096");
+      p.textureSize = {static_cast<int>(w), static_cast<int>(h)};
+      p.blocks = readArray<std::byte>(folder / (name + ".blocks." + format),
+                                      (w / 4) * (h / 4) * blockBytes(p.blockFormat), "blocks");
     }
     return r;
   } catch (const nlohmann::json::exception& e) {

@@ -52,5 +52,6 @@ struct ZeroedAllocator {
 
 // Bytes that read as zero until written.
 using ZeroedBytes = std::vector<uint8_t, ZeroedAllocator<uint8_t>>;
+using ZeroedBlocks = std::vector<std::byte, ZeroedAllocator<std::byte>>;  // compressed texels
 
 }  // namespace vt

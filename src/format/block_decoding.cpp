@@ -1,21 +1,13 @@
 #include "format/block_decoding.h"
 
-#include <array>
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
 namespace vt {
 namespace {
 
-uint32_t divideRounded(uint32_t numerator, uint32_t denominator) {
-  return (2 * numerator + denominator) / (2 * denominator);
-}
-
-// RGB565 widened to 8 bits per channel by replicating the top bits.
-std::array<uint32_t, 3> widen565(uint32_t c) {
-  const uint32_t r = (c >> 11) & 31, g = (c >> 5) & 63, b = c & 31;
-  return {(r << 3) | (r >> 2), (g << 2) | (g >> 4), (b << 3) | (b >> 2)};
-}
+using Palette = std::array<BlockTexel, 4>;  // colour palette entries (alpha unused)
 
 uint32_t loadLittle(const std::byte* p, int bytes) {
   uint32_t value = 0;
@@ -23,55 +15,186 @@ uint32_t loadLittle(const std::byte* p, int bytes) {
   return value;
 }
 
-// The colour block at `block` into the RGB of 16 texels (alpha left alone).
-void decodeColour(const std::byte* block, bool fourColoursAlways, std::byte* texels,
-                  size_t rowStride) {
-  const uint32_t raw0 = loadLittle(block, 2), raw1 = loadLittle(block + 2, 2);
-  const std::array<uint32_t, 3> c0 = widen565(raw0), c1 = widen565(raw1);
-  std::array<std::array<uint32_t, 3>, 4> palette{c0, c1, {}, {}};
-  const bool four = fourColoursAlways || raw0 > raw1;
-  for (size_t c = 0; c < 3; ++c) {
-    if (four) {
-      palette[2][c] = divideRounded(2 * c0[c] + c1[c], 3);
-      palette[3][c] = divideRounded(c0[c] + 2 * c1[c], 3);
-    } else {
-      palette[2][c] = divideRounded(c0[c] + c1[c], 2);
-      palette[3][c] = 0;
-    }
+int widen5(int v) { return (v << 3) | (v >> 2); }
+int widen6(int v) { return (v << 2) | (v >> 4); }
+
+// The k-th of n steps from a to b (0 < k < n) under one rule, for the rules that work on 8-bit
+// end points alone.
+int step(PaletteRule rule, int a, int b, int k, int n) {
+  const int sum = (n - k) * a + k * b;
+  switch (rule) {
+    case PaletteRule::kNearest:
+      return (2 * sum + n) / (2 * n);
+    case PaletteRule::kTruncated:
+      return sum / n;
+    case PaletteRule::kFixedPointLerp:
+      if (2 * k == n) return (a + b + 1) >> 1;
+      return a + (((b - a) * (k * 255 / n)) >> 8);  // >> of a negative: floor (C++20)
+    case PaletteRule::kAmd:
+      if (2 * k == n) return (a + b + 1) >> 1;
+      return k == 1 ? (43 * a + 21 * b + 32) >> 6 : (21 * a + 43 * b + 32) >> 6;
+    case PaletteRule::kNvidia:
+      break;  // needs the 5-bit end points: nvidiaColour
   }
-  const uint32_t indices = loadLittle(block + 4, 4);
-  for (size_t t = 0; t < 16; ++t) {
-    const std::array<uint32_t, 3>& colour = palette[(indices >> (2 * t)) & 3];
-    std::byte* texel = texels + (t / 4) * rowStride + (t % 4) * 4;
-    for (size_t c = 0; c < 3; ++c) texel[c] = static_cast<std::byte>(colour[c]);
-  }
+  return sum / n;
 }
 
-// The BC3 alpha block at `block` into the alpha of 16 texels.
-void decodeAlpha(const std::byte* block, std::byte* texels, size_t rowStride) {
-  const uint32_t a0 = static_cast<uint32_t>(block[0]), a1 = static_cast<uint32_t>(block[1]);
-  std::array<uint32_t, 8> palette{a0, a1};
-  if (a0 > a1) {
-    for (uint32_t i = 2; i < 8; ++i) palette[i] = divideRounded((8 - i) * a0 + (i - 1) * a1, 7);
-  } else {
-    for (uint32_t i = 2; i < 6; ++i) palette[i] = divideRounded((6 - i) * a0 + (i - 1) * a1, 5);
-    palette[6] = 0;
-    palette[7] = 255;
+// NVIDIA's published colour interpolation: red and blue from their 5-bit end points, green from
+// its 8-bit ones (k = 1: c2, k = 2: c3, or the midpoint when `half`).
+int nvidiaChannel(int channel, int raw0, int raw1, int k, bool half) {
+  if (channel != 1) {
+    if (half) return ((raw0 + raw1) * 33) / 8;
+    return k == 1 ? ((2 * raw0 + raw1) * 22) / 8 : ((raw0 + 2 * raw1) * 22) / 8;
   }
+  const int a = widen6(raw0), b = widen6(raw1), d = b - a;
+  if (half) return (256 * a + d / 4 + 128 + d * 128) / 256;
+  return k == 1 ? (256 * a + d / 4 + 128 + d * 80) / 256 : (256 * b - d / 4 + 128 - d * 80) / 256;
+}
+
+struct ColourBlock {
+  int raw[2][3];  // 5-, 6- and 5-bit end points
+  int wide[2][3];
+  bool four;
+};
+
+ColourBlock readColour(const std::byte* block, bool fourColoursAlways) {
+  const uint32_t c0 = loadLittle(block, 2), c1 = loadLittle(block + 2, 2);
+  ColourBlock b{};
+  const uint32_t c[2] = {c0, c1};
+  for (int e = 0; e < 2; ++e) {
+    b.raw[e][0] = static_cast<int>((c[e] >> 11) & 31);
+    b.raw[e][1] = static_cast<int>((c[e] >> 5) & 63);
+    b.raw[e][2] = static_cast<int>(c[e] & 31);
+    b.wide[e][0] = widen5(b.raw[e][0]);
+    b.wide[e][1] = widen6(b.raw[e][1]);
+    b.wide[e][2] = widen5(b.raw[e][2]);
+  }
+  b.four = fourColoursAlways || c0 > c1;
+  return b;
+}
+
+Palette colourPalette(const ColourBlock& b, PaletteRule rule) {
+  Palette p{};
+  for (int c = 0; c < 3; ++c) {
+    const int a = b.wide[0][c], z = b.wide[1][c];
+    int v2, v3;
+    if (rule == PaletteRule::kNvidia) {
+      v2 = nvidiaChannel(c, b.raw[0][c], b.raw[1][c], 1, !b.four);
+      v3 = b.four ? nvidiaChannel(c, b.raw[0][c], b.raw[1][c], 2, false) : 0;
+    } else if (b.four) {
+      v2 = step(rule, a, z, 1, 3);
+      v3 = step(rule, a, z, 2, 3);
+    } else {
+      v2 = step(rule, a, z, 1, 2);
+      v3 = 0;
+    }
+    const auto c8 = static_cast<size_t>(c);
+    p[0][c8] = static_cast<uint8_t>(a);
+    p[1][c8] = static_cast<uint8_t>(z);
+    p[2][c8] = static_cast<uint8_t>(std::clamp(v2, 0, 255));
+    p[3][c8] = static_cast<uint8_t>(std::clamp(v3, 0, 255));
+  }
+  return p;
+}
+
+std::array<uint8_t, 8> alphaPalette(const std::byte* block, PaletteRule rule) {
+  const int a0 = std::to_integer<int>(block[0]), a1 = std::to_integer<int>(block[1]);
+  std::array<uint8_t, 8> p{static_cast<uint8_t>(a0), static_cast<uint8_t>(a1)};
+  const int n = a0 > a1 ? 7 : 5;
+  for (int k = 1; k < n; ++k) p[static_cast<size_t>(k + 1)] = static_cast<uint8_t>(step(rule, a0, a1, k, n));
+  if (n == 5) {
+    p[6] = 0;
+    p[7] = 255;
+  }
+  return p;
+}
+
+uint32_t colourIndex(const std::byte* colourBlock, uint32_t texel) {
+  return (loadLittle(colourBlock + 4, 4) >> (2 * texel)) & 3;
+}
+
+uint32_t alphaIndex(const std::byte* block, uint32_t texel) {
   const uint64_t indices = loadLittle(block + 2, 3) | (uint64_t{loadLittle(block + 5, 3)} << 24);
-  for (size_t t = 0; t < 16; ++t)
-    texels[(t / 4) * rowStride + (t % 4) * 4 + 3] =
-        static_cast<std::byte>(palette[(indices >> (3 * t)) & 7]);
+  return static_cast<uint32_t>((indices >> (3 * texel)) & 7);
+}
+
+const std::byte* colourPart(PixelFormat format, const std::byte* block) {
+  return format == PixelFormat::kBc1 ? block : block + 8;
+}
+
+// The specification's fraction rounded down and up, as a pair of palettes over every entry.
+std::array<Palette, 2> colourFloorCeil(const ColourBlock& b) {
+  std::array<Palette, 2> r{colourPalette(b, PaletteRule::kTruncated), {}};
+  r[1] = r[0];
+  for (int c = 0; c < 3; ++c) {
+    const int a = b.wide[0][c], z = b.wide[1][c];
+    const auto c8 = static_cast<size_t>(c);
+    if (b.four) {
+      r[1][2][c8] = static_cast<uint8_t>((2 * a + z + 2) / 3);
+      r[1][3][c8] = static_cast<uint8_t>((a + 2 * z + 2) / 3);
+    } else {
+      r[1][2][c8] = static_cast<uint8_t>((a + z + 1) / 2);
+    }
+  }
+  return r;
 }
 
 }  // namespace
 
+std::array<BlockTexel, 16> decodeBlock(PixelFormat format, const std::byte* block,
+                                  BlockDecoding decoding) {
+  const bool bc1 = format == PixelFormat::kBc1;
+  const std::byte* colour = colourPart(format, block);
+  const Palette palette = colourPalette(readColour(colour, !bc1), decoding.colour);
+  std::array<uint8_t, 8> alpha{};
+  if (!bc1) alpha = alphaPalette(block, decoding.alpha);
+  std::array<BlockTexel, 16> texels;
+  for (uint32_t t = 0; t < 16; ++t) {
+    texels[t] = palette[colourIndex(colour, t)];
+    texels[t][3] = bc1 ? 255 : alpha[alphaIndex(block, t)];
+  }
+  return texels;
+}
+
+std::array<BlockTexel, 2> decodeTexelRange(PixelFormat format, const std::byte* block, uint32_t index) {
+  const std::byte* colour = colourPart(format, block);
+  const ColourBlock b = readColour(colour, format != PixelFormat::kBc1);
+  const uint32_t ci = colourIndex(colour, index);
+  const std::array<Palette, 2> floorCeil = colourFloorCeil(b);
+  BlockTexel lo = floorCeil[0][ci], hi = floorCeil[1][ci];
+  for (const auto& [rule, name] : kPaletteRuleNames) {
+    const BlockTexel v = colourPalette(b, rule)[ci];
+    for (size_t c = 0; c < 3; ++c) {
+      lo[c] = std::min(lo[c], v[c]);
+      hi[c] = std::max(hi[c], v[c]);
+    }
+  }
+  if (format == PixelFormat::kBc1) {
+    lo[3] = hi[3] = 255;
+    return {lo, hi};
+  }
+  const uint32_t ai = alphaIndex(block, index);
+  const int a0 = std::to_integer<int>(block[0]), a1 = std::to_integer<int>(block[1]);
+  const int n = a0 > a1 ? 7 : 5, k = static_cast<int>(ai) - 1;
+  int aLo = alphaPalette(block, PaletteRule::kTruncated)[ai], aHi = aLo;
+  if (k >= 1 && k < n) aHi = ((n - k) * a0 + k * a1 + n - 1) / n;  // the fraction rounded up
+  for (const auto& [rule, name] : kPaletteRuleNames)
+    if (isAlphaRule(rule)) {
+      const int v = alphaPalette(block, rule)[ai];
+      aLo = std::min(aLo, v);
+      aHi = std::max(aHi, v);
+    }
+  lo[3] = static_cast<uint8_t>(aLo);
+  hi[3] = static_cast<uint8_t>(aHi);
+  return {lo, hi};
+}
+
 void decodeBlocks(PixelFormat format, uint32_t side, std::span<const std::byte> blocks,
-                  std::span<std::byte> rgba) {
+                  std::span<std::byte> rgba, BlockDecoding decoding) {
   if (!isBlockCompressed(format) || side % 4 != 0)
     throw std::invalid_argument("decodeBlocks: not a block format, or a side of " +
                                 std::to_string(side) + " texels");
-  const size_t perRow = side / 4, bytes = format == PixelFormat::kBc1 ? 8 : 16;
+  const size_t perRow = side / 4, bytes = blockBytes(format);
   const size_t rowStride = size_t{side} * 4;
   if (rgba.size() != rowStride * side || blocks.size() != perRow * perRow * bytes)
     throw std::invalid_argument("decodeBlocks: buffers of " + std::to_string(rgba.size()) +
@@ -79,16 +202,12 @@ void decodeBlocks(PixelFormat format, uint32_t side, std::span<const std::byte> 
                                 std::to_string(side));
   for (size_t by = 0; by < perRow; ++by)
     for (size_t bx = 0; bx < perRow; ++bx) {
-      const std::byte* block = blocks.data() + (by * perRow + bx) * bytes;
+      const std::array<BlockTexel, 16> decoded =
+          decodeBlock(format, blocks.data() + (by * perRow + bx) * bytes, decoding);
       std::byte* texels = rgba.data() + by * 4 * rowStride + bx * 16;
-      if (format == PixelFormat::kBc1) {
-        decodeColour(block, false, texels, rowStride);
-        for (size_t t = 0; t < 16; ++t)
-          texels[(t / 4) * rowStride + (t % 4) * 4 + 3] = std::byte{255};
-      } else {
-        decodeAlpha(block, texels, rowStride);
-        decodeColour(block + 8, true, texels, rowStride);
-      }
+      for (uint32_t t = 0; t < 16; ++t)
+        for (size_t k = 0; k < 4; ++k)
+          texels[(t / 4) * rowStride + (t % 4) * 4 + k] = static_cast<std::byte>(decoded[t][k]);
     }
 }
 

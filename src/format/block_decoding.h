@@ -1,30 +1,85 @@
 #pragma once
-// The block formats' pages (texture_description.h: bc1, bc3) decoded to RGBA8 texels, as the
-// readers serve them (format/virtual_texture_reader.h). Written here, without a library, so that
-// every program that reads textures (vt-capture too) decodes the same way.
+// The block formats' pages (texture_description.h: bc1, bc3) decoded to RGBA8 texels. Written
+// here, without a library, so that every program that reads textures (vt-capture too) decodes
+// the same way.
 //
-// The decoding is the S3TC specification's (EXT_texture_compression_s3tc) with its exact thirds
-// rounded to nearest:
+// What the S3TC specification (EXT_texture_compression_s3tc) fixes:
 //   - colour end points c0, c1 (RGB565) widened to 8 bits by replicating their top bits;
-//   - BC1 with c0 > c1, and every BC3 colour block: c2 = round((2 c0 + c1) / 3),
-//     c3 = round((c0 + 2 c1) / 3) per channel; BC1 with c0 <= c1: c2 = round((c0 + c1) / 2) and
-//     c3 black (BC1 pages are opaque: alpha 255 throughout);
-//   - BC3 alpha a0, a1: with a0 > a1, a_i = round(((8 - i) a0 + (i - 1) a1) / 7) for i = 2..7;
-//     else a_i = round(((6 - i) a0 + (i - 1) a1) / 5) for i = 2..5, a6 = 0, a7 = 255;
+//   - BC1 with c0 > c1, and every BC3 colour block: c2 = (2 c0 + c1) / 3, c3 = (c0 + 2 c1) / 3
+//     per channel; BC1 with c0 <= c1: c2 = (c0 + c1) / 2 and c3 black (BC1 pages are opaque:
+//     alpha 255 throughout);
+//   - BC3 alpha a0, a1: with a0 > a1, a_i = ((8 - i) a0 + (i - 1) a1) / 7 for i = 2..7; else
+//     a_i = ((6 - i) a0 + (i - 1) a1) / 5 for i = 2..5, a6 = 0, a7 = 255;
 //   - 2-bit (colour) and 3-bit (alpha) indices per texel, row by row, the first texel in the
-//     lowest bits; halves round up.
+//     lowest bits.
+// What it leaves open is how these fractions become 8-bit values: that is a family of choices of
+// the oracle's arithmetic (render/arithmetic.h), one rule for the colour palette and one for the
+// alpha palette. The members, with where each comes from:
+//   nearest           each fraction rounded to nearest, halves up: the specification's values as
+//                     closely as 8 bits hold them (the exact point)
+//   truncated         each fraction rounded down: Mesa's util decoder (u_format_s3tc), which
+//                     softpipe samples; measured bit for bit by tools/bc-probe
+//                     (scripts/block-decoding-probe.sh)
+//   fixed_point_lerp  a + floor((b - a) * floor(k * 255 / n) / 256) for the k-th of n steps, and
+//                     the BC1 midpoint as (a + b + 1) >> 1: llvmpipe's (gallivm) decoder, measured
+//                     bit for bit on every palette entry by the same probe
+//   amd               colour only: (43 a + 21 b + 32) >> 6 and the midpoint (a + b + 1) >> 1 on
+//                     8-bit end points, as published for AMD GPUs by the rgbcx encoder
+//   nvidia            colour only: red and blue interpolated on the 5-bit end points,
+//                     ((2 a + b) * 22) / 8 and midpoint ((a + b) * 33) / 8, green from the 8-bit
+//                     end points as (256 a + d / 4 + 128 + 80 d) / 256 with d = b - a (midpoint:
+//                     128 d), as published for NVIDIA GPUs since G80 (NVIDIA Texture Tools, rgbcx)
+// The published hardware members are not measured here; `vt calibrate` measures whichever the
+// implementation under test computes (src/calibrate/decoding_fit.h).
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
 
+#include "common/enum_names.h"
 #include "format/texture_description.h"
 
 namespace vt {
 
+enum class PaletteRule { kNearest, kTruncated, kFixedPointLerp, kAmd, kNvidia };
+inline constexpr EnumNames<PaletteRule, 5> kPaletteRuleNames = {
+    {{PaletteRule::kNearest, "nearest"},
+     {PaletteRule::kTruncated, "truncated"},
+     {PaletteRule::kFixedPointLerp, "fixed_point_lerp"},
+     {PaletteRule::kAmd, "amd"},
+     {PaletteRule::kNvidia, "nvidia"}}};
+
+// The members a BC3 alpha palette may use (the published hardware rules describe colour only).
+constexpr bool isAlphaRule(PaletteRule rule) {
+  return rule == PaletteRule::kNearest || rule == PaletteRule::kTruncated ||
+         rule == PaletteRule::kFixedPointLerp;
+}
+
+struct BlockDecoding {
+  PaletteRule colour = PaletteRule::kNearest;
+  PaletteRule alpha = PaletteRule::kNearest;
+  bool operator==(const BlockDecoding&) const = default;
+};
+
+using BlockTexel = std::array<uint8_t, 4>;
+
+// Bytes of one block of `format` (8 for bc1, 16 for bc3).
+constexpr size_t blockBytes(PixelFormat format) { return format == PixelFormat::kBc1 ? 8 : 16; }
+
 // Decodes a stored page of side x side texels (side a multiple of 4) from its blocks (rows of
 // side / 4 blocks of increasing t, TextureDescription::storedPageBytes of them) into RGBA8.
 void decodeBlocks(PixelFormat format, uint32_t side, std::span<const std::byte> blocks,
-                  std::span<std::byte> rgba);
+                  std::span<std::byte> rgba, BlockDecoding decoding = {});
+
+// The 16 texels of one block, row by row.
+std::array<BlockTexel, 16> decodeBlock(PixelFormat format, const std::byte* block,
+                                  BlockDecoding decoding);
+
+// What any conforming implementation may return for texel `index` (row * 4 + column) of one block: per channel the
+// least and the greatest value of every member above and of the specification's fraction rounded
+// either way (GL 4.5 section 2.3.5.2 lets a conversion to fixed point round either way). End
+// points, c3 black and the alpha constants are exact in every member.
+std::array<BlockTexel, 2> decodeTexelRange(PixelFormat format, const std::byte* block, uint32_t index);
 
 }  // namespace vt

@@ -92,7 +92,8 @@ float VirtualTextureReader::noiseValue(PageId page) const {
   return noiseValues_[requireSlot(page)];
 }
 
-void VirtualTextureReader::readPage(PageId page, std::span<std::byte> texels) const {
+void VirtualTextureReader::readPage(PageId page, std::span<std::byte> texels,
+                                    BlockDecoding decoding) const {
   const TextureDescription& d = description();
   if (texels.size() != d.pageBytes())
     throw std::invalid_argument("readPage: buffer of " + std::to_string(texels.size()) +
@@ -103,7 +104,7 @@ void VirtualTextureReader::readPage(PageId page, std::span<std::byte> texels) co
   }
   std::vector<std::byte> blocks(d.storedPageBytes());
   readStoredPage(page, blocks);
-  decodeBlocks(d.format, d.storedPageSide(), blocks, texels);
+  decodeBlocks(d.format, d.storedPageSide(), blocks, texels, decoding);
 }
 
 void VirtualTextureReader::readStoredPage(PageId page, std::span<std::byte> bytes) const {
@@ -117,10 +118,16 @@ void VirtualTextureReader::readStoredPage(PageId page, std::span<std::byte> byte
     throw InputError(path(), describe(page) + ": checksum mismatch (the page data is corrupted)");
 }
 
-std::vector<std::byte> VirtualTextureReader::readPage(PageId page) const {
+std::vector<std::byte> VirtualTextureReader::readPage(PageId page, BlockDecoding decoding) const {
   std::vector<std::byte> texels(description().pageBytes());
-  readPage(page, texels);
+  readPage(page, texels, decoding);
   return texels;
+}
+
+std::vector<std::byte> VirtualTextureReader::readStoredPage(PageId page) const {
+  std::vector<std::byte> bytes(description().storedPageBytes());
+  readStoredPage(page, bytes);
+  return bytes;
 }
 
 }  // namespace vt

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/posix_file.h"
+#include "format/block_decoding.h"
 #include "format/file_header.h"
 
 namespace vt {
@@ -45,14 +46,15 @@ class VirtualTextureReader {
   std::span<const float> noiseValues() const { return noiseValues_; }
 
   // Reads the stored page's (P + 2B)^2 texels into `texels` (exactly description().pageBytes()
-  // bytes), verifying its checksum and decoding the block formats to RGBA8
+  // bytes), verifying its checksum and decoding the block formats to RGBA8 under `decoding`
   // (format/block_decoding.h). Throws InputError for a page that is not stored, a failed
   // read, or a checksum mismatch (naming the page).
-  void readPage(PageId page, std::span<std::byte> texels) const;
-  std::vector<std::byte> readPage(PageId page) const;
+  void readPage(PageId page, std::span<std::byte> texels, BlockDecoding decoding = {}) const;
+  std::vector<std::byte> readPage(PageId page, BlockDecoding decoding = {}) const;
   // The page's bytes as stored (description().storedPageBytes(): its blocks where the format
   // compresses), checksum verified: what travels from the file.
   void readStoredPage(PageId page, std::span<std::byte> bytes) const;
+  std::vector<std::byte> readStoredPage(PageId page) const;
 
  private:
   uint64_t requireSlot(PageId page) const;

@@ -30,6 +30,25 @@ size_t pixelCount(Viewport viewport) {
 
 }  // namespace
 
+namespace {
+
+// The cache texture's internal format: RGBA8, or the texture's own block format, so that a page
+// costs in the cache what it costs on disk (S3TC: EXT_texture_compression_s3tc, in every
+// desktop driver; BC1 as RGB, its pages being opaque).
+GLenum cacheInternalFormat(PixelFormat format) {
+  switch (format) {
+    case PixelFormat::kBc1:
+      return GL_COMPRESSED_RGB_S3TC_DXT1_EXT;
+    case PixelFormat::kBc3:
+      return GL_COMPRESSED_RGBA_S3TC_DXT5_EXT;
+    case PixelFormat::kUnorm8:
+      break;
+  }
+  return GL_RGBA8;
+}
+
+}  // namespace
+
 GlFrameRenderer::GlFrameRenderer(const CacheState& cache)
     : GlFrameRenderer(cache, virtualTextureFragmentSource()) {}
 
@@ -48,7 +67,7 @@ GlFrameRenderer::GlFrameRenderer(const CacheState& cache, const std::string& fra
   glTextureParameteri(indirection_.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   const auto width = static_cast<GLsizei>(cache.widthTexels),
              height = static_cast<GLsizei>(cache.heightTexels);
-  glTextureStorage2D(texels_.get(), 1, GL_RGBA8, width, height);
+  glTextureStorage2D(texels_.get(), 1, cacheInternalFormat(d.format), width, height);
   glTextureParameteri(texels_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(texels_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(texels_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -77,9 +96,15 @@ void GlFrameRenderer::cacheChanged() {
                         finest ? 0 : finestSide - 2 * side, side, side, GL_RGBA_INTEGER,
                         GL_UNSIGNED_SHORT, cache_.indirection.level(m).data());
   }
-  glTextureSubImage2D(texels_.get(), 0, 0, 0, static_cast<GLsizei>(cache_.widthTexels),
-                      static_cast<GLsizei>(cache_.heightTexels), GL_RGBA, GL_UNSIGNED_BYTE,
-                      cache_.texels.data());
+  const auto width = static_cast<GLsizei>(cache_.widthTexels),
+             height = static_cast<GLsizei>(cache_.heightTexels);
+  if (isBlockCompressed(d.format))
+    glCompressedTextureSubImage2D(texels_.get(), 0, 0, 0, width, height,
+                                  cacheInternalFormat(d.format),
+                                  static_cast<GLsizei>(cache_.blocks.size()), cache_.blocks.data());
+  else
+    glTextureSubImage2D(texels_.get(), 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE,
+                        cache_.texels.data());
 }
 
 void GlFrameRenderer::prepareTargets(Viewport viewport, bool need8) {

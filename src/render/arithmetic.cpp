@@ -30,6 +30,8 @@ std::string describe(const Arithmetic& a) {
                       std::string(nameOf(kLerpRoundingNames, a.filter.lerpRounding))));
   line("texel_conversion", std::string(nameOf(kUnormConversionNames, a.texelConversion)));
   line("denormals", a.flushDenormals ? "flushed" : "kept");
+  line("block_decoding", "colour " + std::string(nameOf(kPaletteRuleNames, a.blockDecoding.colour)) +
+                             ", alpha " + std::string(nameOf(kPaletteRuleNames, a.blockDecoding.alpha)));
   return text;
 }
 

@@ -44,6 +44,10 @@
 //                  evaluated in extended precision and rounded once (an x87 code generator):
 //                  measured, not emulated (the oracle computes the first)
 //   denormals      flushed to zero in fragment arithmetic (DAZ and FTZ) or kept
+//   block decoding how a BC1/BC3 palette's thirds, halves, sevenths and fifths become 8 bits, one
+//                  rule for colour and one for alpha: rounded to nearest, truncated (Mesa's util
+//                  decoder, softpipe), llvmpipe's fixed-point lerps, or a published hardware
+//                  rule (format/block_decoding.h)
 //
 // sqrt and the shader's + - * are IEEE in every member (GLSL 4.50 section 4.7.1 allows more; a
 // measurement that differs is bounded, see precision_model.h).
@@ -51,6 +55,7 @@
 #include <string>
 
 #include "common/enum_names.h"
+#include "format/block_decoding.h"
 
 namespace vt {
 
@@ -143,6 +148,7 @@ struct Arithmetic {
   Filter filter;
   UnormConversion texelConversion = UnormConversion::kTimesReciprocal;
   bool flushDenormals = false;
+  BlockDecoding blockDecoding;
   bool operator==(const Arithmetic&) const = default;
 };
 

@@ -24,6 +24,8 @@ Arithmetic llvmpipePoint() {
   a.filter = {.weights = FilterWeights::kFixedPoint8};                     // rule 9
   a.texelConversion = UnormConversion::kTimesReciprocal;                   // rule 9
   a.flushDenormals = true;                                                 // rule 8
+  // gallivm's S3TC decoder, measured on every palette entry (format/block_decoding.h).
+  a.blockDecoding = {PaletteRule::kFixedPointLerp, PaletteRule::kFixedPointLerp};
   return a;
 }
 
@@ -41,6 +43,8 @@ Arithmetic softpipePoint() {
   a.filter = {.weights = FilterWeights::kFloat};
   a.texelConversion = UnormConversion::kTimesReciprocal;
   a.flushDenormals = true;
+  // Mesa's util S3TC decoder (u_format_s3tc), measured (format/block_decoding.h).
+  a.blockDecoding = {PaletteRule::kTruncated, PaletteRule::kTruncated};
   return a;
 }
 

@@ -23,13 +23,11 @@ glm::u8vec4 expandToRgba(const std::byte* t, uint32_t channels) {
   }
 }
 
-CacheState placePages(const VirtualTextureReader& reader, std::span<const PlacedPage> pages,
-                      uint32_t framesX, uint32_t framesY) {
+CacheState emptyCache(const TextureDescription& description, uint32_t framesX, uint32_t framesY,
+                      BlockDecoding decoding) {
   CacheState state;
-  state.description = reader.description();
-  const TextureDescription& d = state.description;
-  requirePageTablesFit(reader.path(), d.levelCount);
-  const uint32_t side = d.storedPageSide();
+  state.description = description;
+  const uint32_t side = description.storedPageSide();
   if (framesX == 0 || framesY == 0 || uint64_t{framesX} * side > kMaxCacheSideTexels ||
       uint64_t{framesY} * side > kMaxCacheSideTexels)
     throw std::invalid_argument(std::to_string(framesX) + " x " + std::to_string(framesY) +
@@ -41,6 +39,17 @@ CacheState placePages(const VirtualTextureReader& reader, std::span<const Placed
   state.widthTexels = framesX * side;
   state.heightTexels = framesY * side;
   state.texels = ZeroedBytes(size_t{state.widthTexels} * state.heightTexels * 4);
+  state.decoding = decoding;
+  if (isBlockCompressed(description.format))
+    state.blocks = ZeroedBlocks(uint64_t{framesX} * framesY * description.storedPageBytes());
+  return state;
+}
+
+CacheState placePages(const VirtualTextureReader& reader, std::span<const PlacedPage> pages,
+                      uint32_t framesX, uint32_t framesY, BlockDecoding decoding) {
+  requirePageTablesFit(reader.path(), reader.description().levelCount);
+  CacheState state = emptyCache(reader.description(), framesX, framesY, decoding);
+  const TextureDescription& d = state.description;
 
   // Frames: the page's own entry; everything else inherits its parent's, level by level.
   std::vector<std::vector<glm::ivec2>> frameOf(d.levelCount);
@@ -66,7 +75,7 @@ CacheState placePages(const VirtualTextureReader& reader, std::span<const Placed
     frameTaken[frame] = true;
     frameOf[page.level][relativeIndex(page)] =
         glm::ivec2(static_cast<int>(placed.frameX), static_cast<int>(placed.frameY));
-    storePage(state, placed.frameX, placed.frameY, reader.readPage(page));
+    storePage(state, placed.frameX, placed.frameY, reader.readStoredPage(page));
     state.residentPages.push_back(placed.page);
   }
   if (frameOf[0][0].x < 0)
@@ -84,7 +93,7 @@ CacheState placePages(const VirtualTextureReader& reader, std::span<const Placed
 }
 
 CacheState makeCacheState(const VirtualTextureReader& reader, std::span<const uint64_t> pages,
-                          uint32_t framesX, uint32_t framesY) {
+                          uint32_t framesX, uint32_t framesY, BlockDecoding decoding) {
   std::vector<uint64_t> resident(pages.begin(), pages.end());
   if (std::find(resident.begin(), resident.end(), uint64_t{0}) == resident.end())
     resident.insert(resident.begin(), 0);
@@ -97,15 +106,61 @@ CacheState makeCacheState(const VirtualTextureReader& reader, std::span<const ui
   for (size_t k = 0; k < resident.size(); ++k)
     placed.push_back(
         {resident[k], static_cast<uint32_t>(k % framesX), static_cast<uint32_t>(k / framesX)});
-  return placePages(reader, placed, framesX, framesY);
+  return placePages(reader, placed, framesX, framesY, decoding);
+}
+
+namespace {
+
+// Decodes the blocks of frame (frameX, frameY) into its texels under the cache's decoding.
+void decodeFrame(CacheState& cache, uint32_t frameX, uint32_t frameY) {
+  const TextureDescription& d = cache.description;
+  const uint32_t side = d.storedPageSide(), blocksPerRow = cache.widthTexels / 4;
+  const size_t bytes = blockBytes(d.format);
+  for (uint32_t by = 0; by < side / 4; ++by)
+    for (uint32_t bx = 0; bx < side / 4; ++bx) {
+      const size_t block = size_t{frameY * side / 4 + by} * blocksPerRow + frameX * side / 4 + bx;
+      const std::array<BlockTexel, 16> texels =
+          decodeBlock(d.format, cache.blocks.data() + block * bytes, cache.decoding);
+      for (uint32_t t = 0; t < 16; ++t) {
+        const size_t x = size_t{frameX} * side + bx * 4 + t % 4,
+                     y = size_t{frameY} * side + by * 4 + t / 4;
+        std::copy(texels[t].begin(), texels[t].end(),
+                  cache.texels.data() + (y * cache.widthTexels + x) * 4);
+      }
+    }
+}
+
+}  // namespace
+
+CacheState withDecoding(const CacheState& cache, BlockDecoding decoding) {
+  CacheState copy = cache;
+  if (!decodesDifferently(cache, decoding)) return copy;
+  copy.decoding = decoding;
+  for (const uint64_t page : cache.residentPages) {
+    const glm::u16vec4 entry = cache.indirection.entry(fromAbsoluteIndex(page));
+    decodeFrame(copy, entry.x, entry.y);
+  }
+  return copy;
 }
 
 void storePage(CacheState& cache, uint32_t frameX, uint32_t frameY,
-               std::span<const std::byte> texels) {
+               std::span<const std::byte> stored) {
   const TextureDescription& d = cache.description;
   const uint32_t side = d.storedPageSide();
-  if (texels.size() != d.pageBytes() || frameX >= cache.framesX || frameY >= cache.framesY)
+  if (stored.size() != d.storedPageBytes() || frameX >= cache.framesX || frameY >= cache.framesY)
     throw std::invalid_argument("storePage: page or frame does not fit the cache");
+  if (isBlockCompressed(d.format)) {
+    const uint32_t blocksPerRow = cache.widthTexels / 4, pageBlocks = side / 4;
+    const size_t bytes = blockBytes(d.format);
+    for (uint32_t by = 0; by < pageBlocks; ++by)
+      std::copy_n(stored.data() + size_t{by} * pageBlocks * bytes, pageBlocks * bytes,
+                  cache.blocks.data() +
+                      (size_t{frameY * pageBlocks + by} * blocksPerRow + frameX * pageBlocks) *
+                          bytes);
+    decodeFrame(cache, frameX, frameY);
+    return;
+  }
+  const std::span<const std::byte> texels = stored;
   for (uint32_t y = 0; y < side; ++y)
     for (uint32_t x = 0; x < side; ++x) {
       const glm::u8vec4 rgba =
@@ -116,7 +171,8 @@ void storePage(CacheState& cache, uint32_t frameX, uint32_t frameY,
     }
 }
 
-CacheState cacheOfLevels(const VirtualTextureReader& reader, int maxLevel, uint32_t maxSideTexels) {
+CacheState cacheOfLevels(const VirtualTextureReader& reader, int maxLevel, uint32_t maxSideTexels,
+                         BlockDecoding decoding) {
   const uint32_t maxFrames =
       std::max<uint32_t>(1, maxSideTexels / reader.description().storedPageSide());
   std::vector<uint64_t> pages;
@@ -131,16 +187,12 @@ CacheState cacheOfLevels(const VirtualTextureReader& reader, int maxLevel, uint3
   }
   const auto frames = std::max<uint32_t>(
       1, static_cast<uint32_t>(std::ceil(std::sqrt(static_cast<double>(pages.size())))));
-  return makeCacheState(reader, pages, frames, frames);
+  return makeCacheState(reader, pages, frames, frames, decoding);
 }
 
 CacheState rootOnlyCache(const TextureDescription& description) {
-  CacheState cache;
-  cache.description = description;
-  cache.framesX = cache.framesY = 1;
-  cache.widthTexels = cache.heightTexels = description.storedPageSide();
+  CacheState cache = emptyCache(description, 1, 1);
   cache.residentPages = {0};
-  cache.texels = ZeroedBytes(uint64_t{cache.widthTexels} * cache.heightTexels * 4);
   cache.indirection = IndirectionTable(description.levelCount);
   return cache;
 }

@@ -5,8 +5,11 @@
 // Both renderers read the same state: the GL path uploads it, the oracle samples it.
 //
 // Layout: frame (fx, fy) starts at texel (fx, fy) * (P + 2B), rows of increasing t. Texels are
-// RGBA8 whatever the texture's channels (gray spreads to RGB, missing alpha is opaque). The
-// indirection table is render/indirection_table.h.
+// RGBA8 whatever the texture's channels (gray spreads to RGB, missing alpha is opaque). A block
+// format's cache is its blocks, as the GL path uploads them into a texture of the same compressed
+// format, and their RGBA8 decoding under one member of the block-decoding family
+// (format/block_decoding.h), which the oracle samples. The indirection table is
+// render/indirection_table.h.
 
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -14,6 +17,7 @@
 #include <vector>
 
 #include "common/zeroed_buffer.h"
+#include "format/block_decoding.h"
 #include "format/virtual_texture_reader.h"
 #include "render/indirection_table.h"
 
@@ -26,6 +30,10 @@ struct CacheState {
   std::vector<uint64_t> residentPages;  // absolute indices, frame by frame
   ZeroedBytes texels;  // RGBA8, widthTexels x heightTexels; frames no page filled cost no memory
   IndirectionTable indirection;
+  // Block formats only: rows of widthTexels / 4 blocks of increasing t, and the decoding that
+  // made `texels` from them.
+  ZeroedBlocks blocks;
+  BlockDecoding decoding;
 };
 
 // A page and the frame that holds it.
@@ -40,27 +48,43 @@ struct PlacedPage {
 // frame lies outside framesX x framesY, two pages share a frame or a page, a page is not stored,
 // or the root is missing (every lookup falls back to it).
 CacheState placePages(const VirtualTextureReader& reader, std::span<const PlacedPage> pages,
-                      uint32_t framesX, uint32_t framesY);
+                      uint32_t framesX, uint32_t framesY, BlockDecoding decoding = {});
 
 // Places `pages` (absolute indices; the root is added when missing) into frames in the order
 // given, row by row, reads them from `reader` and builds the indirection table. Throws
 // std::invalid_argument when they do not fit into framesX x framesY frames or a page is not
 // stored in the texture.
 CacheState makeCacheState(const VirtualTextureReader& reader, std::span<const uint64_t> pages,
-                          uint32_t framesX, uint32_t framesY);
+                          uint32_t framesX, uint32_t framesY, BlockDecoding decoding = {});
 
 // A cache state of the stored pages of levels 0..maxLevel (all levels when maxLevel is negative),
 // dropping the finest levels until the pages fit into a square cache texture of at most
 // `maxSideTexels` texels per side; frames are laid out in a square grid.
-CacheState cacheOfLevels(const VirtualTextureReader& reader, int maxLevel, uint32_t maxSideTexels);
+CacheState cacheOfLevels(const VirtualTextureReader& reader, int maxLevel, uint32_t maxSideTexels,
+                         BlockDecoding decoding = {});
 
 // A cache state of `description` with only the root page resident (its texels zero): enough to
 // draw needbuffers, which do not depend on what is resident.
 CacheState rootOnlyCache(const TextureDescription& description);
 
-// Copies a stored page's texels (borders included) into frame `frameX, frameY` of the cache.
+// An empty cache texture of framesX x framesY frames for `description` (no page, no indirection).
+CacheState emptyCache(const TextureDescription& description, uint32_t framesX, uint32_t framesY,
+                      BlockDecoding decoding = {});
+
+// Copies a stored page as the file holds it (VirtualTextureReader::readStoredPage: texels,
+// borders included, or blocks) into frame `frameX, frameY` of the cache, decoding blocks with
+// the cache's decoding.
 void storePage(CacheState& cache, uint32_t frameX, uint32_t frameY,
-               std::span<const std::byte> texels);
+               std::span<const std::byte> stored);
+
+// The same cache with its blocks decoded under `decoding` (a copy of `cache` where that is its
+// decoding already, or the format has no blocks).
+CacheState withDecoding(const CacheState& cache, BlockDecoding decoding);
+
+// Whether the oracle must decode `cache` again to sample it under `decoding`.
+inline bool decodesDifferently(const CacheState& cache, BlockDecoding decoding) {
+  return isBlockCompressed(cache.description.format) && cache.decoding != decoding;
+}
 
 // RGBA8 of one stored texel of `channels` components.
 glm::u8vec4 expandToRgba(const std::byte* texel, uint32_t channels);

@@ -12,7 +12,8 @@ namespace {
 std::map<std::string, std::string> everyParameterFrom(const std::string& source) {
   std::map<std::string, std::string> sources;
   for (const char* parameter : {"subpixel_bits", "fill_rule", "depth", "attributes", "log2", "sqrt",
-                                "arithmetic", "filter", "color_conversion", "denormals"})
+                                "arithmetic", "filter", "color_conversion", "denormals",
+                                "block_decoding"})
     sources[parameter] = source;
   return sources;
 }
@@ -22,7 +23,7 @@ std::map<std::string, std::string> everyParameterFrom(const std::string& source)
 bool PrecisionModel::pinned() const {
   return coveragePinned() && depthUlps == 0 && depthRoundsToNearest && attributeUlps == 0 &&
          log2Pinned && sqrtUlps == 0 && arithmeticUlps == 0 && filterPinned &&
-         colorRoundsToNearest && denormalsPinned;
+         colorRoundsToNearest && denormalsPinned && decodingPinned;
 }
 
 bool PrecisionModel::onlyDenormalsFree() const {
@@ -101,6 +102,15 @@ PrecisionModel gl45Model() {
       "section 17.3.10: dithering, enabled by default, may choose either";
   m.denormalsPinned = false;
   m.sources["denormals"] = "GLSL 4.50, section 4.7.1: denormalized values may be flushed to zero";
+  // The extension states the palette in real numbers and no precision; an 8-bit texel holds
+  // the fraction rounded either way (section 2.3.5.2), and the decoders GPUs and Mesa are known
+  // to use stray further (llvmpipe up to 4/3, the published AMD rule 5/3 and NVIDIA green 16/3
+  // units of 1/255): every texel within the least and greatest of these.
+  m.decodingPinned = false;
+  m.sources["block_decoding"] =
+      "EXT_texture_compression_s3tc: palette thirds, halves, sevenths and fifths in real numbers, "
+      "no precision given; GL 4.5 core, section 2.3.5.2 (either nearest 8-bit value) and every "
+      "known decoder (format/block_decoding.h): each texel within their least and greatest value";
   return m;
 }
 

@@ -71,6 +71,10 @@ struct PrecisionModel {
   bool colorRoundsToNearest = true;
   // Denormals in fragment arithmetic: pinned to the arithmetic's choice, or free.
   bool denormalsPinned = true;
+  // Block-compressed caches: texels decoded as the arithmetic's block-decoding member (pinned),
+  // or each within the least and greatest value of every known member and of the
+  // specification's fraction rounded either way (format/block_decoding.h: decodeTexelRange).
+  bool decodingPinned = true;
 
   // Where each parameter's value comes from, by parameter name.
   std::map<std::string, std::string> sources;

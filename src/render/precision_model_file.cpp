@@ -111,6 +111,16 @@ Arithmetic readArithmetic(const Fields& f) {
                               : LerpRounding::kNearest;
   a.texelConversion = f.named("texel_conversion", kUnormConversionNames);
   a.flushDenormals = f.choice("denormals", {"flushed", "kept"}) == "flushed";
+  // Absent from files written before block formats, which decoded to nearest.
+  if (f.has("block_decoding")) {
+    const Fields decoding = f.object("block_decoding");
+    a.blockDecoding.colour = decoding.named("colour", kPaletteRuleNames);
+    a.blockDecoding.alpha = decoding.named("alpha", kPaletteRuleNames);
+    if (!isAlphaRule(a.blockDecoding.alpha))
+      throw decoding.failure("field alpha is '" +
+                             std::string(nameOf(kPaletteRuleNames, a.blockDecoding.alpha)) +
+                             "', a rule for colour palettes only");
+  }
   return a;
 }
 
@@ -145,7 +155,10 @@ nlohmann::ordered_json arithmeticJson(const Arithmetic& a) {
             {"fused_coordinate", a.filter.fusedCoordinate},
             {"lerp_rounding", nameOf(kLerpRoundingNames, a.filter.lerpRounding)}}},
           {"texel_conversion", nameOf(kUnormConversionNames, a.texelConversion)},
-          {"denormals", a.flushDenormals ? "flushed" : "kept"}};
+          {"denormals", a.flushDenormals ? "flushed" : "kept"},
+          {"block_decoding",
+           {{"colour", nameOf(kPaletteRuleNames, a.blockDecoding.colour)},
+            {"alpha", nameOf(kPaletteRuleNames, a.blockDecoding.alpha)}}}};
 }
 
 PrecisionModel readModelFile(const std::filesystem::path& file) {
@@ -181,6 +194,9 @@ PrecisionModel readModelFile(const std::filesystem::path& file) {
   m.filterErrorUnits = f.number("filter_error_units", 0, 255);
   m.colorRoundsToNearest = f.choice("color_conversion", {"nearest", "either"}) == "nearest";
   m.denormalsPinned = f.choice("denormals", {"pinned", "free"}) == "pinned";
+  // Absent from files written before block formats: pinned, as they decoded one way.
+  m.decodingPinned =
+      !f.has("block_decoding") || f.choice("block_decoding", {"pinned", "free"}) == "pinned";
   const nlohmann::json& sources = f.at("sources");
   if (!sources.is_object()) throw InputError(file, "field sources is not an object");
   for (const auto& [parameter, source] : sources.items()) {
@@ -229,6 +245,7 @@ std::string modelJson(const PrecisionModel& m) {
       {"filter_error_units", m.filterErrorUnits},
       {"color_conversion", m.colorRoundsToNearest ? "nearest" : "either"},
       {"denormals", m.denormalsPinned ? "pinned" : "free"},
+      {"block_decoding", m.decodingPinned ? "pinned" : "free"},
       {"sources", m.sources}};
   return json.dump(2) + "\n";
 }

@@ -28,7 +28,7 @@ std::vector<StreamedPage> BudgetStreamer::frame(const std::vector<StreamRequest>
                          [&](const StreamedPage& p) { return p.page == page; });
     });
     if (inFlight) continue;
-    loaded.push_back({page, reader_.readPage(fromAbsoluteIndex(page))});
+    loaded.push_back({page, reader_.readStoredPage(fromAbsoluteIndex(page))});
     credit -= budget_.bytes > 0 ? pageBytes : 0;
   }
   // The unused bytes carry over only if requests were left that they could not pay for.
@@ -98,10 +98,10 @@ void ThreadedStreamer::run() {
     reading_ = page;
     busy_ = true;
     lock.unlock();
-    std::vector<std::byte> texels;
+    std::vector<std::byte> stored;
     bool ok = true;
     try {
-      texels = reader_.readPage(fromAbsoluteIndex(page));  // the file, unlocked
+      stored = reader_.readStoredPage(fromAbsoluteIndex(page));  // the file, unlocked
     } catch (const std::exception&) {
       ok = false;
     }
@@ -119,7 +119,7 @@ void ThreadedStreamer::run() {
       const Clock::time_point arrival =
           sent + std::chrono::duration_cast<Clock::duration>(
                      std::chrono::duration<double>(link_.latencySeconds));
-      inTransit_.push_back({arrival, {page, std::move(texels)}});
+      inTransit_.push_back({arrival, {page, std::move(stored)}});
     } else {
       ++failures_;
     }

@@ -26,7 +26,7 @@ namespace vt {
 
 struct StreamedPage {
   uint64_t page;  // absolute index
-  std::vector<std::byte> texels;
+  std::vector<std::byte> stored;  // as the file holds it: texels, or blocks (readStoredPage)
 };
 
 // The streaming box of the frame loop (thesis figure 3.5), either mode: a frame's requests go in,

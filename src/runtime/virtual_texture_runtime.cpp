@@ -33,22 +33,17 @@ VirtualTextureRuntime::VirtualTextureRuntime(const VirtualTextureReader& reader,
       pageCache_(options.framesX, options.framesY, std::max(1u, options.lockedLevels)),
       table_(requirePageTablesFit(reader.path(), reader.description().levelCount)) {
   const TextureDescription& d = reader.description();
-  cache_.description = d;
-  cache_.framesX = options.framesX;
-  cache_.framesY = options.framesY;
-  cache_.widthTexels = options.framesX * d.storedPageSide();
-  cache_.heightTexels = options.framesY * d.storedPageSide();
-  cache_.texels = ZeroedBytes(size_t{cache_.widthTexels} * cache_.heightTexels * 4);
+  cache_ = emptyCache(d, options.framesX, options.framesY, options.decoding);
   cache_.indirection = IndirectionTable(d.levelCount);
   for (uint32_t m = 0; m < d.levelCount; ++m)
     std::ranges::copy(table_.level(m), cache_.indirection.level(m).begin());
   // The root first: every lookup then finds a resident page.
   uint64_t evicted = 0;
-  insert(0, reader.readPage(PageId{}), evicted);
+  insert(0, reader.readStoredPage(PageId{}), evicted);
   syncIndirection();
 }
 
-void VirtualTextureRuntime::insert(uint64_t page, std::span<const std::byte> texels,
+void VirtualTextureRuntime::insert(uint64_t page, std::span<const std::byte> stored,
                                    uint64_t& evicted) {
   if (pageCache_.contains(page)) return;
   const auto placement = pageCache_.insert(page);
@@ -58,7 +53,7 @@ void VirtualTextureRuntime::insert(uint64_t page, std::span<const std::byte> tex
     ++evicted;
   }
   table_.insert(fromAbsoluteIndex(page), placement->frame);
-  storePage(cache_, placement->frame.x, placement->frame.y, texels);
+  storePage(cache_, placement->frame.x, placement->frame.y, stored);
 }
 
 void VirtualTextureRuntime::syncIndirection() {
@@ -82,7 +77,7 @@ void VirtualTextureRuntime::preload(std::span<const uint64_t> pages) {
   uint64_t evicted = 0;
   for (const uint64_t page : pages)
     if (reader_.contains(fromAbsoluteIndex(page)))
-      insert(page, reader_.readPage(fromAbsoluteIndex(page)), evicted);
+      insert(page, reader_.readStoredPage(fromAbsoluteIndex(page)), evicted);
   syncIndirection();
 }
 
@@ -90,7 +85,7 @@ std::pair<uint64_t, uint64_t> VirtualTextureRuntime::apply(std::vector<StreamedP
   uint64_t applied = 0, evicted = 0;
   for (const StreamedPage& streamed : pages) {
     if (pageCache_.contains(streamed.page)) continue;
-    insert(streamed.page, streamed.texels, evicted);
+    insert(streamed.page, streamed.stored, evicted);
     applied += pageCache_.contains(streamed.page);
   }
   syncIndirection();

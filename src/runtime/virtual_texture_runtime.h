@@ -33,6 +33,9 @@ struct RuntimeOptions {
   // The run's seed of the `random` factor, mixed with the frame number: runs with different seeds
   // draw independent random priorities (0: the frame number alone).
   uint64_t randomSeed = 0;
+  // Block formats: how the cache's RGBA8 texels (the oracle's view) are decoded from its blocks
+  // (the GL path's); the oracle decodes again where its arithmetic chooses another member.
+  BlockDecoding decoding;
 };
 
 struct FrameStatistics {
@@ -87,7 +90,7 @@ class VirtualTextureRuntime {
   uint64_t frameSeed(uint64_t frameNumber) const {
     return frameNumber + options_.randomSeed * 0x9e3779b97f4a7c15ull;
   }
-  void insert(uint64_t page, std::span<const std::byte> texels, uint64_t& evicted);
+  void insert(uint64_t page, std::span<const std::byte> stored, uint64_t& evicted);
   void syncIndirection();
 
   const VirtualTextureReader& reader_;

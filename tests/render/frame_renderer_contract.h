@@ -84,7 +84,7 @@ inline void expectDrawsTheChangedCacheState(const MakeRenderer& make, const Cont
   CacheState cache = rootOnlyCache(scene.reader().description());  // every texel zero
   const std::unique_ptr<FrameRenderer> renderer = make(cache);
   const Frame before = renderer->render(scene.view(0), scene.settings);
-  storePage(cache, 0, 0, scene.reader().readPage(PageId{}));  // the root's own texels
+  storePage(cache, 0, 0, scene.reader().readStoredPage(PageId{}));  // the root's own texels
   renderer->cacheChanged();
   EXPECT_NE(renderer->render(scene.view(0), scene.settings).color, before.color);
 }

@@ -85,7 +85,7 @@ TEST_F(Runtime, BudgetStreamerLoadsAtMostItsBudgetAfterTheLatency) {
   ASSERT_EQ(arrived.size(), 2u);
   EXPECT_EQ(arrived[0].page, 7u);
   EXPECT_EQ(arrived[1].page, 8u);
-  EXPECT_EQ(arrived[0].texels, reader_->readPage(fromAbsoluteIndex(7)));
+  EXPECT_EQ(arrived[0].stored, reader_->readStoredPage(fromAbsoluteIndex(7)));
   const auto next = streamer.frame({});
   ASSERT_EQ(next.size(), 1u);
   EXPECT_EQ(next[0].page, 9u);
@@ -131,7 +131,7 @@ TEST_F(Runtime, ThreadedStreamerReadsTheLatestRequests) {
   std::set<uint64_t> pages;
   for (const StreamedPage& page : streamer.takeStreamed()) {
     pages.insert(page.page);
-    EXPECT_EQ(page.texels, reader_->readPage(fromAbsoluteIndex(page.page)));
+    EXPECT_EQ(page.stored, reader_->readStoredPage(fromAbsoluteIndex(page.page)));
   }
   EXPECT_EQ(pages, (std::set<uint64_t>{3, 4, 5}));
   EXPECT_TRUE(streamer.takeStreamed().empty());
@@ -146,7 +146,7 @@ TEST_F(Runtime, ThreadedStreamerTakesRequestsReplacedWhileItReads) {
   for (uint64_t round = 0; round < 200; ++round) {
     streamer.request({{(round * 17) % 85, 1.0}, {(round * 31) % 85, 0.5}, {(round * 7) % 85, 0.2}});
     for (const StreamedPage& page : streamer.takeStreamed()) {
-      ASSERT_EQ(page.texels.size(), reader_->description().pageBytes());
+      ASSERT_EQ(page.stored.size(), reader_->description().storedPageBytes());
       received.insert(page.page);
     }
   }
@@ -250,7 +250,7 @@ TEST_F(Runtime, TrilinearParentsKeepsAParentInUseFromEviction) {
       FrameStatistics statistics;
       runtime.analyze(needingOnePage(), {}, 4, 4, false, frame, statistics);
       const uint64_t other = absoluteIndex(PageId{static_cast<uint32_t>(frame), 7, 3});
-      runtime.apply({StreamedPage{other, reader_->readPage(fromAbsoluteIndex(other))}});
+      runtime.apply({StreamedPage{other, reader_->readStoredPage(fromAbsoluteIndex(other))}});
       EXPECT_TRUE(runtime.pageCache().contains(child));
     }
     EXPECT_EQ(runtime.pageCache().contains(up), parents) << "trilinear parents " << parents;

@@ -1,0 +1,134 @@
+// The block-decoding family (format/block_decoding.h): each member on palettes worked out by
+// hand, the range that bounds them all, and the calibration's probe textures, on which every two
+// members must differ somewhere or `vt calibrate` could not tell them apart.
+
+#include "format/block_decoding.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+#include "calibrate/decoding_fit.h"
+
+namespace vt {
+namespace {
+
+// Texel t of a BC1 block whose indices are 0, 1, 2, 3 repeated.
+BlockTexel bc1Texel(uint16_t c0, uint16_t c1, uint32_t t, PaletteRule rule) {
+  const std::byte block[8] = {std::byte(c0 & 0xff), std::byte(c0 >> 8), std::byte(c1 & 0xff),
+                              std::byte(c1 >> 8),   std::byte{0xE4},   std::byte{0xE4},
+                              std::byte{0xE4},      std::byte{0xE4}};
+  return decodeBlock(PixelFormat::kBc1, block, {rule, PaletteRule::kNearest})[t];
+}
+
+struct Palette {
+  PaletteRule rule;
+  int c2, c3;
+};
+
+TEST(BlockDecoding, EachMemberRoundsThePaletteItsOwnWay) {
+  // Green: c0 = 63 -> 255, c1 = 1 -> 4; c2 = (2 * 255 + 4) / 3 = 171.33, c3 = 87.67. NVIDIA's
+  // green (256 a + d / 4 + 128 + 80 d) / 256 with d = -251: 176 and 83.
+  for (const Palette& p : {Palette{PaletteRule::kNearest, 171, 88},
+                           Palette{PaletteRule::kTruncated, 171, 87},
+                           Palette{PaletteRule::kFixedPointLerp, 171, 88},  // 255 - 84, 255 - 167
+                           Palette{PaletteRule::kAmd, 173, 86},
+                           Palette{PaletteRule::kNvidia, 176, 83}}) {
+    SCOPED_TRACE(nameOf(kPaletteRuleNames, p.rule));
+    EXPECT_EQ(bc1Texel(0x07E0, 0x0020, 0, p.rule)[1], 255);
+    EXPECT_EQ(bc1Texel(0x07E0, 0x0020, 1, p.rule)[1], 4);
+    EXPECT_EQ(bc1Texel(0x07E0, 0x0020, 2, p.rule)[1], p.c2);
+    EXPECT_EQ(bc1Texel(0x07E0, 0x0020, 3, p.rule)[1], p.c3);
+  }
+  // Red: c0 = 31 -> 255, c1 = 2 -> 16; c2 = 175.33, c3 = 95.67. NVIDIA on the 5-bit values:
+  // (2 * 31 + 2) * 22 / 8 = 176 and (31 + 2 * 2) * 22 / 8 = 96.
+  for (const Palette& p : {Palette{PaletteRule::kNearest, 175, 96},
+                           Palette{PaletteRule::kTruncated, 175, 95},
+                           Palette{PaletteRule::kFixedPointLerp, 175, 96},
+                           Palette{PaletteRule::kAmd, 177, 94},
+                           Palette{PaletteRule::kNvidia, 176, 96}}) {
+    SCOPED_TRACE(nameOf(kPaletteRuleNames, p.rule));
+    EXPECT_EQ(bc1Texel(0xF800, 0x1000, 2, p.rule)[0], p.c2);
+    EXPECT_EQ(bc1Texel(0xF800, 0x1000, 3, p.rule)[0], p.c3);
+  }
+  // Three colours (c0 <= c1): green midway between 4 and 255 is 129.5; black after it.
+  for (const Palette& p : {Palette{PaletteRule::kNearest, 130, 0},
+                           Palette{PaletteRule::kTruncated, 129, 0},
+                           Palette{PaletteRule::kFixedPointLerp, 130, 0},
+                           Palette{PaletteRule::kAmd, 130, 0},
+                           Palette{PaletteRule::kNvidia, 130, 0}}) {
+    SCOPED_TRACE(nameOf(kPaletteRuleNames, p.rule));
+    EXPECT_EQ(bc1Texel(0x0020, 0x07E0, 2, p.rule)[1], p.c2);
+    EXPECT_EQ(bc1Texel(0x0020, 0x07E0, 3, p.rule), (BlockTexel{0, 0, 0, 255}));
+  }
+  // BC3 alpha 200 > 100, indices 0..7: the first step (6 * 200 + 100) / 7 = 185.71, the third
+  // (4 * 200 + 300) / 7 = 157.14; llvmpipe's lerp: 200 + floor(-100 * 36 / 256) = 185 and
+  // 200 + floor(-100 * 109 / 256) = 157.
+  const std::byte bc3[16] = {std::byte{200}, std::byte{100}, std::byte{0x88}, std::byte{0xC6},
+                             std::byte{0xFA}, std::byte{0x88}, std::byte{0xC6}, std::byte{0xFA}};
+  for (const Palette& p : {Palette{PaletteRule::kNearest, 186, 157},
+                           Palette{PaletteRule::kTruncated, 185, 157},
+                           Palette{PaletteRule::kFixedPointLerp, 185, 157}}) {
+    SCOPED_TRACE(nameOf(kPaletteRuleNames, p.rule));
+    const auto texels = decodeBlock(PixelFormat::kBc3, bc3, {PaletteRule::kNearest, p.rule});
+    EXPECT_EQ(texels[2][3], p.c2);
+    EXPECT_EQ(texels[4][3], p.c3);
+  }
+}
+
+TEST(BlockDecoding, NvidiasPublishedEndPointsAreTheBitReplication) {
+  // The published NVIDIA decoder widens a 5-bit end point as (3 c * 22) / 8; the family widens
+  // every end point by replicating its top bits. They agree on every value, so the nvidia member
+  // differs from the others in its interpolation only.
+  for (int c = 0; c < 32; ++c) EXPECT_EQ((3 * c * 22) / 8, (c << 3) | (c >> 2)) << c;
+}
+
+TEST(BlockDecoding, TheRangeHoldsEveryMemberAndTheFractionRoundedEitherWay) {
+  std::mt19937 random(11);
+  for (const PixelFormat format : {PixelFormat::kBc1, PixelFormat::kBc3}) {
+    for (int n = 0; n < 2000; ++n) {
+      std::vector<std::byte> block(blockBytes(format));
+      for (std::byte& b : block) b = static_cast<std::byte>(random() & 0xff);
+      for (uint32_t t = 0; t < 16; ++t) {
+        const std::array<BlockTexel, 2> range = decodeTexelRange(format, block.data(), t);
+        for (const auto& [colour, colourName] : kPaletteRuleNames)
+          for (const auto& [alpha, alphaName] : kPaletteRuleNames) {
+            if (!isAlphaRule(alpha)) continue;
+            const BlockTexel v = decodeBlock(format, block.data(), {colour, alpha})[t];
+            for (size_t c = 0; c < 4; ++c) {
+              EXPECT_LE(range[0][c], v[c]);
+              EXPECT_GE(range[1][c], v[c]);
+            }
+          }
+        // Never wider than the members and the fraction's two neighbours: at most 6 units apart
+        // (NVIDIA's green, the furthest, strays 16/3).
+        for (size_t c = 0; c < 4; ++c) EXPECT_LE(range[1][c] - range[0][c], 12);
+      }
+    }
+  }
+}
+
+TEST(BlockDecoding, TheCalibrationProbesTellEveryTwoMembersApart) {
+  for (const auto& [a, aName] : kPaletteRuleNames)
+    for (const auto& [b, bName] : kPaletteRuleNames) {
+      if (a >= b) continue;
+      SCOPED_TRACE(std::string(aName) + " and " + std::string(bName));
+      bool colourDiffers = false, alphaDiffers = false;
+      for (const PixelFormat format : {PixelFormat::kBc1, PixelFormat::kBc3}) {
+        const auto ta = calibrate::decodeProbe(format, {a, PaletteRule::kNearest});
+        const auto tb = calibrate::decodeProbe(format, {b, PaletteRule::kNearest});
+        for (size_t i = 0; i < ta.size(); ++i)
+          colourDiffers |= ta[i][0] != tb[i][0] || ta[i][1] != tb[i][1] || ta[i][2] != tb[i][2];
+      }
+      EXPECT_TRUE(colourDiffers);
+      if (!isAlphaRule(a) || !isAlphaRule(b)) continue;
+      const auto ta = calibrate::decodeProbe(PixelFormat::kBc3, {PaletteRule::kNearest, a});
+      const auto tb = calibrate::decodeProbe(PixelFormat::kBc3, {PaletteRule::kNearest, b});
+      for (size_t i = 0; i < ta.size(); ++i) alphaDiffers |= ta[i][3] != tb[i][3];
+      EXPECT_TRUE(alphaDiffers);
+    }
+}
+
+}  // namespace
+}  // namespace vt
