@@ -29,8 +29,9 @@ const std::vector<std::byte>& ResidentTexture::kept(
 
 namespace {
 
-// Keys of pages_: the page, then 5 bits for what its bytes are (the last value: its blocks).
-constexpr uint64_t kBlocksKind = 31;
+// Keys of pages_: the page, then 6 bits for what its bytes are (the last value: its blocks).
+constexpr uint64_t kKinds = 64, kBlocksKind = kKinds - 1;
+static_assert(kPaletteRuleNames.size() * kPaletteRuleNames.size() < kBlocksKind);
 uint64_t kindOf(BlockDecoding decoding) {
   return static_cast<uint64_t>(decoding.colour) * kPaletteRuleNames.size() +
          static_cast<uint64_t>(decoding.alpha);
@@ -40,12 +41,12 @@ uint64_t kindOf(BlockDecoding decoding) {
 
 const std::vector<std::byte>& ResidentTexture::texels(PageId page, BlockDecoding decoding) const {
   const bool decodes = isBlockCompressed(description_.format);
-  const uint64_t key = absoluteIndex(page) * 32 + (decodes ? kindOf(decoding) : 0);
+  const uint64_t key = absoluteIndex(page) * kKinds + (decodes ? kindOf(decoding) : 0);
   return kept(key, [&] { return reader_ ? reader_->readPage(page, decoding) : makePage_(page); });
 }
 
 const std::vector<std::byte>& ResidentTexture::blocks(PageId page) const {
-  return kept(absoluteIndex(page) * 32 + kBlocksKind,
+  return kept(absoluteIndex(page) * kKinds + kBlocksKind,
               [&] { return reader_ ? reader_->readStoredPage(page) : makePage_(page); });
 }
 

@@ -4,7 +4,9 @@
 // (the shared library hides the internal exception types; callers catch Error).
 
 #include <memory>
+#include <mutex>
 #include <optional>
+#include <vector>
 #include <span>
 #include <utility>
 
@@ -28,6 +30,19 @@ struct Texture::Impl {
 struct PreparedCache::Impl {
   const Texture::Impl& texture;
   std::optional<vt::CacheState> state;  // none: every page resident
+  // A block format's state decoded again for each other decoding a render asked for, kept.
+  mutable std::mutex decodedMutex;
+  mutable std::vector<std::unique_ptr<const vt::CacheState>> decoded;
+
+  // The state as the oracle samples it under `decoding`.
+  const vt::CacheState& stateFor(vt::BlockDecoding decoding) const {
+    if (!decodesDifferently(*state, decoding)) return *state;
+    const std::lock_guard lock(decodedMutex);
+    for (const auto& d : decoded)
+      if (d->decoding == decoding) return *d;
+    decoded.push_back(std::make_unique<const vt::CacheState>(withDecoding(*state, decoding)));
+    return *decoded.back();
+  }
 };
 
 // Runs `work`, turning every exception but Error into Error with the same message.

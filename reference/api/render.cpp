@@ -124,7 +124,7 @@ Frame publicFrame(vt::Frame&& frame, const vt::RenderSettings& settings) {
 
 PreparedCache::PreparedCache(const Texture& texture, const CacheState& state)
     : impl_(translatingErrors([&] {
-        auto impl = std::make_unique<Impl>(Impl{texture.impl(), std::nullopt});
+        auto impl = std::make_unique<Impl>(texture.impl(), std::nullopt);
         if (!state.allResident) impl->state = internalCache(texture.impl().reader, state);
         return impl;
       })) {}
@@ -153,7 +153,9 @@ Frame render(const Texture& texture, const Scene& scene, const PreparedCache& ca
     if (!cache.impl().state)
       return publicFrame(reference::renderFrame(mesh, texture.impl().everything, settings),
                          settings);
-    return publicFrame(reference::renderFrame(mesh, *cache.impl().state, settings), settings);
+    return publicFrame(reference::renderFrame(
+                           mesh, cache.impl().stateFor(settings.arithmetic.blockDecoding), settings),
+                       settings);
   });
 }
 

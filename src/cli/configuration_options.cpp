@@ -37,7 +37,7 @@ struct ConfigurationOptions::Values {
   std::string config, heuristic = "pixelsum", ancestors = "none", lookAhead = "none",
                       hotSpot = "shifted", needScale = "1", readback = "sync";
   uint32_t budget = 10, latency = 0, lockedLevels = 0, initialLevels = 3, frames = 16;
-  uint64_t budgetBytes = 0;
+  uint64_t budgetBytes = 0, cacheBytes = 0;
   float noiseThreshold = -1.0f;
   bool noiseSkipping = false, preloadVisible = false, trilinearParents = false;
 };
@@ -108,6 +108,13 @@ ConfigurationOptions::ConfigurationOptions(CLI::App* command)
       ->check(wholeNumbersIn(1, 256))
       ->capture_default_str();
   command
+      ->add_option("--cache-bytes", v.cacheBytes,
+                   "The cache holds as many N x N frames as fit in these bytes at the pages' "
+                   "stored size (compressed pages fit more) instead of --cache-frames; 0: "
+                   "--cache-frames")
+      ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 40))
+      ->capture_default_str();
+  command
       ->add_option("--readback", v.readback,
                    "sync, or async: the analysis sees the previous frame's needbuffer (GL: "
                    "pixel-buffer objects and a fence)")
@@ -145,6 +152,8 @@ FlightConfiguration ConfigurationOptions::configuration() const {
     options["budget_bytes"] = v.budgetBytes;
   if (given("--latency")) options["latency"] = v.latency;
   if (given("--cache-frames")) options["cache_frames"] = v.frames;
+  if (command_->count("--cache-bytes") > 0 || (all && v.cacheBytes > 0))
+    options["cache_bytes"] = v.cacheBytes;
   if (given("--locked-levels")) options["locked_levels"] = v.lockedLevels;
   if (given("--initial-levels")) options["initial_levels"] = v.initialLevels;
   if (given("--preload-visible")) options["preload_visible"] = v.preloadVisible;

@@ -163,10 +163,15 @@ void requireEvaluationFits(const std::filesystem::path& origin, const TextureDes
                            Viewport screen,
                            const std::vector<FlightConfiguration>& configurations) {
   const uint64_t storedSide = uint64_t{texture.pageSize} + 2 * uint64_t{texture.border};
+  // A frame holds its RGBA8 texels and, for a block format, its blocks too.
+  const uint64_t frameBytes = storedSide * storedSide * 4 +
+                              (isBlockCompressed(texture.format) ? texture.storedPageBytes() : 0);
   uint64_t stateBytes = 0;
-  for (const FlightConfiguration& c : configurations)
-    stateBytes += uint64_t{c.cacheFrames} * c.cacheFrames * storedSide * storedSide * 4 +
+  for (const FlightConfiguration& c : configurations) {
+    const uint64_t frames = cacheFramesFor(c, texture);
+    stateBytes += frames * frames * frameBytes +
                   static_cast<uint64_t>(screen.width) * static_cast<uint64_t>(screen.height) * 4;
+  }
   if (stateBytes > kMaxEvaluationStateBytes)
     throw limitError(origin,
                      "flying " + std::to_string(configurations.size()) +

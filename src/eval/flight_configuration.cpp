@@ -1,5 +1,6 @@
 #include "eval/flight_configuration.h"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -27,6 +28,7 @@ std::string FlightConfiguration::label() const {
   if (asyncReadback) add("", "async");
   if (trilinearParents) add("", "parents");
   if (latency > 0) add("latency=", std::to_string(latency));
+  if (cacheBytes > 0) add("cache=", std::to_string(cacheBytes) + "B");
   if (seed > 0) add("seed=", std::to_string(seed));
   return text;
 }
@@ -51,6 +53,7 @@ nlohmann::json FlightConfiguration::toJson() const {
           {"seed", seed}};
   // Only where set: every configuration written before byte budgets reads the same.
   if (budgetBytes > 0) object["budget_bytes"] = budgetBytes;
+  if (cacheBytes > 0) object["cache_bytes"] = cacheBytes;
   return object;
 }
 
@@ -98,6 +101,11 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
       c.budgetBytes = static_cast<uint64_t>(value.get<int64_t>());
     } else if (key == "latency") {
       c.latency = count(0, 1000);
+    } else if (key == "cache_bytes") {
+      if (!value.is_number_integer() || value.get<int64_t>() < 0 ||
+          value.get<int64_t>() > (int64_t{1} << 40))
+        throw std::invalid_argument("'cache_bytes' must be a whole number from 0 to 2^40");
+      c.cacheBytes = static_cast<uint64_t>(value.get<int64_t>());
     } else if (key == "cache_frames") {
       c.cacheFrames = count(1, 256);
     } else if (key == "locked_levels") {
@@ -124,6 +132,15 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
     }
   }
   return c;
+}
+
+uint32_t cacheFramesFor(const FlightConfiguration& c, const TextureDescription& d) {
+  if (c.cacheBytes == 0) return std::max(1u, c.cacheFrames);
+  const uint64_t frames = c.cacheBytes / d.storedPageBytes();
+  auto side = static_cast<uint64_t>(std::sqrt(static_cast<double>(frames)));
+  while (side * side > frames) --side;  // the square root's rounding, either way
+  while ((side + 1) * (side + 1) <= frames) ++side;
+  return static_cast<uint32_t>(std::clamp<uint64_t>(side, 1, 256));
 }
 
 }  // namespace vt

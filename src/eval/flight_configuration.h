@@ -14,6 +14,7 @@
 #include <string>
 
 #include "common/enum_names.h"
+#include "format/texture_description.h"
 #include "runtime/page_priority.h"
 #include "scene/camera_motion.h"
 
@@ -32,6 +33,9 @@ struct FlightConfiguration {
                                   // (runtime/page_streamer.h: FrameBudget); JSON "budget_bytes"
   uint32_t latency = 0;           // frames between a request and its page's arrival
   uint32_t cacheFrames = 16;      // the cache holds cacheFrames x cacheFrames frames
+  uint64_t cacheBytes = 0;        // or, when not zero, as many N x N frames as fit in these bytes
+                                  // at the pages' stored size: compressed pages fit more frames
+                                  // (cacheFramesFor); JSON "cache_bytes"
   uint32_t lockedLevels = 0;      // levels 0..K-1 never leave the cache (4.3.1)
   uint32_t initialLevels = 3;     // levels 0..K-1 loaded before the first frame (4.2.1)
   bool preloadVisible = false;    // and the pages the first frame needs (4.2.1)
@@ -47,6 +51,11 @@ struct FlightConfiguration {
   static FlightConfiguration fromJson(const nlohmann::json& object,
                                       const FlightConfiguration& defaults);
 };
+
+// The side N of the cache's N x N frames for a texture of `description` under `configuration`:
+// cacheFrames, or the largest N (1 to 256) whose frames hold at most cacheBytes of stored pages.
+uint32_t cacheFramesFor(const FlightConfiguration& configuration,
+                        const TextureDescription& description);
 
 // How the analysis reads the needbuffer back: the frame's own (sync), or the previous frame's.
 inline constexpr EnumNames<bool, 2> kReadbackNames = {{{false, "sync"}, {true, "async"}}};

@@ -15,7 +15,7 @@ using Clock = std::chrono::steady_clock;
 RuntimeOptions runtimeOptions(const VirtualTextureReader& reader,
                               const FlightConfiguration& configuration) {
   RuntimeOptions options;
-  options.framesX = options.framesY = std::max(1u, configuration.cacheFrames);
+  options.framesX = options.framesY = cacheFramesFor(configuration, reader.description());
   options.lockedLevels = configuration.lockedLevels;
   options.priority.heuristic = configuration.heuristic;
   options.priority.ancestors = configuration.ancestors;
@@ -62,6 +62,9 @@ FlightRun::FlightRun(const VirtualTextureReader& reader, const FlightConfigurati
       needViewport_(needViewport) {
   RuntimeOptions settings = runtimeOptions(reader, configuration);
   settings.keepAnalysis = options.keepAnalysis;
+  // The cache's texels decoded as the oracle's arithmetic decodes: its frames need no second
+  // decoding (the GL path uploads the blocks and decodes them itself).
+  settings.decoding = options.settings.arithmetic.blockDecoding;
   runtime_ = std::make_unique<VirtualTextureRuntime>(reader, settings);
   runtime_->preload(std::vector<uint64_t>(initialPages.begin(), initialPages.end()));
   // Deterministic budget mode for evaluations, or a thread over a link in real time.

@@ -28,7 +28,8 @@ int step(PaletteRule rule, int a, int b, int k, int n) {
     case PaletteRule::kTruncated:
       return sum / n;
     case PaletteRule::kFixedPointLerp:
-      if (2 * k == n) return (a + b + 1) >> 1;
+    case PaletteRule::kFixedPointLerpFlooredHalf:
+      if (2 * k == n) return (a + b + (rule == PaletteRule::kFixedPointLerp ? 1 : 0)) >> 1;
       return a + (((b - a) * (k * 255 / n)) >> 8);  // >> of a negative: floor (C++20)
     case PaletteRule::kAmd:
       if (2 * k == n) return (a + b + 1) >> 1;

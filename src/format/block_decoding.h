@@ -23,6 +23,10 @@
 //   fixed_point_lerp  a + floor((b - a) * floor(k * 255 / n) / 256) for the k-th of n steps, and
 //                     the BC1 midpoint as (a + b + 1) >> 1: llvmpipe's (gallivm) decoder, measured
 //                     bit for bit on every palette entry by the same probe
+//   fixed_point_lerp_floored_half
+//                     colour only: as fixed_point_lerp, but the BC1 midpoint floored, (a + b) >> 1:
+//                     llvmpipe without SSE (GALLIUM_OVERRIDE_CPU_CAPS=nosse), measured the same way
+//                     (its alpha palettes have no midpoint: they are fixed_point_lerp's)
 //   amd               colour only: (43 a + 21 b + 32) >> 6 and the midpoint (a + b + 1) >> 1 on
 //                     8-bit end points, as published for AMD GPUs by the rgbcx encoder
 //   nvidia            colour only: red and blue interpolated on the 5-bit end points,
@@ -42,15 +46,24 @@
 
 namespace vt {
 
-enum class PaletteRule { kNearest, kTruncated, kFixedPointLerp, kAmd, kNvidia };
-inline constexpr EnumNames<PaletteRule, 5> kPaletteRuleNames = {
+enum class PaletteRule {
+  kNearest,
+  kTruncated,
+  kFixedPointLerp,
+  kFixedPointLerpFlooredHalf,
+  kAmd,
+  kNvidia
+};
+inline constexpr EnumNames<PaletteRule, 6> kPaletteRuleNames = {
     {{PaletteRule::kNearest, "nearest"},
      {PaletteRule::kTruncated, "truncated"},
      {PaletteRule::kFixedPointLerp, "fixed_point_lerp"},
+     {PaletteRule::kFixedPointLerpFlooredHalf, "fixed_point_lerp_floored_half"},
      {PaletteRule::kAmd, "amd"},
      {PaletteRule::kNvidia, "nvidia"}}};
 
-// The members a BC3 alpha palette may use (the published hardware rules describe colour only).
+// The members a BC3 alpha palette may use (the published hardware rules describe colour only;
+// without a midpoint, fixed_point_lerp_floored_half is fixed_point_lerp).
 constexpr bool isAlphaRule(PaletteRule rule) {
   return rule == PaletteRule::kNearest || rule == PaletteRule::kTruncated ||
          rule == PaletteRule::kFixedPointLerp;

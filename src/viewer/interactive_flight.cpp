@@ -119,7 +119,8 @@ void flyInteractively(WindowContext& window, const VirtualTextureReader& reader,
                   static_cast<unsigned long long>(statistics.requested),
                   static_cast<unsigned long long>(statistics.streamed),
                   static_cast<unsigned long long>(streamedTotal));
-    const uint32_t capacity = configuration.cacheFrames * configuration.cacheFrames;
+    const uint32_t side = cacheFramesFor(configuration, reader.description());
+    const uint32_t capacity = side * side;
     std::snprintf(lines[3], sizeof lines[3], "RESIDENT %llu / %u  %.0f%%",
                   static_cast<unsigned long long>(statistics.resident), capacity,
                   100.0 * static_cast<double>(statistics.resident) / capacity);

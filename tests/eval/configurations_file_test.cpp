@@ -68,6 +68,30 @@ TEST(ConfigurationsFile, AByteBudgetIsLabelledAndWrittenOnlyWhereSet) {
             "configuration 1: 'budget_bytes' must be a whole number from 0 to 2^40");
 }
 
+// A cache of a number of bytes holds more frames of compressed pages: 136^2 texels are 73,984
+// bytes as RGBA8, 9,248 as BC1 (an eighth) and 18,496 as BC3.
+TEST(ConfigurationsFile, ACacheInBytesHoldsAsManyFramesAsFitAtTheStoredPageSize) {
+  const ConfigurationsFile file = parseConfigurationsFile(
+      nlohmann::json::parse(R"([{"cache_frames": 8}, {"cache_bytes": 18939904}])"));
+  ASSERT_EQ(file.configurations.size(), 2u);
+  const FlightConfiguration& bytes = file.configurations[1];
+  EXPECT_EQ(bytes.label(), "pixelsum 10/frame cache=18939904B");
+  EXPECT_FALSE(file.configurations[0].toJson().contains("cache_bytes"));
+  EXPECT_EQ(FlightConfiguration::fromJson(bytes.toJson(), {}).cacheBytes, 18939904u);
+  TextureDescription d{.pageSize = 128, .border = 4, .levelCount = 8, .channels = 4};
+  EXPECT_EQ(cacheFramesFor(file.configurations[0], d), 8u);
+  EXPECT_EQ(cacheFramesFor(bytes, d), 16u);  // 256 frames of 73,984 bytes exactly
+  d.format = PixelFormat::kBc3;
+  EXPECT_EQ(cacheFramesFor(bytes, d), 32u);  // 1024 frames of 18,496
+  d.format = PixelFormat::kBc1;
+  EXPECT_EQ(cacheFramesFor(bytes, d), 45u);  // 2048 frames of 9,248: 45^2 = 2025 fit
+  FlightConfiguration tiny;
+  tiny.cacheBytes = 1;
+  EXPECT_EQ(cacheFramesFor(tiny, d), 1u);  // never less than one frame
+  EXPECT_EQ(configurationsError(R"([{"cache_bytes": 1.5}])"),
+            "configuration 1: 'cache_bytes' must be a whole number from 0 to 2^40");
+}
+
 TEST(ConfigurationsFile, RefusesEachMistakeWithItsMessage) {
   EXPECT_EQ(configurationsError(R"({"configurations": [{"budgt": 3}]})"),
             "configuration 1: unknown configuration key 'budgt'");

@@ -33,6 +33,7 @@ TEST(BlockDecoding, EachMemberRoundsThePaletteItsOwnWay) {
   for (const Palette& p : {Palette{PaletteRule::kNearest, 171, 88},
                            Palette{PaletteRule::kTruncated, 171, 87},
                            Palette{PaletteRule::kFixedPointLerp, 171, 88},  // 255 - 84, 255 - 167
+                           Palette{PaletteRule::kFixedPointLerpFlooredHalf, 171, 88},
                            Palette{PaletteRule::kAmd, 173, 86},
                            Palette{PaletteRule::kNvidia, 176, 83}}) {
     SCOPED_TRACE(nameOf(kPaletteRuleNames, p.rule));
@@ -46,6 +47,7 @@ TEST(BlockDecoding, EachMemberRoundsThePaletteItsOwnWay) {
   for (const Palette& p : {Palette{PaletteRule::kNearest, 175, 96},
                            Palette{PaletteRule::kTruncated, 175, 95},
                            Palette{PaletteRule::kFixedPointLerp, 175, 96},
+                           Palette{PaletteRule::kFixedPointLerpFlooredHalf, 175, 96},
                            Palette{PaletteRule::kAmd, 177, 94},
                            Palette{PaletteRule::kNvidia, 176, 96}}) {
     SCOPED_TRACE(nameOf(kPaletteRuleNames, p.rule));
@@ -56,6 +58,7 @@ TEST(BlockDecoding, EachMemberRoundsThePaletteItsOwnWay) {
   for (const Palette& p : {Palette{PaletteRule::kNearest, 130, 0},
                            Palette{PaletteRule::kTruncated, 129, 0},
                            Palette{PaletteRule::kFixedPointLerp, 130, 0},
+                           Palette{PaletteRule::kFixedPointLerpFlooredHalf, 129, 0},
                            Palette{PaletteRule::kAmd, 130, 0},
                            Palette{PaletteRule::kNvidia, 130, 0}}) {
     SCOPED_TRACE(nameOf(kPaletteRuleNames, p.rule));
