@@ -96,7 +96,8 @@ DecodingFit fitBlockDecoding() {
   for (const auto& [rule, name] : kPaletteRuleNames) {
     uint64_t colourMisses = 0, alphaMisses = 0;
     for (size_t f = 0; f < 2; ++f) {
-      const std::vector<BlockTexel> expected = decodeProbe(formats[f], {rule, PaletteRule::kNearest});
+      const std::vector<BlockTexel> expected =
+          decodeProbe(formats[f], {rule, PaletteRule::kNearest});
       const std::vector<BlockTexel> expectedAlpha =
           isAlphaRule(rule) ? decodeProbe(formats[f], {PaletteRule::kNearest, rule})
                             : std::vector<BlockTexel>{};
@@ -143,10 +144,10 @@ DecodingFit fitBlockDecoding() {
   for (ParameterFit* part : {&fit.colour, &fit.alpha}) {
     part->unit = "channels beyond every known decoder and the specification's fraction";
     part->largestResidual = part->pinned ? 0 : static_cast<double>(fit.outsideRange);
-    part->finding = part->pinned ? part->chosen + ", every texel bit for bit (" +
-                                       part->memberSummary() + ")"
-                                 : "no member reproduces every texel, closest " + part->chosen +
-                                       " (" + part->memberSummary() + ")";
+    part->finding = part->pinned
+                        ? part->chosen + ", every texel bit for bit (" + part->memberSummary() + ")"
+                        : "no member reproduces every texel, closest " + part->chosen + " (" +
+                              part->memberSummary() + ")";
   }
   return fit;
 }

@@ -19,7 +19,7 @@ namespace vt::calibrate {
 
 struct DecodingFit {
   ParameterFit colour, alpha;
-  BlockDecoding decoding;  // the members chosen (pinned or closest)
+  BlockDecoding decoding;     // the members chosen (pinned or closest)
   uint64_t outsideRange = 0;  // channels beyond decodeTexelRange, or not an 8-bit value
   bool pinned() const { return colour.pinned && alpha.pinned; }
 };

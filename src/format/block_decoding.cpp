@@ -102,7 +102,8 @@ std::array<uint8_t, 8> alphaPalette(const std::byte* block, PaletteRule rule) {
   const int a0 = std::to_integer<int>(block[0]), a1 = std::to_integer<int>(block[1]);
   std::array<uint8_t, 8> p{static_cast<uint8_t>(a0), static_cast<uint8_t>(a1)};
   const int n = a0 > a1 ? 7 : 5;
-  for (int k = 1; k < n; ++k) p[static_cast<size_t>(k + 1)] = static_cast<uint8_t>(step(rule, a0, a1, k, n));
+  for (int k = 1; k < n; ++k)
+    p[static_cast<size_t>(k + 1)] = static_cast<uint8_t>(step(rule, a0, a1, k, n));
   if (n == 5) {
     p[6] = 0;
     p[7] = 255;
@@ -143,7 +144,7 @@ std::array<Palette, 2> colourFloorCeil(const ColourBlock& b) {
 }  // namespace
 
 std::array<BlockTexel, 16> decodeBlock(PixelFormat format, const std::byte* block,
-                                  BlockDecoding decoding) {
+                                       BlockDecoding decoding) {
   const bool bc1 = format == PixelFormat::kBc1;
   const std::byte* colour = colourPart(format, block);
   const Palette palette = colourPalette(readColour(colour, !bc1), decoding.colour);
@@ -157,7 +158,8 @@ std::array<BlockTexel, 16> decodeBlock(PixelFormat format, const std::byte* bloc
   return texels;
 }
 
-std::array<BlockTexel, 2> decodeTexelRange(PixelFormat format, const std::byte* block, uint32_t index) {
+std::array<BlockTexel, 2> decodeTexelRange(PixelFormat format, const std::byte* block,
+                                           uint32_t index) {
   const std::byte* colour = colourPart(format, block);
   const ColourBlock b = readColour(colour, format != PixelFormat::kBc1);
   const uint32_t ci = colourIndex(colour, index);

@@ -87,12 +87,13 @@ void decodeBlocks(PixelFormat format, uint32_t side, std::span<const std::byte> 
 
 // The 16 texels of one block, row by row.
 std::array<BlockTexel, 16> decodeBlock(PixelFormat format, const std::byte* block,
-                                  BlockDecoding decoding);
+                                       BlockDecoding decoding);
 
-// What any conforming implementation may return for texel `index` (row * 4 + column) of one block: per channel the
-// least and the greatest value of every member above and of the specification's fraction rounded
-// either way (GL 4.5 section 2.3.5.2 lets a conversion to fixed point round either way). End
-// points, c3 black and the alpha constants are exact in every member.
-std::array<BlockTexel, 2> decodeTexelRange(PixelFormat format, const std::byte* block, uint32_t index);
+// What any conforming implementation may return for texel `index` (row * 4 + column) of one block:
+// per channel the least and the greatest value of every member above and of the specification's
+// fraction rounded either way (GL 4.5 section 2.3.5.2 lets a conversion to fixed point round either
+// way). End points, c3 black and the alpha constants are exact in every member.
+std::array<BlockTexel, 2> decodeTexelRange(PixelFormat format, const std::byte* block,
+                                           uint32_t index);
 
 }  // namespace vt

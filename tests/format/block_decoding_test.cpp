@@ -17,7 +17,7 @@ namespace {
 // Texel t of a BC1 block whose indices are 0, 1, 2, 3 repeated.
 BlockTexel bc1Texel(uint16_t c0, uint16_t c1, uint32_t t, PaletteRule rule) {
   const std::byte block[8] = {std::byte(c0 & 0xff), std::byte(c0 >> 8), std::byte(c1 & 0xff),
-                              std::byte(c1 >> 8),   std::byte{0xE4},   std::byte{0xE4},
+                              std::byte(c1 >> 8),   std::byte{0xE4},    std::byte{0xE4},
                               std::byte{0xE4},      std::byte{0xE4}};
   return decodeBlock(PixelFormat::kBc1, block, {rule, PaletteRule::kNearest})[t];
 }
@@ -30,12 +30,11 @@ struct Palette {
 TEST(BlockDecoding, EachMemberRoundsThePaletteItsOwnWay) {
   // Green: c0 = 63 -> 255, c1 = 1 -> 4; c2 = (2 * 255 + 4) / 3 = 171.33, c3 = 87.67. NVIDIA's
   // green (256 a + d / 4 + 128 + 80 d) / 256 with d = -251: 176 and 83.
-  for (const Palette& p : {Palette{PaletteRule::kNearest, 171, 88},
-                           Palette{PaletteRule::kTruncated, 171, 87},
-                           Palette{PaletteRule::kFixedPointLerp, 171, 88},  // 255 - 84, 255 - 167
-                           Palette{PaletteRule::kFixedPointLerpFlooredHalf, 171, 88},
-                           Palette{PaletteRule::kAmd, 173, 86},
-                           Palette{PaletteRule::kNvidia, 176, 83}}) {
+  for (const Palette& p :
+       {Palette{PaletteRule::kNearest, 171, 88}, Palette{PaletteRule::kTruncated, 171, 87},
+        Palette{PaletteRule::kFixedPointLerp, 171, 88},  // 255 - 84, 255 - 167
+        Palette{PaletteRule::kFixedPointLerpFlooredHalf, 171, 88},
+        Palette{PaletteRule::kAmd, 173, 86}, Palette{PaletteRule::kNvidia, 176, 83}}) {
     SCOPED_TRACE(nameOf(kPaletteRuleNames, p.rule));
     EXPECT_EQ(bc1Texel(0x07E0, 0x0020, 0, p.rule)[1], 255);
     EXPECT_EQ(bc1Texel(0x07E0, 0x0020, 1, p.rule)[1], 4);
@@ -44,23 +43,21 @@ TEST(BlockDecoding, EachMemberRoundsThePaletteItsOwnWay) {
   }
   // Red: c0 = 31 -> 255, c1 = 2 -> 16; c2 = 175.33, c3 = 95.67. NVIDIA on the 5-bit values:
   // (2 * 31 + 2) * 22 / 8 = 176 and (31 + 2 * 2) * 22 / 8 = 96.
-  for (const Palette& p : {Palette{PaletteRule::kNearest, 175, 96},
-                           Palette{PaletteRule::kTruncated, 175, 95},
-                           Palette{PaletteRule::kFixedPointLerp, 175, 96},
-                           Palette{PaletteRule::kFixedPointLerpFlooredHalf, 175, 96},
-                           Palette{PaletteRule::kAmd, 177, 94},
-                           Palette{PaletteRule::kNvidia, 176, 96}}) {
+  for (const Palette& p :
+       {Palette{PaletteRule::kNearest, 175, 96}, Palette{PaletteRule::kTruncated, 175, 95},
+        Palette{PaletteRule::kFixedPointLerp, 175, 96},
+        Palette{PaletteRule::kFixedPointLerpFlooredHalf, 175, 96},
+        Palette{PaletteRule::kAmd, 177, 94}, Palette{PaletteRule::kNvidia, 176, 96}}) {
     SCOPED_TRACE(nameOf(kPaletteRuleNames, p.rule));
     EXPECT_EQ(bc1Texel(0xF800, 0x1000, 2, p.rule)[0], p.c2);
     EXPECT_EQ(bc1Texel(0xF800, 0x1000, 3, p.rule)[0], p.c3);
   }
   // Three colours (c0 <= c1): green midway between 4 and 255 is 129.5; black after it.
-  for (const Palette& p : {Palette{PaletteRule::kNearest, 130, 0},
-                           Palette{PaletteRule::kTruncated, 129, 0},
-                           Palette{PaletteRule::kFixedPointLerp, 130, 0},
-                           Palette{PaletteRule::kFixedPointLerpFlooredHalf, 129, 0},
-                           Palette{PaletteRule::kAmd, 130, 0},
-                           Palette{PaletteRule::kNvidia, 130, 0}}) {
+  for (const Palette& p :
+       {Palette{PaletteRule::kNearest, 130, 0}, Palette{PaletteRule::kTruncated, 129, 0},
+        Palette{PaletteRule::kFixedPointLerp, 130, 0},
+        Palette{PaletteRule::kFixedPointLerpFlooredHalf, 129, 0},
+        Palette{PaletteRule::kAmd, 130, 0}, Palette{PaletteRule::kNvidia, 130, 0}}) {
     SCOPED_TRACE(nameOf(kPaletteRuleNames, p.rule));
     EXPECT_EQ(bc1Texel(0x0020, 0x07E0, 2, p.rule)[1], p.c2);
     EXPECT_EQ(bc1Texel(0x0020, 0x07E0, 3, p.rule), (BlockTexel{0, 0, 0, 255}));
@@ -68,11 +65,11 @@ TEST(BlockDecoding, EachMemberRoundsThePaletteItsOwnWay) {
   // BC3 alpha 200 > 100, indices 0..7: the first step (6 * 200 + 100) / 7 = 185.71, the third
   // (4 * 200 + 300) / 7 = 157.14; llvmpipe's lerp: 200 + floor(-100 * 36 / 256) = 185 and
   // 200 + floor(-100 * 109 / 256) = 157.
-  const std::byte bc3[16] = {std::byte{200}, std::byte{100}, std::byte{0x88}, std::byte{0xC6},
+  const std::byte bc3[16] = {std::byte{200},  std::byte{100},  std::byte{0x88}, std::byte{0xC6},
                              std::byte{0xFA}, std::byte{0x88}, std::byte{0xC6}, std::byte{0xFA}};
-  for (const Palette& p : {Palette{PaletteRule::kNearest, 186, 157},
-                           Palette{PaletteRule::kTruncated, 185, 157},
-                           Palette{PaletteRule::kFixedPointLerp, 185, 157}}) {
+  for (const Palette& p :
+       {Palette{PaletteRule::kNearest, 186, 157}, Palette{PaletteRule::kTruncated, 185, 157},
+        Palette{PaletteRule::kFixedPointLerp, 185, 157}}) {
     SCOPED_TRACE(nameOf(kPaletteRuleNames, p.rule));
     const auto texels = decodeBlock(PixelFormat::kBc3, bc3, {PaletteRule::kNearest, p.rule});
     EXPECT_EQ(texels[2][3], p.c2);
