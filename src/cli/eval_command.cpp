@@ -24,7 +24,7 @@ namespace vt {
 void addEvalCommand(CLI::App& app) {
   struct Options {
     FlightSceneArguments scene;
-    std::string configs, output = "eval", title;
+    std::string configs, output = "eval", title, referenceTexture;
     ConfigurationLists lists;
     std::string hotSpot = "shifted", profile = "exact";
     uint32_t cacheFrames = 16, initialLevels = 3;
@@ -82,9 +82,18 @@ void addEvalCommand(CLI::App& app) {
       ->check(workerCount())
       ->capture_default_str();
   command->add_option("--title", o->title, "Title of the summary and plots");
+  command
+      ->add_option("--reference-texture", o->referenceTexture,
+                   "Judge every frame against this texture with every needed page resident (the "
+                   "same pages in another format, e.g. the uncompressed texture of a compressed "
+                   "one); the summary adds the flown texture's own error against it")
+      ->check(CLI::ExistingFile);
   command->add_option("-o,--output", o->output, "Output folder")->capture_default_str();
   command->callback([o, command] {
     const VirtualTextureReader reader(o->scene.texture);
+    std::unique_ptr<const VirtualTextureReader> reference;
+    if (!o->referenceTexture.empty())
+      reference = std::make_unique<const VirtualTextureReader>(o->referenceTexture);
     const CameraPath path = o->scene.cameraPath();
     const Mesh mesh = o->scene.loadMesh();
 
@@ -117,6 +126,7 @@ void addEvalCommand(CLI::App& app) {
     // The results replace the output folder: refuse one with other files before flying.
     std::vector<std::filesystem::path> inputs = o->scene.inputs();
     inputs.push_back(o->configs);
+    inputs.push_back(o->referenceTexture);
     requireOutputFolder(o->output, inputs);
     TemporaryFolder::requireReplaceable(o->output, "summary.json");
     EvaluateRequest request{
@@ -131,11 +141,13 @@ void addEvalCommand(CLI::App& app) {
                         .scene = o->scene.sceneName(),
                         .texture = o->scene.texture,
                         .jobs = 1,
-                        .figures = std::move(figures)},
+                        .figures = std::move(figures),
+                        .referenceTexture = o->referenceTexture},
         .screen = parseSize(o->scene.size),
         .arithmetic = arithmeticPoint(o->profile),
         .jobs = o->jobs,
-        .output = o->output};
+        .output = o->output,
+        .reference = reference.get()};
     evaluateToFolder(reader, std::move(request), std::cout);
   });
 }

@@ -8,6 +8,7 @@
 
 #include "backends/backend.h"
 #include "common/elapsed_time.h"
+#include "common/error.h"
 #include "common/parallel_for.h"
 #include "common/resource_limits.h"
 #include "eval/flight_run.h"
@@ -120,7 +121,7 @@ struct RunState {
 // the needbuffers its configuration reads, then the run's analysis, quality and streaming. Its
 // drawing time is the shared passes' it reads: what drawing the frame once costs.
 void flyFrame(RunState& state, const SharedViews& views, const FramePlan& plan,
-              const PreparedReference& reference, int f) {
+              std::span<const uint8_t> referenceColor, const PreparedReference& reference, int f) {
   double drawSeconds = views.viewSeconds();
   std::span<const glm::uvec4> need = views.view().need;
   std::span<const float> depth = views.view().depth;
@@ -152,7 +153,7 @@ void flyFrame(RunState& state, const SharedViews& views, const FramePlan& plan,
                               .need = need,
                               .depth = depth,
                               .lookAheadNeed = lookAheadNeed,
-                              .reference = views.view().color,
+                              .reference = referenceColor,
                               .preparedReference = &reference},
                    drawSeconds);
 }
@@ -196,6 +197,9 @@ Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const 
   };
 
   SharedViews views(reader, mesh, path, settings, configurations);
+  const std::unique_ptr<const ResidentRenderer> referenceTexture =
+      options.reference ? makeResidentRenderer(*options.reference) : nullptr;
+  Frame referenceFrame;
   const std::unique_ptr<const CacheRenderer> recolorer = makeCacheRenderer();
   FlightOptions flight;
   flight.settings = settings;
@@ -220,10 +224,24 @@ Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const 
     }
     recolorer->recolor(views.view(), caches, settings, colors);
     evaluation.recolorSeconds += secondsSince(recolorStart);
+    std::span<const uint8_t> referenceColor = views.view().color;
+    if (referenceTexture) {
+      const auto referenceStart = Clock::now();
+      RenderSettings colourOnly = settings;
+      colourOnly.debugChannels = false;
+      referenceTexture->draw(toClipSpace(mesh, path.at(f), settings.viewport), colourOnly,
+                             referenceFrame);
+      referenceColor = referenceFrame.color;
+      evaluation.referenceSeconds += secondsSince(referenceStart);
+    }
     const PreparedReference prepared(
-        ImageView{settings.viewport.width, settings.viewport.height, views.view().color});
-    parallelFor(states.size(), threads,
-                [&](size_t r) { flyFrame(states[r], views, views.plan(r), prepared, f); });
+        ImageView{settings.viewport.width, settings.viewport.height, referenceColor});
+    if (referenceTexture)
+      evaluation.encoding.push_back(prepared.compare(
+          ImageView{settings.viewport.width, settings.viewport.height, views.view().color}));
+    parallelFor(states.size(), threads, [&](size_t r) {
+      flyFrame(states[r], views, views.plan(r), referenceColor, prepared, f);
+    });
     report(static_cast<uint64_t>(f + 1) * configurations.size());
   }
   for (size_t r = 0; r < configurations.size(); ++r)
@@ -231,6 +249,17 @@ Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const 
   evaluation.viewSeconds = sharedSeconds;
   evaluation.wallSeconds = secondsSince(start);
   return evaluation;
+}
+
+void requireSamePages(const VirtualTextureReader& flown, const VirtualTextureReader& reference) {
+  const TextureDescription &a = flown.description(), &b = reference.description();
+  if (a.pageSize != b.pageSize || a.border != b.border || a.levelCount != b.levelCount)
+    throw InputError(reference.path(),
+                     "pages of " + std::to_string(b.pageSize) + " texels, border " +
+                         std::to_string(b.border) + ", " + std::to_string(b.levelCount) +
+                         " levels: not the pages of " + flown.path().string() + " (" +
+                         std::to_string(a.pageSize) + ", border " + std::to_string(a.border) +
+                         ", " + std::to_string(a.levelCount) + " levels)");
 }
 
 RangeQuality rangeQuality(const FlightResult& result, int first, int last) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "eval/flight.h"
+#include "eval/image_metrics.h"
 
 namespace vt {
 
@@ -26,6 +27,10 @@ struct EvaluationOptions {
   RenderSettings settings;  // the screen, profile, need8; threads are set per stage
   unsigned jobs = 0;        // runs at once; 0: every core
   EvaluationProgress progress;
+  // The texture whose frames with every page resident are the references, when not the flown
+  // one: the same pages in another format (a compressed texture judged against the uncompressed
+  // one, so that the encoding's error counts); requireSamePages says which may be.
+  const VirtualTextureReader* reference = nullptr;
 };
 
 struct Evaluation {
@@ -33,7 +38,16 @@ struct Evaluation {
   double viewSeconds = 0.0;     // drawing each view once (the reference images and needbuffers)
   double recolorSeconds = 0.0;  // shading the views under every run's cache state
   double wallSeconds = 0.0;     // the whole evaluation
+  // With a reference texture: each frame of the flown texture with every page resident against
+  // the reference, the encoding's own error apart from the streaming's; and the time its
+  // reference frames took to draw.
+  std::vector<SsimAndWssim> encoding;
+  double referenceSeconds = 0.0;
 };
+
+// Throws InputError naming `reference` unless its pages are the flown texture's: the same page
+// size, border and levels (the pixel format may differ).
+void requireSamePages(const VirtualTextureReader& flown, const VirtualTextureReader& reference);
 
 // An evaluation flies its runs in lockstep, each run's cache texture and colour buffer held at
 // once: throws limitError (common/resource_limits.h) naming `origin` (the configurations' file)

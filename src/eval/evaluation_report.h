@@ -36,6 +36,7 @@ struct EvaluationDescription {
   std::string scene, texture;  // what was flown, for the record
   unsigned jobs = 1;
   std::vector<EvaluationFigure> figures;  // drawn besides the three plots of every run
+  std::string referenceTexture;           // the references' texture, when not the flown one
 };
 
 void writeEvaluation(const std::filesystem::path& folder, const EvaluationDescription& description,

@@ -29,6 +29,8 @@ Evaluation evaluateToFolder(const VirtualTextureReader& reader, EvaluateRequest 
   options.settings.need8 = need8Encodes(reader.description().finestLevel());
   options.settings.arithmetic = request.arithmetic;
   options.jobs = request.jobs;
+  options.reference = request.reference;
+  if (request.reference) requireSamePages(reader, *request.reference);
   const uint64_t total = static_cast<uint64_t>(path.frameCount()) * (1 + configurations.size());
   ProgressBar bar("eval", total);
   options.progress = [&bar](uint64_t done, uint64_t) { bar.update(done); };

@@ -29,6 +29,8 @@ struct EvaluateRequest {
   Arithmetic arithmetic;
   unsigned jobs = 0;  // runs at once (0: every core)
   std::filesystem::path output;
+  // The references' texture when not the flown one (EvaluationOptions::reference).
+  const VirtualTextureReader* reference = nullptr;
 };
 
 Evaluation evaluateToFolder(const VirtualTextureReader& reader, EvaluateRequest request,

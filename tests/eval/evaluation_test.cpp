@@ -13,8 +13,10 @@
 
 #include "backends/backend.h"
 #include "build/synthetic_texture.h"
+#include "common/error.h"
 #include "eval/evaluation_report.h"
 #include "eval/flight_records.h"
+#include "eval/level_comparison.h"
 #include "scene/box_room.h"
 #include "test_support.h"
 
@@ -71,6 +73,74 @@ TEST(Evaluation, EveryPageResidentDrawsTheReferenceImageAndNoBudgetStreamsNothin
   // Streaming 3 pages a frame does better than none over the turn.
   EXPECT_GT(flightTotals(evaluation.runs[2].result)["mean_ssim"].get<double>(),
             flightTotals(evaluation.runs[1].result)["mean_ssim"].get<double>());
+}
+
+// A compressed texture judged against the uncompressed one: with every page resident a run's
+// error is the encoding's alone, which the evaluation also reports apart, frame by frame; a
+// reference of other pages is refused naming it.
+TEST(Evaluation, AReferenceTextureJudgesTheEncodingApartFromTheStreaming) {
+  EvaluationFixture f;
+  TextureDescription bc1{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4};
+  bc1.format = PixelFormat::kBc1;
+  writeSyntheticTexture(f.dir / "bc1.vt", {bc1, std::nullopt});
+  const VirtualTextureReader uncompressed(f.texture), compressed(f.dir / "bc1.vt");
+  FlightConfiguration everything;
+  everything.cacheFrames = 37;
+  everything.initialLevels = 6;
+  EvaluationOptions options = smallScreen(compressed, 2);
+  const Evaluation own = evaluate(compressed, boxRoom(), boxRoomPath(), {everything}, options);
+  EXPECT_TRUE(own.encoding.empty());
+  options.reference = &uncompressed;
+  const Evaluation judged = evaluate(compressed, boxRoom(), boxRoomPath(), {everything}, options);
+  const std::vector<FlightFrame>& frames = judged.runs[0].result.frames;
+  ASSERT_EQ(judged.encoding.size(), frames.size());
+  double encodingSsim = 0.0;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    ASSERT_TRUE(frames[i].quality);
+    // Every page resident: the run differs from the flown texture's own reference by the cache's
+    // rounding only (below 1e-4, as above), so its error against the uncompressed one is the
+    // encoding's.
+    EXPECT_NEAR(frames[i].quality->ssim, judged.encoding[i].ssim, 1e-4) << i;
+    EXPECT_GT(own.runs[0].result.frames[i].quality->ssim, 1.0 - 1e-4) << i;
+    encodingSsim += judged.encoding[i].ssim / static_cast<double>(frames.size());
+  }
+  EXPECT_LT(encodingSsim, 0.999);  // BC1 loses detail
+  EXPECT_GT(encodingSsim, 0.5);
+
+  writeSyntheticTexture(f.dir / "other.vt",
+                        {{.pageSize = 16, .border = 2, .levelCount = 6, .channels = 4}, 0.45});
+  const VirtualTextureReader other(f.dir / "other.vt");
+  EXPECT_THAT([&] { requireSamePages(compressed, other); },
+              ::testing::ThrowsMessage<InputError>(HasSubstr("other.vt")));
+  EXPECT_NO_THROW(requireSamePages(compressed, uncompressed));
+}
+
+// The encoding's error level by level: none against itself; BC1 against the same pages
+// uncompressed loses more where the pages hold finer detail, every level compared page by page.
+TEST(Evaluation, LevelsCompareAsTheEncodingChangesThem) {
+  EvaluationFixture f;
+  TextureDescription bc1{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4};
+  bc1.format = PixelFormat::kBc1;
+  writeSyntheticTexture(f.dir / "bc1.vt", {bc1, std::nullopt});
+  const VirtualTextureReader uncompressed(f.texture), compressed(f.dir / "bc1.vt");
+  for (const LevelComparison& l : compareLevels(uncompressed, uncompressed)) {
+    EXPECT_EQ(l.pages, uint64_t{1} << (2 * l.level));
+    EXPECT_EQ(l.meanSsim, 1.0);
+    EXPECT_EQ(l.rmse, 0.0);
+    EXPECT_TRUE(std::isinf(l.psnrDb));
+  }
+  const std::vector<LevelComparison> levels = compareLevels(compressed, uncompressed);
+  ASSERT_EQ(levels.size(), 6u);
+  for (const LevelComparison& l : levels) {
+    EXPECT_EQ(l.pages, uint64_t{1} << (2 * l.level));
+    EXPECT_LT(l.meanSsim, 1.0) << l.level;
+    EXPECT_GT(l.meanSsim, 0.3) << l.level;
+    EXPECT_GT(l.rmse, 0.0) << l.level;
+    EXPECT_NEAR(l.psnrDb, 20 * std::log10(255.0 / l.rmse), 1e-9) << l.level;
+  }
+  const nlohmann::json json = levelComparisonJson(uncompressed, levels);
+  EXPECT_EQ(json["levels"].size(), 6u);
+  EXPECT_EQ(json["levels"][2]["pages"], 16u);
 }
 
 // Trilinear filtering reads the needed page's parent too. With every page the first frame names
@@ -200,7 +270,7 @@ TEST(Evaluation, WritesTheSummaryTablePerMotionMeansAndPlots) {
   const EvaluationOptions options = smallScreen(reader, 2);
   const Evaluation evaluation = evaluate(reader, boxRoom(), path, {a, b}, options);
   const EvaluationFigure turns{"turns.png", "Turns", "wssim", {a.label(), b.label()}};
-  writeEvaluation(f.dir / "out", {"box room", "box room", "t.vt", 2, {turns}}, path,
+  writeEvaluation(f.dir / "out", {"box room", "box room", "t.vt", 2, {turns}, ""}, path,
                   options.settings, evaluation);
   std::ifstream in(f.dir / "out" / "summary.md");
   const std::string md((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -245,7 +315,7 @@ TEST(Evaluation, PlotsThatCannotBeDrawnFailTheEvaluationAndLeaveNoFolder) {
     ::setenv("VT_PYTHON", python.c_str(), 1);
     std::string message;
     try {
-      writeEvaluation(f.dir / "out", {"box room", "box room", "t.vt", 1, {}}, path,
+      writeEvaluation(f.dir / "out", {"box room", "box room", "t.vt", 1, {}, ""}, path,
                       options.settings, evaluation);
     } catch (const std::runtime_error& e) {
       message = e.what();
