@@ -5,7 +5,8 @@ usage: chapter4-report.py RESULTS REPORT.md
 
 RESULTS holds one folder per map and experiment as scripts/reproduce-chapter4.sh writes them:
 MAP/indoor (the thesis's own layout), MAP/prepared, MAP/ancestors, MAP/charts (our chart layout),
-islandctf/terrain. Any of them may be missing; a claim whose configurations are absent is left out.
+islandctf/terrain, and MAP/compression (the chart layout as BC1 against RGBA8). Any of them may be
+missing; a claim whose configurations are absent is left out.
 
 Every claim of chapter 4 becomes one or more comparisons: the paired per-frame difference of a
 measure between two configurations over the claim's frames, its mean, and a 95% confidence
@@ -18,6 +19,7 @@ mean. Figures go next to the report (REPORT's folder / chapter4 / MAP), drawn wi
 scripts/evaluation-plots.py.
 """
 import importlib.util
+import json
 import os
 import shutil
 import statistics
@@ -525,6 +527,152 @@ def ours_section(experiments_by_map):
     return out
 
 
+# ---------------------------------------------------------------- compressed pages
+
+def megabytes(n):
+    return f"{n / 1e6:,.1f}"
+
+
+def outcome(interval):
+    """Which format the interval favours: it lies above zero (A higher), below, or holds zero."""
+    if interval is None:
+        return "not resolved (too few blocks for an interval)"
+    if interval[0] > 0:
+        return "A higher"
+    if interval[1] < 0:
+        return "B higher"
+    return "not resolved at this regime"
+
+
+def paired(difference, segments, destination, stem, title, bands):
+    """Mean and block-bootstrap interval of a per-frame difference over the whole path, with its
+    figure."""
+    frames = list(range(len(difference)))
+    blocks, fallback = blocks_of(segments, frames)
+    mean, interval = block_bootstrap(difference, blocks)
+    plots.draw_difference(os.path.join(destination, stem), title, "difference per frame",
+                          difference, frames, interval or (mean, mean), bands, PLOTTING)
+    os.remove(os.path.join(destination, stem + ".svg"))  # the report shows PNGs
+    return {"mean": mean, "interval": interval, "blocks": len(blocks), "fallback": fallback}
+
+
+def compression_section(results_dir, report_dir):
+    """Compressed pages against uncompressed ones per map (scripts/reproduce-chapter4.sh,
+    `compression`): the files, the encoding's error per level, and PixelSum flown at equal bytes
+    and at equal pages, judged against the uncompressed references."""
+    maps = sorted(name for name in os.listdir(results_dir)
+                  if os.path.isfile(os.path.join(results_dir, name, "compression", "eval",
+                                                 "summary.json")))
+    if not maps:
+        return []
+    out = ["## Compressed pages (the thesis's conclusion)", "",
+           "The thesis's virtual textures were uncompressed; its conclusion proposes real-time "
+           "decompression and asks for its impact. Each indoor map's chart layout is built a "
+           "second time as BC1 (`vt build --format bc1`: libsquish's range fit, 8 bytes a 4 x 4 "
+           "block) and flown under PixelSum along the same storyboard, every frame judged against "
+           "the uncompressed texture with every needed page resident (`vt eval "
+           "--reference-texture`), so a BC1 run's error holds the encoding's and the "
+           "streaming's. The encoding alone is the BC1 texture with every needed page resident "
+           "against the same reference, frame by frame, and level by level the pages themselves "
+           "(`vt info --against`: mean SSIM of each page's interior, 8 x 8 windows on luminance, "
+           "and the PSNR of R, G and B). The uncompressed run is the chart experiment's "
+           "PixelSum 5; BC1 at equal bytes has its cache's bytes (more, smaller frames) and its "
+           "link's bytes per frame (more pages); BC1 at equal pages its frames and its 5 pages a "
+           "frame. Differences are paired per frame with the block-bootstrap intervals above "
+           "(A − B; **A higher** or **B higher** where the interval excludes zero). Run times "
+           "are each flight's own (drawing, analysis, streaming).", ""]
+    for name in maps:
+        folder = os.path.join(results_dir, name, "compression")
+        build = json.load(open(os.path.join(folder, "build.json")))
+        levels = json.load(open(os.path.join(folder, "levels.json")))
+        compressed = Results(os.path.join(folder, "eval"))
+        base_folder = next((os.path.join(results_dir, name, e) for e in ("charts", "indoor")
+                            if os.path.isfile(os.path.join(results_dir, name, e,
+                                                           "summary.json"))), None)
+        base = Results(base_folder) if base_folder else None
+        out += [f"### {name}", ""]
+        if base is None or not base.has("PixelSum 5") or base.frames != compressed.frames:
+            out += ["Not compared: the uncompressed PixelSum 5 run of the same path is absent.",
+                    ""]
+            continue
+        destination = os.path.join(report_dir, "chapter4", name, "compression")
+        os.makedirs(destination, exist_ok=True)
+        link = f"chapter4/{name}/compression"
+        frames = build["cache_frames"]
+        rgba8_page, bc1_page = build["rgba8_page_bytes"], levels["page_bytes"]
+        timed = build["rgba8_seconds"] is not None
+        out += [table_row(["Format", "file (MB)", "build time (s)", "stored page (bytes)"]),
+                "|---|---:|---:|---:|",
+                table_row(["RGBA8", megabytes(build["rgba8_bytes"]),
+                           f"{build['rgba8_seconds']:.1f}" if timed else "— (not timed here)",
+                           f"{rgba8_page:,}"]),
+                table_row(["BC1", megabytes(build["bc1_bytes"]), f"{build['bc1_seconds']:.1f}",
+                           f"{bc1_page:,}"]),
+                "", "The encoding alone, level by level (BC1 against RGBA8, every stored page):",
+                "", table_row(["Level", "pages", "mean SSIM", "RMSE", "PSNR (dB)"]),
+                "|---:|---:|---:|---:|---:|"]
+        for level in levels["against"]["levels"]:
+            if level["pages"] == 0:
+                continue
+            psnr = level["psnr_db"]
+            out.append(table_row([level["level"], f"{level['pages']:,}",
+                                  f"{level['mean_ssim']:.4f}", f"{level['rmse']:.2f}",
+                                  "identical" if psnr is None else f"{psnr:.2f}"]))
+        encoding = np.array(compressed.summary["encoding"]["ssim"])
+        runs = [("RGBA8, PixelSum 5", base, "PixelSum 5", rgba8_page),
+                ("BC1, equal bytes", compressed, "BC1, equal bytes", bc1_page),
+                ("BC1, equal pages", compressed, "BC1, equal pages", bc1_page)]
+        out += ["", table_row(["Run", "cache (frames)", "link per frame", "mean SSIM",
+                               "pages streamed", "bytes streamed (MB)", "needed pages missed",
+                               "run time (s)"]),
+                "|---|---:|---:|---:|---:|---:|---:|---:|"]
+        for label, results, run_name, page in runs:
+            run = results.run(run_name)
+            c = run["configuration"]
+            if c.get("cache_bytes"):
+                side = int((c["cache_bytes"] // page) ** 0.5)
+                while (side + 1) ** 2 * page <= c["cache_bytes"]:
+                    side += 1
+                while side * side * page > c["cache_bytes"]:
+                    side -= 1
+                cache = f"{side} x {side} ({megabytes(c['cache_bytes'])} MB)"
+            else:
+                cache = f"{c['cache_frames']} x {c['cache_frames']}"
+            link_text = (f"{c['budget_bytes']:,} bytes ({c['budget_bytes'] // page} pages)"
+                         if c.get("budget_bytes") else f"{c['budget']} pages")
+            out.append(table_row([label, cache, link_text,
+                                  f"{float(results.values(run_name).mean()):.5f}",
+                                  f"{run['streamed']:,}", megabytes(run["streamed"] * page),
+                                  f"{run['misses']:,}", f"{run['seconds']:.2f}"]))
+        out.append(table_row(["BC1, every needed page resident (the encoding alone)", "—", "—",
+                              f"{float(encoding.mean()):.5f}", "—", "—", "—", "—"]))
+        bands = plots.motion_bands(base.summary)
+        rgba8 = base.values("PixelSum 5")
+        comparisons = [
+            ("compression01", "BC1, equal bytes − RGBA8, PixelSum 5",
+             compressed.values("BC1, equal bytes") - rgba8),
+            ("compression02", "BC1, equal pages − RGBA8, PixelSum 5",
+             compressed.values("BC1, equal pages") - rgba8),
+            ("compression03", "the encoding alone: BC1 every page resident − RGBA8 every page "
+             "resident", encoding - 1.0),
+            ("compression04", "the streaming alone: BC1, equal bytes − BC1 every page resident, "
+             "against RGBA8, PixelSum 5 − RGBA8 every page resident",
+             (compressed.values("BC1, equal bytes") - encoding) - (rgba8 - 1.0)),
+        ]
+        out += ["", table_row(["Comparison (A − B, mean SSIM)", "Mean difference",
+                               "95% interval (block bootstrap)", "Blocks", "Outcome"]),
+                "|---|---:|---|---:|---|"]
+        for stem, title, difference in comparisons:
+            result = paired(difference, base.segments, destination, stem, title, bands)
+            blocks = f"{result['blocks']}" + (f" (of {FALLBACK_BLOCK} frames)"
+                                              if result["fallback"] else "")
+            out.append(table_row([f"[{title}]({link}/{stem}.png)", number(result["mean"]),
+                                  interval_text(result), blocks,
+                                  f"**{outcome(result['interval'])}**"]))
+        out.append("")
+    return out
+
+
 def copy_figures(results, destination):
     """Copies the PNG figures `vt eval` drew for this experiment. The report shows PNGs only: the
     SVGs of 700-frame curves are about twice their size (both stay in the `vt eval` folders)."""
@@ -633,6 +781,7 @@ def main():
     for name, experiments in by_map.items():
         out += map_section(name, experiments, report_dir)
     out += ours_section(by_map)
+    out += compression_section(results_dir, report_dir)
     with open(report + ".tmp", "w") as f:
         f.write("\n".join(out) + "\n")
     os.replace(report + ".tmp", report)

@@ -4,7 +4,8 @@
 # islandctf, makes the "prepared level" of 4.2.3.2 (the most used source image of each indoor map
 # replaced by a flat image of its mean colour), runs `vt eval` with the configurations in
 # data/chapter4/ over the storyboards in data/paths/, and writes the report with
-# scripts/chapter4-report.py.
+# scripts/chapter4-report.py. Last per indoor map, compressed pages: its chart layout as BC1
+# against RGBA8 (the function `compression` below says how).
 #
 # The indoor maps are flown on the thesis's own layout (`vt retexture --method baseline`, every
 # face its own area: $work/MAP.baseline.vt) with indoor.json, prepared.json and ancestors.json;
@@ -23,8 +24,8 @@
 #                   for CI: q3dm6ish only, its storyboard cut to the motions that start within the
 #                   first 40 frames, 160x100, PixelSum 5 and 10 (data/chapter4/miniature.json) on
 #                   our chart layout (1 GB and 6 s to build, against the thesis layout's 2.4 GB and
-#                   about a minute); no prepared level, still camera, chart column or terrain.
-#                   Use it with --report.
+#                   about a minute), and its BC1 build (125 MB, 5 s) against it; no prepared
+#                   level, still camera, chart column or terrain. Use it with --report.
 # Work files (textures of about 1-3 GB each, eval folders) go to $VT_DATA_CACHE/chapter4
 # (default ~/.cache/vt/chapter4); $VT_OPENARENA_DIR names the maps' .pk3 folder instead of
 # fetching them.
@@ -181,6 +182,52 @@ cache_of() {  # map
   echo "${cache_frames[$1]:-48}"
 }
 
+# Compressed pages (the thesis's conclusion): the chart layout also built as BC1, both builds
+# timed, its levels compared with the uncompressed ones (`vt info --against`), and flown under
+# PixelSum, judged against the uncompressed texture's references (`vt eval --reference-texture`):
+# at the cache and link bytes of the chart experiment's PixelSum 5 (BC1 pages are 6 to 8 times
+# smaller, so more of them), and at its pages. The uncompressed run is charts' own PixelSum 5.
+# The miniature (timed=false) builds BC1 without timing an RGBA8 build against it (1 GB more).
+compression() {  # map cache_frames path timed
+  local map=$1 frames=$2 path=$3 timed=$4 out=$results/$1/compression
+  mkdir -p "$out"
+  local t0 t1 t2 rgba8_bytes
+  t0=$(date +%s.%N)
+  if $timed; then
+    "$vt" build "$work/$map/$map.layout.json" -o "$out/timing.rgba8.vt" -q
+    rgba8_bytes=$(stat -c %s "$out/timing.rgba8.vt")
+    rm -f "$out/timing.rgba8.vt"
+  else
+    rgba8_bytes=$(stat -c %s "$work/$map.vt")
+  fi
+  t1=$(date +%s.%N)
+  "$vt" build "$work/$map/$map.layout.json" -o "$work/$map.bc1.vt" --format bc1 -q
+  t2=$(date +%s.%N)
+  "$vt" info "$work/$map.bc1.vt" --against "$work/$map.vt" --json > "$out/levels.json"
+  "$vt" info "$work/$map.vt" --json > "$out/rgba8.json"
+  "$python" - "$out" "$frames" "$t0" "$t1" "$t2" "$rgba8_bytes" "$work/$map.bc1.vt" "$timed" <<'PY'
+import json, os, sys
+out, frames, t0, t1, t2, rgba8_bytes, bc1, timed = sys.argv[1:]
+frames = int(frames)
+page = json.load(open(os.path.join(out, "rgba8.json")))["page_bytes"]
+json.dump({"rgba8_seconds": float(t1) - float(t0) if timed == "true" else None,
+           "bc1_seconds": float(t2) - float(t1),
+           "rgba8_bytes": int(rgba8_bytes), "bc1_bytes": os.path.getsize(bc1),
+           "cache_frames": frames, "rgba8_page_bytes": page},
+          open(os.path.join(out, "build.json"), "w"), indent=1)
+# The chart experiment's defaults (data/chapter4/charts.json), PixelSum at 5 RGBA8 pages a frame.
+json.dump({"defaults": {"budget": 5, "initial_levels": 3, "preload_visible": True},
+           "configurations": [
+               {"name": "BC1, equal bytes", "heuristic": "pixelsum", "budget_bytes": 5 * page,
+                "cache_bytes": frames * frames * page},
+               {"name": "BC1, equal pages", "heuristic": "pixelsum"}]},
+          open(os.path.join(out, "configs.json"), "w"), indent=1)
+PY
+  evaluate "$work/$map.bc1.vt" "$work/$map/$map.obj" "$path" "$out/configs.json" \
+    "$map, BC1 against RGBA8" "$out/eval" --cache-frames "$frames" \
+    --reference-texture "$work/$map.vt"
+}
+
 rm -rf "$results"
 if $miniature; then
   prepare_map q3dm6ish
@@ -189,6 +236,7 @@ if $miniature; then
   evaluate "$work/q3dm6ish.vt" "$work/q3dm6ish/q3dm6ish.obj" \
     "$results/q3dm6ish.short.json" data/chapter4/miniature.json "q3dm6ish, miniature" \
     "$results/q3dm6ish/indoor"
+  compression q3dm6ish 32 "$results/q3dm6ish.short.json" false  # miniature.json's cache
   "$python" scripts/chapter4-report.py "$results" "$report"
   exit 0
 fi
@@ -207,6 +255,7 @@ for map in $maps; do
     "$map, still camera" "$results/$map/ancestors"
   evaluate "$work/$map.vt" "$work/$map/$map.obj" "data/paths/$map.storyboard.json" \
     data/chapter4/charts.json "$map, chart layout" "$results/$map/charts" "${cache[@]}"
+  compression "$map" "$(cache_of "$map")" "data/paths/$map.storyboard.json" true
 done
 prepare_map islandctf
 evaluate "$work/islandctf.vt" "$work/islandctf/islandctf.obj" data/paths/islandctf.storyboard.json \

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The chapter-4 pipeline in miniature (scripts/reproduce-chapter4.sh --miniature): retexture and
 # build q3dm6ish in our chart layout, `vt eval` two configurations over the storyboard's first
-# motions, the report and the plots. Checks that the report has a verdict table with bootstrap
-# intervals and that the figures exist (SVG and PNG from `vt eval`, PNG in the report).
+# motions, the report and the plots, and the same texture as BC1 flown against it. Checks that the
+# report has a verdict table with bootstrap intervals, a compressed-pages section with its level
+# table and paired intervals, and that the figures exist (SVG and PNG from `vt eval`, PNG in the
+# report).
 #   miniature_test.sh SOURCE_DIR VT SCRATCH
 # Needs OpenArena's maps in $VT_OPENARENA_DIR (scripts/fetch-openarena.sh); without them the test
 # is skipped (exit 77), except in CI (CI=true), where it fails. The built texture is kept in
@@ -42,4 +44,12 @@ done
 # The report shows PNGs only.
 [[ -s "$scratch/report/chapter4/q3dm6ish/claim01_1.png" ]] || fail "no figure claim01_1.png"
 grep -q '(chapter4/q3dm6ish/claim01_1.png)' "$report" || fail "the report does not link claim01_1.png"
+# Compressed pages: the levels compared, the runs, and paired differences with intervals.
+grep -q '^## Compressed pages' "$report" || fail "no compressed-pages section"
+grep -Eq '^\| 7 \| [0-9,]+ \| 0\.[0-9]{4} \| [0-9.]+ \| [0-9.]+ \|$' "$report" ||
+  fail "no level table of the encoding's error"
+grep -Eq '^\| \[BC1, equal bytes − RGBA8, PixelSum 5\].*\| [+-][0-9.]+e[+-][0-9]+ \| \[[+-][0-9.]+e[+-][0-9]+, [+-][0-9.]+e[+-][0-9]+\] \|' "$report" ||
+  fail "no paired interval of BC1 at equal bytes against RGBA8"
+[[ -s "$scratch/report/chapter4/q3dm6ish/compression/compression01.png" ]] ||
+  fail "no figure compression01.png"
 echo "miniature report: $report"
