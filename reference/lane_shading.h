@@ -191,8 +191,7 @@ class LaneBackend {
 };
 
 // Shades the active lanes of `in` through `scalar` (the tile's one-pixel backend) into `out`:
-// vtShadeFragment, or with `needOnly` its first steps (the LOD and the needbuffer entry, as the
-// renderer's needOfFragment).
+// vtShadeFragment, or with `needOnly` vtNeedOfFragment (the LOD and the needbuffer entry).
 template <class Scalar>
 void shadeLanes(Scalar& scalar, const Arithmetic& arithmetic, const shader::VtParameters& p,
                 bool needOnly, const LaneFragments& in, LaneResults& out) {
@@ -201,19 +200,8 @@ void shadeLanes(Scalar& scalar, const Arithmetic& arithmetic, const shader::VtPa
   using lane_detail::load;
   const lanes::Vec2 uvIn(load(in.u), load(in.v));
   const lanes::Vec2 dUVdx(load(in.dudx), load(in.dvdx)), dUVdy(load(in.dudy), load(in.dvdy));
-  typename Logic::VtFragment f;
-  if (needOnly) {
-    const lanes::Vec2 uv(shader.vtClampOrZero(uvIn.x, 1.0f), shader.vtClampOrZero(uvIn.y, 1.0f));
-    f.lod = shader.vtLevelOfDetail(dUVdx, dUVdy, p);
-    f.neededLevel = shader.vtNeededLevel(f.lod);
-    const lanes::IVec2 page = shader.vtPageAt(uv, f.neededLevel);
-    f.need = p.need8 != 0 ? shader.vtEncodeNeed8(page, f.neededLevel)
-                          : shader.vtEncodeNeed32(page, f.neededLevel);
-    f.color = lanes::Vec4(0.0f, 0.0f, 0.0f, 0.0f);
-    f.residentLevel = -1;
-  } else {
-    f = shader.vtShadeFragment(uvIn, dUVdx, dUVdy, p);
-  }
+  const typename Logic::VtFragment f = needOnly ? shader.vtNeedOfFragment(uvIn, dUVdx, dUVdy, p)
+                                                : shader.vtShadeFragment(uvIn, dUVdx, dUVdy, p);
   const lanes::Int8 color[4] = {lane_detail::toUnorm8(f.color.x), lane_detail::toUnorm8(f.color.y),
                                 lane_detail::toUnorm8(f.color.z), lane_detail::toUnorm8(f.color.w)};
   for (int k = 0; k < lanes::kLanes; ++k) {

@@ -339,20 +339,9 @@ class TileShader {
     sets_->pixels.emplace_back(indexOf(px, py), 1u);
   }
 
-  // The first steps of vtShadeFragment (src/shader/virtual_texture.glsl), through the same
-  // functions: the LOD, the needed level and the needbuffer entry, without sampling.
+  // vtNeedOfFragment (src/shader/virtual_texture.glsl): the LOD and the needbuffer entry alone.
   Fragment needOfFragment(vec2 uvIn, vec2 dUVdx, vec2 dUVdy) {
-    const shader::VtParameters& p = job_.parameters;
-    Fragment f{};
-    const vec2 uv(shader_.vtClampOrZero(uvIn.x, 1.0f), shader_.vtClampOrZero(uvIn.y, 1.0f));
-    f.lod = shader_.vtLevelOfDetail(dUVdx, dUVdy, p);
-    f.neededLevel = shader_.vtNeededLevel(f.lod);
-    const shader::ivec2 page = shader_.vtPageAt(uv, f.neededLevel);
-    f.need = p.need8 != 0 ? shader_.vtEncodeNeed8(page, f.neededLevel)
-                          : shader_.vtEncodeNeed32(page, f.neededLevel);
-    f.color = vec4(0.0f);
-    f.residentLevel = -1;
-    return f;
+    return shader_.vtNeedOfFragment(uvIn, dUVdx, dUVdy, job_.parameters);
   }
 
   // The pixel's result set under the model, after the oracle's own value.

@@ -629,15 +629,11 @@ def compression_section(results_dir, report_dir):
         for label, results, run_name, page in runs:
             run = results.run(run_name)
             c = run["configuration"]
-            if c.get("cache_bytes"):
-                side = int((c["cache_bytes"] // page) ** 0.5)
-                while (side + 1) ** 2 * page <= c["cache_bytes"]:
-                    side += 1
-                while side * side * page > c["cache_bytes"]:
-                    side -= 1
-                cache = f"{side} x {side} ({megabytes(c['cache_bytes'])} MB)"
-            else:
-                cache = f"{c['cache_frames']} x {c['cache_frames']}"
+            side = run["cache_side_frames"]
+            cache = f"{side} x {side} ({megabytes(side * side * page)} MB)"
+            if c.get("cache_bytes") and (side + 1) ** 2 * page <= c["cache_bytes"]:
+                cache += (f"; {megabytes(c['cache_bytes'])} MB asked, more than one cache "
+                          "texture of 16384^2 texels holds")
             link_text = (f"{c['budget_bytes']:,} bytes ({c['budget_bytes'] // page} pages)"
                          if c.get("budget_bytes") else f"{c['budget']} pages")
             out.append(table_row([label, cache, link_text,

@@ -245,7 +245,8 @@ Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const 
     report(static_cast<uint64_t>(f + 1) * configurations.size());
   }
   for (size_t r = 0; r < configurations.size(); ++r)
-    evaluation.runs.push_back({configurations[r], states[r].run->finish()});
+    evaluation.runs.push_back({configurations[r], states[r].run->finish(),
+                               cacheFramesFor(configurations[r], reader.description())});
   evaluation.viewSeconds = sharedSeconds;
   evaluation.wallSeconds = secondsSince(start);
   return evaluation;

@@ -17,6 +17,7 @@ namespace vt {
 struct EvaluationRun {
   FlightConfiguration configuration;
   FlightResult result;
+  uint32_t cacheSide = 0;  // the cache's N x N frames (cacheFramesFor)
 };
 
 // Called from the calling thread with the frames done so far (references and flights together)

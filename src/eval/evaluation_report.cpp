@@ -82,6 +82,7 @@ nlohmann::json summaryJson(const EvaluationDescription& description, const Camer
     nlohmann::json entry = {{"index", r},
                             {"name", run.configuration.label()},
                             {"configuration", run.configuration.toJson()},
+                            {"cache_side_frames", run.cacheSide},
                             {"seconds", run.result.seconds},
                             {"times", flightTimesJson(run.result.times)},
                             {"motions", perMotion}};

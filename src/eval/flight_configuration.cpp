@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "common/resource_limits.h"
 #include "runtime/needbuffer_scale.h"
 
 namespace vt {
@@ -140,7 +141,10 @@ uint32_t cacheFramesFor(const FlightConfiguration& c, const TextureDescription& 
   auto side = static_cast<uint64_t>(std::sqrt(static_cast<double>(frames)));
   while (side * side > frames) --side;  // the square root's rounding, either way
   while ((side + 1) * (side + 1) <= frames) ++side;
-  return static_cast<uint32_t>(std::clamp<uint64_t>(side, 1, 256));
+  // No larger than cache_frames allows, nor than one cache texture holds (resource_limits.h).
+  const uint64_t largest =
+      std::clamp<uint64_t>(kMaxCacheSideTexels / d.storedPageSide(), 1, 256);
+  return static_cast<uint32_t>(std::clamp<uint64_t>(side, 1, largest));
 }
 
 }  // namespace vt

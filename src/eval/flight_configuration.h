@@ -53,7 +53,9 @@ struct FlightConfiguration {
 };
 
 // The side N of the cache's N x N frames for a texture of `description` under `configuration`:
-// cacheFrames, or the largest N (1 to 256) whose frames hold at most cacheBytes of stored pages.
+// cacheFrames, or the largest N whose frames hold at most cacheBytes of stored pages, at least 1
+// and at most 256 frames and kMaxCacheSideTexels texels per side (one cache texture: a cache of
+// more bytes is cut to the largest that texture holds).
 uint32_t cacheFramesFor(const FlightConfiguration& configuration,
                         const TextureDescription& description);
 

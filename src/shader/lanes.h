@@ -156,6 +156,7 @@ struct UVec4 {
 struct Vec4 {
   Float8 x, y, z, w;
   Vec4() = default;
+  explicit Vec4(Float8 s) : x(s), y(s), z(s), w(s) {}
   Vec4(Float8 x_, Float8 y_, Float8 z_, Float8 w_) : x(x_), y(y_), z(z_), w(w_) {}
 };
 

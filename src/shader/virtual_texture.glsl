@@ -141,9 +141,10 @@ VtSample vtSampleLevel(vec2 uv, vint level, VtParameters p) {
   return result;
 }
 
-// Everything the unified shader computes for one fragment (thesis 3.2.3): the LOD from the
-// derivatives, the needed page, and the colour from the available set.
-VtFragment vtShadeFragment(vec2 uvIn, vec2 dUVdx, vec2 dUVdy, VtParameters p) {
+// The first half of vtShadeFragment, all a needbuffer pass computes: the LOD from the
+// derivatives, the needed level and its needbuffer entry (thesis 3.2.3.1-3.2.3.2). The colour is
+// left transparent black and the resident level -1.
+VtFragment vtNeedOfFragment(vec2 uvIn, vec2 dUVdx, vec2 dUVdy, VtParameters p) {
   VtFragment result;
   vec2 uv = vec2(vtClampOrZero(uvIn.x, 1.0), vtClampOrZero(uvIn.y, 1.0));
   result.lod = vtLevelOfDetail(dUVdx, dUVdy, p);
@@ -151,6 +152,16 @@ VtFragment vtShadeFragment(vec2 uvIn, vec2 dUVdx, vec2 dUVdy, VtParameters p) {
   ivec2 page = vtPageAt(uv, result.neededLevel);
   result.need = (p.need8 != 0) ? vtEncodeNeed8(page, result.neededLevel)
                                : vtEncodeNeed32(page, result.neededLevel);
+  result.color = vec4(0.0);
+  result.residentLevel = vint(-1);
+  return result;
+}
+
+// Everything the unified shader computes for one fragment (thesis 3.2.3): the LOD from the
+// derivatives, the needed page, and the colour from the available set.
+VtFragment vtShadeFragment(vec2 uvIn, vec2 dUVdx, vec2 dUVdy, VtParameters p) {
+  VtFragment result = vtNeedOfFragment(uvIn, dUVdx, dUVdy, p);
+  vec2 uv = vec2(vtClampOrZero(uvIn.x, 1.0), vtClampOrZero(uvIn.y, 1.0));
   if (p.trilinear != 0) {
     vint coarse = vint(floor(result.lod));
     vint fine = vtSelect(coarse < p.finestLevel, coarse + 1, coarse);

@@ -85,6 +85,11 @@ TEST(ConfigurationsFile, ACacheInBytesHoldsAsManyFramesAsFitAtTheStoredPageSize)
   EXPECT_EQ(cacheFramesFor(bytes, d), 32u);  // 1024 frames of 18,496
   d.format = PixelFormat::kBc1;
   EXPECT_EQ(cacheFramesFor(bytes, d), 45u);  // 2048 frames of 9,248: 45^2 = 2025 fit
+  // A cache larger than one texture of 16384^2 texels holds (120 frames of 136 texels a side) is
+  // cut to it.
+  FlightConfiguration huge;
+  huge.cacheBytes = uint64_t{1} << 40;
+  EXPECT_EQ(cacheFramesFor(huge, d), 120u);
   FlightConfiguration tiny;
   tiny.cacheBytes = 1;
   EXPECT_EQ(cacheFramesFor(tiny, d), 1u);  // never less than one frame
