@@ -28,6 +28,9 @@ struct Texture::Impl {
 };
 
 struct PreparedCache::Impl {
+  Impl(const Texture::Impl& t, std::optional<vt::CacheState> s)
+      : texture(t), state(std::move(s)) {}
+
   const Texture::Impl& texture;
   std::optional<vt::CacheState> state;  // none: every page resident
   // A block format's state decoded again for each other decoding a render asked for, kept.
