@@ -534,14 +534,9 @@ def megabytes(n):
 
 
 def outcome(interval):
-    """Which format the interval favours: it lies above zero (A higher), below, or holds zero."""
-    if interval is None:
-        return "not resolved (too few blocks for an interval)"
-    if interval[0] > 0:
-        return "A higher"
-    if interval[1] < 0:
-        return "B higher"
-    return "not resolved at this regime"
+    """Which side the interval favours: verdict() of the claim A − B > 0, told as A or B."""
+    v = verdict(interval, +1)
+    return {"confirmed": "A higher", "contradicted": "B higher"}.get(v, v)
 
 
 def paired(difference, segments, destination, stem, title, bands):

@@ -69,17 +69,10 @@ std::vector<std::byte> decodingProbeBlocks(PixelFormat format) {
 }
 
 std::vector<BlockTexel> decodeProbe(PixelFormat format, BlockDecoding decoding) {
-  const std::vector<std::byte> blocks = decodingProbeBlocks(format);
-  const size_t bytes = blockBytes(format);
-  std::vector<BlockTexel> texels(size_t{kDecodingProbeSide} * kDecodingProbeSide);
-  for (int by = 0; by < kBlocksPerSide; ++by)
-    for (int bx = 0; bx < kBlocksPerSide; ++bx) {
-      const std::array<BlockTexel, 16> decoded = decodeBlock(
-          format, blocks.data() + (size_t(by) * kBlocksPerSide + size_t(bx)) * bytes, decoding);
-      for (int t = 0; t < 16; ++t)
-        texels[size_t(by * 4 + t / 4) * kDecodingProbeSide + size_t(bx * 4 + t % 4)] =
-            decoded[size_t(t)];
-    }
+  std::vector<std::byte> rgba(size_t{kDecodingProbeSide} * kDecodingProbeSide * 4);
+  decodeBlocks(format, kDecodingProbeSide, decodingProbeBlocks(format), rgba, decoding);
+  std::vector<BlockTexel> texels(rgba.size() / 4);
+  for (size_t i = 0; i < rgba.size(); ++i) texels[i / 4][i % 4] = std::to_integer<uint8_t>(rgba[i]);
   return texels;
 }
 

@@ -3,7 +3,7 @@
 // texel of a BC1 and a BC3 probe texture of random blocks, uploaded as the GL renderer uploads its
 // cache. The colour rule is fitted on both textures' RGB, the alpha rule on BC3's alpha; each is
 // pinned where a member reproduces every texel. The probe blocks are chosen so that every two
-// members differ on some texel (tests/calibrate/decoding_fit_test.cpp checks it), so a pinned
+// members differ on some texel (tests/format/block_decoding_test.cpp checks it), so a pinned
 // member is the only one consistent. A texel outside every member's and the specification's
 // range (decodeTexelRange) is non-conformance.
 

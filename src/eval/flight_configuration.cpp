@@ -71,6 +71,12 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
       if (!value.is_boolean()) throw std::invalid_argument("'" + key + "' must be true or false");
       return value.get<bool>();
     };
+    const auto bytes = [&] {
+      if (!value.is_number_integer() || value.get<int64_t>() < 0 ||
+          value.get<int64_t>() > (int64_t{1} << 40))
+        throw std::invalid_argument("'" + key + "' must be a whole number from 0 to 2^40");
+      return static_cast<uint64_t>(value.get<int64_t>());
+    };
     const auto count = [&](uint32_t low, uint32_t high) {
       if (!value.is_number_integer() || value.get<int64_t>() < low || value.get<int64_t>() > high)
         throw std::invalid_argument("'" + key + "' must be a whole number from " +
@@ -96,17 +102,11 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
     } else if (key == "budget") {
       c.budget = count(0, 1u << 20);
     } else if (key == "budget_bytes") {
-      if (!value.is_number_integer() || value.get<int64_t>() < 0 ||
-          value.get<int64_t>() > (int64_t{1} << 40))
-        throw std::invalid_argument("'budget_bytes' must be a whole number from 0 to 2^40");
-      c.budgetBytes = static_cast<uint64_t>(value.get<int64_t>());
+      c.budgetBytes = bytes();
     } else if (key == "latency") {
       c.latency = count(0, 1000);
     } else if (key == "cache_bytes") {
-      if (!value.is_number_integer() || value.get<int64_t>() < 0 ||
-          value.get<int64_t>() > (int64_t{1} << 40))
-        throw std::invalid_argument("'cache_bytes' must be a whole number from 0 to 2^40");
-      c.cacheBytes = static_cast<uint64_t>(value.get<int64_t>());
+      c.cacheBytes = bytes();
     } else if (key == "cache_frames") {
       c.cacheFrames = count(1, 256);
     } else if (key == "locked_levels") {

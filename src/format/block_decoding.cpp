@@ -35,10 +35,14 @@ int step(PaletteRule rule, int a, int b, int k, int n) {
       if (2 * k == n) return (a + b + 1) >> 1;
       return k == 1 ? (43 * a + 21 * b + 32) >> 6 : (21 * a + 43 * b + 32) >> 6;
     case PaletteRule::kNvidia:
-      break;  // needs the 5-bit end points: nvidiaColour
+      break;  // needs the 5-bit end points: nvidiaChannel
   }
   return sum / n;
 }
+
+// The k-th of n steps from a to b as the specification's fraction rounded up (rounded down, it is
+// the truncated member).
+int stepRoundedUp(int a, int b, int k, int n) { return ((n - k) * a + k * b + n - 1) / n; }
 
 // NVIDIA's published colour interpolation: red and blue from their 5-bit end points, green from
 // its 8-bit ones (k = 1: c2, k = 2: c3, or the midpoint when `half`).
@@ -124,23 +128,6 @@ const std::byte* colourPart(PixelFormat format, const std::byte* block) {
   return format == PixelFormat::kBc1 ? block : block + 8;
 }
 
-// The specification's fraction rounded down and up, as a pair of palettes over every entry.
-std::array<Palette, 2> colourFloorCeil(const ColourBlock& b) {
-  std::array<Palette, 2> r{colourPalette(b, PaletteRule::kTruncated), {}};
-  r[1] = r[0];
-  for (int c = 0; c < 3; ++c) {
-    const int a = b.wide[0][c], z = b.wide[1][c];
-    const auto c8 = static_cast<size_t>(c);
-    if (b.four) {
-      r[1][2][c8] = static_cast<uint8_t>((2 * a + z + 2) / 3);
-      r[1][3][c8] = static_cast<uint8_t>((a + 2 * z + 2) / 3);
-    } else {
-      r[1][2][c8] = static_cast<uint8_t>((a + z + 1) / 2);
-    }
-  }
-  return r;
-}
-
 }  // namespace
 
 std::array<BlockTexel, 16> decodeBlock(PixelFormat format, const std::byte* block,
@@ -160,11 +147,11 @@ std::array<BlockTexel, 16> decodeBlock(PixelFormat format, const std::byte* bloc
 
 std::array<BlockTexel, 2> decodeTexelRange(PixelFormat format, const std::byte* block,
                                            uint32_t index) {
+  // Every member, the truncated one being the fraction rounded down; then the fraction rounded up.
   const std::byte* colour = colourPart(format, block);
   const ColourBlock b = readColour(colour, format != PixelFormat::kBc1);
   const uint32_t ci = colourIndex(colour, index);
-  const std::array<Palette, 2> floorCeil = colourFloorCeil(b);
-  BlockTexel lo = floorCeil[0][ci], hi = floorCeil[1][ci];
+  BlockTexel lo = colourPalette(b, PaletteRule::kNearest)[ci], hi = lo;
   for (const auto& [rule, name] : kPaletteRuleNames) {
     const BlockTexel v = colourPalette(b, rule)[ci];
     for (size_t c = 0; c < 3; ++c) {
@@ -172,6 +159,12 @@ std::array<BlockTexel, 2> decodeTexelRange(PixelFormat format, const std::byte* 
       hi[c] = std::max(hi[c], v[c]);
     }
   }
+  if (ci == 2 || (ci == 3 && b.four))  // a third, or the three-colour midpoint
+    for (size_t c = 0; c < 3; ++c) {
+      const int up = b.four ? stepRoundedUp(b.wide[0][c], b.wide[1][c], static_cast<int>(ci) - 1, 3)
+                            : stepRoundedUp(b.wide[0][c], b.wide[1][c], 1, 2);
+      hi[c] = std::max<uint8_t>(hi[c], static_cast<uint8_t>(up));
+    }
   if (format == PixelFormat::kBc1) {
     lo[3] = hi[3] = 255;
     return {lo, hi};
@@ -179,14 +172,14 @@ std::array<BlockTexel, 2> decodeTexelRange(PixelFormat format, const std::byte* 
   const uint32_t ai = alphaIndex(block, index);
   const int a0 = std::to_integer<int>(block[0]), a1 = std::to_integer<int>(block[1]);
   const int n = a0 > a1 ? 7 : 5, k = static_cast<int>(ai) - 1;
-  int aLo = alphaPalette(block, PaletteRule::kTruncated)[ai], aHi = aLo;
-  if (k >= 1 && k < n) aHi = ((n - k) * a0 + k * a1 + n - 1) / n;  // the fraction rounded up
+  int aLo = alphaPalette(block, PaletteRule::kNearest)[ai], aHi = aLo;
   for (const auto& [rule, name] : kPaletteRuleNames)
     if (isAlphaRule(rule)) {
       const int v = alphaPalette(block, rule)[ai];
       aLo = std::min(aLo, v);
       aHi = std::max(aHi, v);
     }
+  if (k >= 1 && k < n) aHi = std::max(aHi, stepRoundedUp(a0, a1, k, n));
   lo[3] = static_cast<uint8_t>(aLo);
   hi[3] = static_cast<uint8_t>(aHi);
   return {lo, hi};

@@ -18,11 +18,11 @@
 //   nearest           each fraction rounded to nearest, halves up: the specification's values as
 //                     closely as 8 bits hold them (the exact point)
 //   truncated         each fraction rounded down: Mesa's util decoder (u_format_s3tc), which
-//                     softpipe samples; measured bit for bit by tools/bc-probe
-//                     (scripts/block-decoding-probe.sh)
+//                     softpipe samples; measured bit for bit by `vt calibrate`'s decoding probes
+//                     (src/calibrate/decoding_fit.h; tests/gl/calibration_test.cpp)
 //   fixed_point_lerp  a + floor((b - a) * floor(k * 255 / n) / 256) for the k-th of n steps, and
 //                     the BC1 midpoint as (a + b + 1) >> 1: llvmpipe's (gallivm) decoder, measured
-//                     bit for bit on every palette entry by the same probe
+//                     bit for bit on every palette entry by the same probes
 //   fixed_point_lerp_floored_half
 //                     colour only: as fixed_point_lerp, but the BC1 midpoint floored, (a + b) >> 1:
 //                     llvmpipe without SSE (GALLIUM_OVERRIDE_CPU_CAPS=nosse), measured the same way

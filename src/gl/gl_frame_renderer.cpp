@@ -28,10 +28,6 @@ size_t pixelCount(Viewport viewport) {
   return static_cast<size_t>(viewport.width) * static_cast<size_t>(viewport.height);
 }
 
-}  // namespace
-
-namespace {
-
 // The cache texture's internal format: RGBA8, or the texture's own block format, so that a page
 // costs in the cache what it costs on disk (S3TC: EXT_texture_compression_s3tc, in every
 // desktop driver; BC1 as RGB, its pages being opaque).

@@ -160,11 +160,10 @@ void storePage(CacheState& cache, uint32_t frameX, uint32_t frameY,
     decodeFrame(cache, frameX, frameY);
     return;
   }
-  const std::span<const std::byte> texels = stored;
   for (uint32_t y = 0; y < side; ++y)
     for (uint32_t x = 0; x < side; ++x) {
       const glm::u8vec4 rgba =
-          expandToRgba(texels.data() + (size_t{y} * side + x) * d.channels, d.channels);
+          expandToRgba(stored.data() + (size_t{y} * side + x) * d.channels, d.channels);
       uint8_t* out = cache.texels.data() +
                      ((size_t{frameY * side + y} * cache.widthTexels) + frameX * side + x) * 4;
       for (int c = 0; c < 4; ++c) out[c] = rgba[c];

@@ -28,9 +28,14 @@ using ::testing::HasSubstr;
 struct EvaluationFixture {
   test::ScratchDirectory dir;
   std::filesystem::path texture = dir / "t.vt";
-  EvaluationFixture() {
-    writeSyntheticTexture(
-        texture, {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
+  TextureDescription description{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4};
+  EvaluationFixture() { writeSyntheticTexture(texture, {description, std::nullopt}); }
+  // The same texture as BC1, beside it.
+  std::filesystem::path writeBc1() const {
+    TextureDescription bc1 = description;
+    bc1.format = PixelFormat::kBc1;
+    writeSyntheticTexture(dir / "bc1.vt", {bc1, std::nullopt});
+    return dir / "bc1.vt";
   }
 };
 
@@ -80,10 +85,7 @@ TEST(Evaluation, EveryPageResidentDrawsTheReferenceImageAndNoBudgetStreamsNothin
 // reference of other pages is refused naming it.
 TEST(Evaluation, AReferenceTextureJudgesTheEncodingApartFromTheStreaming) {
   EvaluationFixture f;
-  TextureDescription bc1{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4};
-  bc1.format = PixelFormat::kBc1;
-  writeSyntheticTexture(f.dir / "bc1.vt", {bc1, std::nullopt});
-  const VirtualTextureReader uncompressed(f.texture), compressed(f.dir / "bc1.vt");
+  const VirtualTextureReader uncompressed(f.texture), compressed(f.writeBc1());
   FlightConfiguration everything;
   everything.cacheFrames = 37;
   everything.initialLevels = 6;
@@ -119,10 +121,7 @@ TEST(Evaluation, AReferenceTextureJudgesTheEncodingApartFromTheStreaming) {
 // uncompressed loses more where the pages hold finer detail, every level compared page by page.
 TEST(Evaluation, LevelsCompareAsTheEncodingChangesThem) {
   EvaluationFixture f;
-  TextureDescription bc1{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4};
-  bc1.format = PixelFormat::kBc1;
-  writeSyntheticTexture(f.dir / "bc1.vt", {bc1, std::nullopt});
-  const VirtualTextureReader uncompressed(f.texture), compressed(f.dir / "bc1.vt");
+  const VirtualTextureReader uncompressed(f.texture), compressed(f.writeBc1());
   for (const LevelComparison& l : compareLevels(uncompressed, uncompressed)) {
     EXPECT_EQ(l.pages, uint64_t{1} << (2 * l.level));
     EXPECT_EQ(l.meanSsim, 1.0);
