@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <thread>
 
 #include "common/parallel_for.h"
@@ -348,8 +349,10 @@ class TileShader {
   void addSet(int px, int py, const OracleFragment& own) {
     const size_t before = sets_->alternatives.size();
     job_.visibility.candidates(px, py, candidates_);
-    appendResultSet(*job_.model, job_.shading, job_.triangles, candidates_, px, py, job_.viewport,
-                    job_.settings.depthFormat, own, texels_, sets_->alternatives);
+    if (!setBuilder_)
+      setBuilder_.emplace(*job_.model, job_.shading, job_.triangles, job_.viewport,
+                            job_.settings.depthFormat, texels_);
+    setBuilder_->append(candidates_, px, py, own, sets_->alternatives);
     sets_->pixels.emplace_back(indexOf(px, py),
                                static_cast<uint32_t>(sets_->alternatives.size() - before));
   }
@@ -359,6 +362,7 @@ class TileShader {
   shader::ShaderLogic<Backend> shader_;
   BackendTexels<shader::ShaderLogic<Backend>> texels_;
   TileSets* sets_ = nullptr;
+  std::optional<ResultSetBuilder> setBuilder_;  // made by the first pixel that needs a set
   std::vector<int32_t> candidates_;
   // The triangles met in the current quad: slots below slots_ hold their attributes.
   std::array<int32_t, 4> quadTriangle_{};

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <optional>
+#include <unordered_map>
 
 #include "reference/interval.h"
 #include "reference/perturbed_triangle.h"
@@ -100,6 +100,27 @@ Barycentrics barycentrics(const CornerBoxes& b, double cx, double cy) {
 struct Snapped {
   CornerBoxes boxes;
   PerturbedTriangle perturbed;
+  AffinePlane s, t;  // the planes through the corners' s/w and t/w (when perturbed is bounded)
+
+  // The fine steps of s and t from one pixel centre along one axis (PerturbedTriangle::ratioStep):
+  // a quad's two pixels of a row step from the same left centre, those of a column from the same
+  // lower one, so the two latest per axis serve the next pixels of the quad.
+  struct Steps {
+    double x = std::numeric_limits<double>::quiet_NaN(), y = 0;
+    Interval s, t;
+  };
+  std::array<std::array<Steps, 2>, 2> steps;  // [axis][slot]
+  std::array<uint8_t, 2> nextSlot{};
+
+  const Steps& stepsFrom(double x, double y, int axis) {
+    auto& kept = steps[static_cast<size_t>(axis)];
+    for (const Steps& k : kept)
+      if (k.x == x && k.y == y) return k;
+    Steps& slot = kept[nextSlot[static_cast<size_t>(axis)]];
+    nextSlot[static_cast<size_t>(axis)] ^= 1;
+    slot = {x, y, perturbed.ratioStep(s, x, y, axis), perturbed.ratioStep(t, x, y, axis)};
+    return slot;
+  }
 };
 
 // Whether a set-up triangle covers a pixel centre: 2 surely, 1 possibly, 0 not. A piece of a
@@ -169,9 +190,20 @@ class Builder {
            model_.attributeUlps != 0;
   }
 
-  Snapped snapped(const SetupTriangle& t) const {
+  // Candidate `index`'s moved corners, made once per builder (a tile's pixels share them); null
+  // when the model moves no vertex.
+  Snapped* snapped(const SetupTriangle& t, int32_t index) {
+    if (!movesVertices()) return nullptr;
+    const auto found = snapped_.find(index);
+    if (found != snapped_.end()) return &found->second;
     const CornerBoxes boxes = cornerBoxes(t, snapRadius(), viewport_);
-    return {boxes, PerturbedTriangle(t, largestRadius(boxes))};
+    const PerturbedTriangle perturbed(t, largestRadius(boxes));
+    AffinePlane s, tt;
+    if (perturbed.bounded()) {
+      s = perturbed.attribute({t.corners[0].sw, t.corners[1].sw, t.corners[2].sw});
+      tt = perturbed.attribute({t.corners[0].tw, t.corners[1].tw, t.corners[2].tw});
+    }
+    return &snapped_.emplace(index, Snapped{boxes, perturbed, s, tt, {}, {}}).first->second;
   }
 
   // Coverage of candidate t at the centre of (px, py); `s` is needed unless coverage is pinned.
@@ -226,7 +258,7 @@ class Builder {
     return clamp(z, 0, 1);
   }
 
-  FragmentRange fragment(const SetupTriangle& t, const Snapped* snapped, int px, int py) const {
+  FragmentRange fragment(const SetupTriangle& t, Snapped* snapped, int px, int py) const {
     const int qx = px & ~1, qy = py & ~1;
     const int column = px - qx, row = py - qy;
     const bool attributesPinned = model_.attributeUlps == 0 && model_.coveragePinned();
@@ -258,10 +290,8 @@ class Builder {
         return widen(v, 0, (relative + kFloatUlp) * size);
       };
       if (perturbed.bounded()) {
-        const AffinePlane s =
-            perturbed.attribute({t.corners[0].sw, t.corners[1].sw, t.corners[2].sw});
-        const AffinePlane tt =
-            perturbed.attribute({t.corners[0].tw, t.corners[1].tw, t.corners[2].tw});
+        const AffinePlane& s = snapped->s;
+        const AffinePlane& tt = snapped->t;
         const double cx = px + 0.5, cy = py + 0.5, lx = qx + 0.5, by = qy + 0.5;
         // The model's float error is relative to the size of the terms the evaluation sums
         // (perturbed_triangle.h), at least the value's.
@@ -271,10 +301,12 @@ class Builder {
         f.s = widen(sHere, 0, relative * std::max(sScale, sHere.magnitude()) + kFloatUlp);
         f.t = widen(tHere, 0, relative * std::max(tScale, tHere.magnitude()) + kFloatUlp);
         // Fine derivatives: from the left pixel of the quad row, from the lower of its column.
-        dsdx = floatStep(perturbed.ratioStep(s, lx, cy, 0), std::max(sScale, sHere.magnitude()));
-        dtdx = floatStep(perturbed.ratioStep(tt, lx, cy, 0), std::max(tScale, tHere.magnitude()));
-        dsdy = floatStep(perturbed.ratioStep(s, cx, by, 1), std::max(sScale, sHere.magnitude()));
-        dtdy = floatStep(perturbed.ratioStep(tt, cx, by, 1), std::max(tScale, tHere.magnitude()));
+        const Snapped::Steps& alongX = snapped->stepsFrom(lx, cy, 0);
+        const Snapped::Steps& alongY = snapped->stepsFrom(cx, by, 1);
+        dsdx = floatStep(alongX.s, std::max(sScale, sHere.magnitude()));
+        dtdx = floatStep(alongX.t, std::max(tScale, tHere.magnitude()));
+        dsdy = floatStep(alongY.s, std::max(sScale, sHere.magnitude()));
+        dtdy = floatStep(alongY.t, std::max(tScale, tHere.magnitude()));
         if (!f.s.finite() || !f.t.finite() || !dsdx.finite() || !dtdx.finite() ||
             !dsdy.finite() || !dtdy.finite())
           f.everything = true;
@@ -394,13 +426,15 @@ class Builder {
     Colour c = nothing();
     const int first = std::clamp(static_cast<int>(std::floor(lod.lo)), 0, L);
     const int last = std::clamp(static_cast<int>(std::floor(lod.hi)), 0, L);
+    // Each level sampled once: a blend's finer level is the next blend's coarser one.
+    Colour atCoarse = sampleLevel(s, t, first);
     for (int coarse = first; coarse <= last; ++coarse) {
-      const Colour c0 = sampleLevel(s, t, coarse);
+      const Colour c0 = atCoarse;
       if (coarse == L) {
         c = hull(c, c0);
         continue;
       }
-      const Colour c1 = sampleLevel(s, t, coarse + 1);
+      const Colour c1 = atCoarse = sampleLevel(s, t, coarse + 1);
       const Interval w = clamp(Interval{lod.lo - coarse, lod.hi - coarse}, 0, 1);
       Colour blend;
       for (size_t k = 0; k < 4; ++k) {
@@ -485,6 +519,11 @@ class Builder {
   Colour bilinearRange(Interval x, Interval y) {
     // Per axis the stops: the box's ends and the texel centres strictly inside.
     constexpr size_t kMaxPoints = 64;
+    // Beyond 16 texels a wide box is bounded by the whole range (below); one this wide has more
+    // stops than fit, so it is wide whatever the other axis.
+    constexpr double kSurelyWide = kMaxPoints + 2;
+    if (x.width() >= kSurelyWide || y.width() >= kSurelyWide)
+      return {Interval{0, 255}, {0, 255}, {0, 255}, {0, 255}};
     struct Stops {
       std::array<double, kMaxPoints + 2> at;
       size_t count = 0;
@@ -501,14 +540,35 @@ class Builder {
       return true;
     };
     Stops xs, ys;
-    Colour c = nothing();
     // Each texel as the least and greatest value it may have: one value unless the block
-    // decoding is free.
-    using Range = std::array<glm::u8vec4, 2>;
-    const auto fetch = [&](glm::ivec2 at) -> Range {
-      if (!model_.decodingPinned && shading_.blockCompressed) return source_.texelRange(at);
-      const glm::u8vec4 v = source_.texel(at);
-      return {v, v};
+    // decoding is free. Channels as doubles (exact): the least values of the four channels, then
+    // the greatest.
+    using Range = std::array<double, 8>;
+    const auto fetch = [&](glm::ivec2 at, Range& r) {
+      std::array<glm::u8vec4, 2> v;
+      if (!model_.decodingPinned && shading_.blockCompressed) {
+        v = source_.texelRange(at);
+      } else {
+        v[0] = v[1] = source_.texel(at);
+      }
+      for (int k = 0; k < 4; ++k) {
+        r[static_cast<size_t>(k)] = v[0][k];
+        r[static_cast<size_t>(k) + 4] = v[1][k];
+      }
+    };
+    // The least of the low values and the greatest of the high ones met so far.
+    Range bounds;
+    for (size_t k = 0; k < 4; ++k) {
+      bounds[k] = std::numeric_limits<double>::infinity();
+      bounds[k + 4] = -std::numeric_limits<double>::infinity();
+    }
+    const auto include = [&bounds](const Range& v) {
+      for (size_t k = 0; k < 4; ++k) bounds[k] = std::min(bounds[k], v[k]);
+      for (size_t k = 4; k < 8; ++k) bounds[k] = std::max(bounds[k], v[k]);
+    };
+    const auto colour = [&bounds] {
+      return Colour{Interval{bounds[0], bounds[4]}, Interval{bounds[1], bounds[5]},
+                    Interval{bounds[2], bounds[6]}, Interval{bounds[3], bounds[7]}};
     };
     if (!stops(x, xs) || !stops(y, ys) || xs.count * ys.count > kMaxPoints) {
       // A wide box: every texel it reaches bounds the filter (a convex combination of them);
@@ -517,13 +577,13 @@ class Builder {
       for (int ty = static_cast<int>(std::floor(y.lo - 0.5));
            ty <= static_cast<int>(std::floor(y.hi - 0.5)) + 1; ++ty)
         for (int tx = static_cast<int>(std::floor(x.lo - 0.5));
-             tx <= static_cast<int>(std::floor(x.hi - 0.5)) + 1; ++tx) {
-          const Range v = fetch({tx, ty});
-          for (size_t k = 0; k < 4; ++k)
-            c[k] = hull(c[k], Interval{static_cast<double>(v[0][static_cast<int>(k)]),
-                                       static_cast<double>(v[1][static_cast<int>(k)])});
+             tx <= static_cast<int>(std::floor(x.hi - 0.5)) + 1; ++tx)
+        {
+          Range v;
+          fetch({tx, ty}, v);
+          include(v);
         }
-      return c;
+      return colour();
     }
     // The texels the stops read, each fetched once.
     const glm::ivec2 origin(static_cast<int>(std::floor(x.lo - 0.5)),
@@ -535,10 +595,13 @@ class Builder {
     if (cached)
       for (int ty = 0; ty < height; ++ty)
         for (int tx = 0; tx < width; ++tx)
-          block[static_cast<size_t>(ty * width + tx)] = fetch(origin + glm::ivec2(tx, ty));
-    const auto texel = [&](glm::ivec2 at) {
+          fetch(origin + glm::ivec2(tx, ty), block[static_cast<size_t>(ty * width + tx)]);
+    Range fetched[4];
+    const auto texel = [&](glm::ivec2 at, size_t slot) -> const Range& {
       const glm::ivec2 local = at - origin;
-      return cached ? block[static_cast<size_t>(local.y * width + local.x)] : fetch(at);
+      if (cached) return block[static_cast<size_t>(local.y * width + local.x)];
+      fetch(at, fetched[slot]);
+      return fetched[slot];
     };
     for (size_t j = 0; j < ys.count; ++j)
       for (size_t i = 0; i < xs.count; ++i) {
@@ -546,21 +609,19 @@ class Builder {
         const double bx = std::floor(tx), by = std::floor(ty);
         const double fx = tx - bx, fy = ty - by;
         const glm::ivec2 i0(static_cast<int>(bx), static_cast<int>(by));
-        const Range c00 = texel(i0), c10 = texel(i0 + glm::ivec2(1, 0)),
-                    c01 = texel(i0 + glm::ivec2(0, 1)), c11 = texel(i0 + glm::ivec2(1, 1));
+        const Range &c00 = texel(i0, 0), &c10 = texel(i0 + glm::ivec2(1, 0), 1),
+                    &c01 = texel(i0 + glm::ivec2(0, 1), 2), &c11 = texel(i0 + glm::ivec2(1, 1), 3);
         // The filter's weights are not negative: it grows with every texel, so its least value
         // comes from the least texels and its greatest from the greatest.
-        for (int k = 0; k < 4; ++k) {
-          double bound[2];
-          for (size_t e = 0; e < 2; ++e) {
-            const double row0 = c00[e][k] + (c10[e][k] - c00[e][k]) * fx;
-            const double row1 = c01[e][k] + (c11[e][k] - c01[e][k]) * fx;
-            bound[e] = row0 + (row1 - row0) * fy;
-          }
-          c[static_cast<size_t>(k)] = hull(c[static_cast<size_t>(k)], Interval{bound[0], bound[1]});
+        Range value;
+        for (size_t k = 0; k < 8; ++k) {
+          const double row0 = c00[k] + (c10[k] - c00[k]) * fx;
+          const double row1 = c01[k] + (c11[k] - c01[k]) * fx;
+          value[k] = row0 + (row1 - row0) * fy;
         }
+        include(value);
       }
-    return c;
+    return colour();
   }
 
   // Float colour bounds (units of 1/255) to 8-bit bounds under the model's conversion.
@@ -588,6 +649,7 @@ class Builder {
   Viewport viewport_;
   TexelSource& source_;
   double finestSide_ = 1;
+  std::unordered_map<int32_t, Snapped> snapped_;  // by set-up index (elements never move)
 };
 
 // A fan piece whose centre is surely inside the mesh triangle's edges and may lie beyond edges it
@@ -652,15 +714,31 @@ void surelyCoveredByTheirFans(const std::vector<SetupTriangle>& triangles,
 
 }  // namespace
 
-void appendResultSet(const PrecisionModel& model, const SetShading& shading,
-                     const std::vector<SetupTriangle>& triangles,
-                     const std::vector<int32_t>& candidates, int px, int py, Viewport viewport,
-                     DepthFormat depthFormat, const OracleFragment& oracle, TexelSource& source,
-                     std::vector<Alternative>& out) {
-  Builder builder(model, shading, viewport, source);
+struct ResultSetBuilder::Impl {
+  Impl(const PrecisionModel& model, const SetShading& shading,
+       const std::vector<SetupTriangle>& triangles, Viewport viewport, DepthFormat depthFormat,
+       TexelSource& source)
+      : builder(model, shading, viewport, source), triangles(triangles), depthFormat(depthFormat) {}
+  Builder builder;
+  const std::vector<SetupTriangle>& triangles;
+  DepthFormat depthFormat;
+};
+
+ResultSetBuilder::ResultSetBuilder(const PrecisionModel& model, const SetShading& shading,
+                                   const std::vector<SetupTriangle>& triangles, Viewport viewport,
+                                   DepthFormat depthFormat, TexelSource& source)
+    : impl_(std::make_unique<Impl>(model, shading, triangles, viewport, depthFormat, source)) {}
+
+ResultSetBuilder::~ResultSetBuilder() = default;
+
+void ResultSetBuilder::append(const std::vector<int32_t>& candidates, int px, int py,
+                              const OracleFragment& oracle, std::vector<Alternative>& out) {
+  Builder& builder = impl_->builder;
+  const std::vector<SetupTriangle>& triangles = impl_->triangles;
+  const DepthFormat depthFormat = impl_->depthFormat;
   struct Candidate {
     int32_t index;
-    std::optional<Snapped> snapped;  // when the model moves vertices
+    Snapped* snapped;  // when the model moves vertices
     PieceCoverage piece;
     Interval z;
     int cover;  // of the mesh triangle: the piece's, or 2 where its fan surely covers
@@ -669,14 +747,12 @@ void appendResultSet(const PrecisionModel& model, const SetShading& shading,
   list.reserve(candidates.size());
   for (int32_t index : candidates) {
     const SetupTriangle& t = triangles[static_cast<size_t>(index)];
-    std::optional<Snapped> snapped;
-    if (builder.movesVertices()) snapped = builder.snapped(t);
-    const Snapped* s = snapped ? &*snapped : nullptr;
+    Snapped* s = builder.snapped(t, index);
     const PieceCoverage piece = builder.coverage(t, s, px, py);
     if (piece.cover == 0) continue;
     const Interval z = builder.depth(t, s, px, py, depthFormat);
     if (!(z.lo < 1.0)) continue;  // never passes GL_LESS against the cleared 1.0
-    list.push_back({index, std::move(snapped), piece, z, piece.cover});
+    list.push_back({index, s, piece, z, piece.cover});
   }
   surelyCoveredByTheirFans(triangles, list);
   const auto surelyBeats = [](const Candidate& d, const Candidate& c) {
@@ -698,8 +774,8 @@ void appendResultSet(const PrecisionModel& model, const SetShading& shading,
       if (&d != &c && surelyBeats(d, c)) possible = false;
     if (!possible && c.index != oracle.index) continue;
     const SetupTriangle& t = triangles[static_cast<size_t>(c.index)];
-    const Snapped* s = c.snapped ? &*c.snapped : nullptr;
-    Alternative a = builder.alternative(t, c.index, builder.fragment(t, s, px, py), oracle);
+    Alternative a =
+        builder.alternative(t, c.index, builder.fragment(t, c.snapped, px, py), oracle);
     if (c.index != oracle.index)
       a.reasons = (c.cover == 2 && own && own->cover == 2) ? kReasonDepth : kReasonCoverage;
     out.push_back(a);
@@ -707,10 +783,8 @@ void appendResultSet(const PrecisionModel& model, const SetShading& shading,
   if (oracle.index >= 0 && !own) {
     // The oracle's own triangle, should the bounds above have missed it.
     const SetupTriangle& t = triangles[static_cast<size_t>(oracle.index)];
-    std::optional<Snapped> snapped;
-    if (builder.movesVertices()) snapped = builder.snapped(t);
     out.push_back(builder.alternative(
-        t, oracle.index, builder.fragment(t, snapped ? &*snapped : nullptr, px, py), oracle));
+        t, oracle.index, builder.fragment(t, builder.snapped(t, oracle.index), px, py), oracle));
   }
   if (mayBeEmpty || oracle.index < 0) {
     Alternative empty;

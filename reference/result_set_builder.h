@@ -22,6 +22,7 @@
 #include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <memory>
 #include <vector>
 
 #include "reference/triangle_setup.h"
@@ -65,12 +66,26 @@ struct OracleFragment {
   float lod = 0;
 };
 
-// Appends the alternatives of pixel (px, py) to `out`. `candidates` are the set-up triangles whose
-// boxes reach the pixel (Visibility::candidates).
-void appendResultSet(const PrecisionModel& model, const SetShading& shading,
-                     const std::vector<SetupTriangle>& triangles,
-                     const std::vector<int32_t>& candidates, int px, int py, Viewport viewport,
-                     DepthFormat depthFormat, const OracleFragment& oracle, TexelSource& source,
-                     std::vector<Alternative>& out);
+// Builds pixels' result sets, one pixel at a time, for one frame's set-up triangles. What a
+// candidate's moved corners bound (its snapping) is made once per builder: a tile's pixels share
+// it. Not thread-safe; one builder per worker.
+class ResultSetBuilder {
+ public:
+  ResultSetBuilder(const PrecisionModel& model, const SetShading& shading,
+                   const std::vector<SetupTriangle>& triangles, Viewport viewport,
+                   DepthFormat depthFormat, TexelSource& source);
+  ~ResultSetBuilder();
+  ResultSetBuilder(const ResultSetBuilder&) = delete;
+  ResultSetBuilder& operator=(const ResultSetBuilder&) = delete;
+
+  // Appends the alternatives of pixel (px, py) to `out`. `candidates` are the set-up triangles
+  // whose boxes reach the pixel (Visibility::candidates).
+  void append(const std::vector<int32_t>& candidates, int px, int py, const OracleFragment& oracle,
+              std::vector<Alternative>& out);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace vt::reference

@@ -142,9 +142,11 @@ Visibility::Visibility(const std::vector<SetupTriangle>& triangles, Viewport vie
   tilesX_ = (viewport.width + kTile - 1) / kTile;
   const int tilesY = (viewport.height + kTile - 1) / kTile;
   binStart_.assign(static_cast<size_t>(tilesX_) * static_cast<size_t>(tilesY) + 1, 0);
+  // A triangle goes into every tile its box, grown by the margin, touches: the tiles' winners
+  // (tile) skip the margin's rows and columns, the candidates (candidates) need them.
   const auto forEachTile = [&](const SetupTriangle& t, const auto& visit) {
-    const int x0 = std::max(t.minX, 0), x1 = std::min(t.maxX, viewport.width - 1);
-    const int y0 = std::max(t.minY, 0), y1 = std::min(t.maxY, viewport.height - 1);
+    const int x0 = std::max(t.minX - margin, 0), x1 = std::min(t.maxX + margin, viewport.width - 1);
+    const int y0 = std::max(t.minY - margin, 0), y1 = std::min(t.maxY + margin, viewport.height - 1);
     if (x0 > x1 || y0 > y1) return;
     for (int ty = y0 / kTile; ty <= y1 / kTile; ++ty)
       for (int tx = x0 / kTile; tx <= x1 / kTile; ++tx)
@@ -245,26 +247,16 @@ std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> Visibility::block(
 
 void Visibility::candidates(int px, int py, std::vector<int32_t>& out) const {
   out.clear();
-  buildScene();
-  BlockQuery query;
-  rtcInitIntersectContext(&query.context);
-  query.triangles = &triangles_;
-  query.x0 = px;
-  query.y0 = py;
-  query.format = format_;
-  query.arithmetic = &arithmetic_;
-  query.collect = &out;
-  RTCRayHit ray{};
-  ray.ray.org_x = static_cast<float>(px) + 0.5f;
-  ray.ray.org_y = static_cast<float>(py) + 0.5f;
-  ray.ray.org_z = -1.0f;
-  ray.ray.dir_z = 1.0f;
-  ray.ray.tnear = 0.0f;
-  ray.ray.tfar = std::numeric_limits<float>::infinity();
-  ray.ray.mask = 0xffffffffu;
-  ray.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene_, &query.context, &ray);
-  std::sort(out.begin(), out.end());
+  if (px < 0 || py < 0 || px >= viewport_.width || py >= viewport_.height) return;
+  // The pixel's tile holds every triangle whose grown box reaches it, in draw order.
+  const size_t bin = static_cast<size_t>(py / kTile) * static_cast<size_t>(tilesX_) +
+                     static_cast<size_t>(px / kTile);
+  for (uint32_t i = binStart_[bin]; i < binStart_[bin + 1]; ++i) {
+    const SetupTriangle& t = triangles_[binned_[i]];
+    if (t.minX - margin_ <= px && px <= t.maxX + margin_ && t.minY - margin_ <= py &&
+        py <= t.maxY + margin_)
+      out.push_back(static_cast<int32_t>(binned_[i]));
+  }
 }
 
 PixelHit Visibility::at(int px, int py) const {

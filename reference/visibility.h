@@ -5,7 +5,8 @@
 // pixels its box of candidate centres touches (in draw order), and a tile's pixels are decided by
 // walking its triangles' boxes inside it, as a tile-binned GL rasterizer does.
 //
-// Embree supplies the search for single pixels and blocks (the result sets' candidates, tests):
+// The result sets' candidates at a pixel come from its tile's bin (binned with the margin).
+// Embree supplies the search for single pixels and blocks (tests, captures):
 // every set-up triangle is a user primitive whose box, in window coordinates, spans the pixel
 // centres its snapped vertices can enclose (an integer range, so the box is exact, not estimated).
 // The ray of pixel (px, py) runs along +z through its centre, so it meets the box of every
@@ -65,7 +66,7 @@ class Visibility {
   // Thread-safe.
   std::array<PixelHit, kBlock * kBlock> block(int x0, int y0) const;
   // Every set-up triangle (index) whose box, grown by the margin, holds the centre of (px, py),
-  // in draw order. Thread-safe.
+  // in draw order; none outside the viewport. Thread-safe.
   void candidates(int px, int py, std::vector<int32_t>& out) const;
 
  private:
