@@ -53,25 +53,24 @@ struct TileSets {
   std::vector<Alternative> alternatives;
 };
 
-// Gathers the tiles' alternatives into one set per pixel, in pixel order.
-ResultSets gatherSets(std::vector<TileSets>& tiles, size_t pixels) {
-  ResultSets sets;
-  std::vector<uint32_t> counts(pixels, 0);
+// Gathers the tiles' alternatives into `sets`, one set per pixel in pixel order, the tiles' copies
+// in parallel. `sets` keeps its storage: a frame drawn again allocates nothing here.
+void gatherSets(const std::vector<TileSets>& tiles, size_t pixels, unsigned threads,
+                ResultSets& sets) {
+  sets.offsets.assign(pixels + 1, 0);
   for (const TileSets& tile : tiles)
-    for (const auto& [pixel, count] : tile.pixels) counts[pixel] = count;
-  sets.offsets.resize(pixels + 1);
-  sets.offsets[0] = 0;
-  for (size_t i = 0; i < pixels; ++i) sets.offsets[i + 1] = sets.offsets[i] + counts[i];
+    for (const auto& [pixel, count] : tile.pixels) sets.offsets[pixel + 1] = count;
+  for (size_t i = 0; i < pixels; ++i) sets.offsets[i + 1] += sets.offsets[i];
   sets.alternatives.resize(sets.offsets[pixels]);
-  for (const TileSets& tile : tiles) {
+  parallelFor(tiles.size(), threads, [&](size_t t) {
+    const TileSets& tile = tiles[t];
     size_t next = 0;
     for (const auto& [pixel, count] : tile.pixels) {
       std::copy_n(tile.alternatives.begin() + static_cast<std::ptrdiff_t>(next), count,
                   sets.alternatives.begin() + sets.offsets[pixel]);
       next += count;
     }
-  }
-  return sets;
+  });
 }
 
 // Sizes every channel for `viewport` without clearing: the tiles write every pixel. A frame of
@@ -131,6 +130,11 @@ class TileShader {
   // set to `sets`.
   void shadeTile(int x0, int y0, TileSets* sets) {
     sets_ = sets;
+    if (sets) {
+      // A pixel's set is one alternative mostly; a few more where triangles meet.
+      sets->pixels.reserve(kTile * kTile);
+      sets->alternatives.reserve(kTile * kTile * 5 / 4);
+    }
     const Viewport v = job_.viewport;
     job_.visibility.tile(x0, y0, tileHits_);
     const auto hitAt = [&](int px, int py) -> const PixelHit& {
@@ -422,9 +426,12 @@ void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescr
                      static_cast<int>(tile / static_cast<size_t>(tilesX)) * kTile,
                      model ? &tileSets[tile] : nullptr);
   });
-  frame.sets = model ? gatherSets(tileSets, static_cast<size_t>(viewport.width) *
-                                                static_cast<size_t>(viewport.height))
-                     : ResultSets{};
+  if (model)
+    gatherSets(tileSets,
+               static_cast<size_t>(viewport.width) * static_cast<size_t>(viewport.height),
+               settings.threads, frame.sets);
+  else
+    frame.sets = ResultSets{};
 }
 
 }  // namespace
