@@ -585,42 +585,48 @@ class Builder {
         }
       return colour();
     }
-    // The texels the stops read, each fetched once.
+    // The texels the stops read, each fetched once: a box spans at most one cell more than it
+    // has stops per axis, so (xs + 1) (ys + 1) <= 99 texels with xs ys <= 64 and both at least 2.
     const glm::ivec2 origin(static_cast<int>(std::floor(x.lo - 0.5)),
                             static_cast<int>(std::floor(y.lo - 0.5)));
     const int width = static_cast<int>(std::floor(x.hi - 0.5)) + 2 - origin.x;
     const int height = static_cast<int>(std::floor(y.hi - 0.5)) + 2 - origin.y;
-    std::array<Range, 4 * kMaxPoints> block;
-    const bool cached = width * height <= static_cast<int>(block.size());
-    if (cached)
-      for (int ty = 0; ty < height; ++ty)
-        for (int tx = 0; tx < width; ++tx)
-          fetch(origin + glm::ivec2(tx, ty), block[static_cast<size_t>(ty * width + tx)]);
-    Range fetched[4];
-    const auto texel = [&](glm::ivec2 at, size_t slot) -> const Range& {
-      const glm::ivec2 local = at - origin;
-      if (cached) return block[static_cast<size_t>(local.y * width + local.x)];
-      fetch(at, fetched[slot]);
-      return fetched[slot];
-    };
-    for (size_t j = 0; j < ys.count; ++j)
-      for (size_t i = 0; i < xs.count; ++i) {
-        const double tx = xs.at[i] - 0.5, ty = ys.at[j] - 0.5;
-        const double bx = std::floor(tx), by = std::floor(ty);
-        const double fx = tx - bx, fy = ty - by;
-        const glm::ivec2 i0(static_cast<int>(bx), static_cast<int>(by));
-        const Range &c00 = texel(i0, 0), &c10 = texel(i0 + glm::ivec2(1, 0), 1),
-                    &c01 = texel(i0 + glm::ivec2(0, 1), 2), &c11 = texel(i0 + glm::ivec2(1, 1), 3);
-        // The filter's weights are not negative: it grows with every texel, so its least value
-        // comes from the least texels and its greatest from the greatest.
+    constexpr int kMaxTexels = 128;
+    if (width * height > kMaxTexels)  // never (see above); a bound all the same
+      return {Interval{0, 255}, {0, 255}, {0, 255}, {0, 255}};
+    std::array<Range, kMaxTexels> block;
+    for (int ty = 0; ty < height; ++ty)
+      for (int tx = 0; tx < width; ++tx)
+        fetch(origin + glm::ivec2(tx, ty), block[static_cast<size_t>(ty * width + tx)]);
+    // Texels that are one value (no free block decoding) need the least bounds only: the greatest
+    // are the same operations on the same values.
+    const size_t channels = !model_.decodingPinned && shading_.blockCompressed ? 8 : 4;
+    // Per x stop, each texel row's value along x; then per y stop the lerp between two rows. The
+    // filter's weights are not negative: it grows with every texel, so its least value comes from
+    // the least texels and its greatest from the greatest.
+    std::array<Range, kMaxTexels> rows;
+    for (size_t i = 0; i < xs.count; ++i) {
+      const double tx = xs.at[i] - 0.5;
+      const double bx = std::floor(tx), fx = tx - bx;
+      const int column = static_cast<int>(bx) - origin.x;
+      for (int ty = 0; ty < height; ++ty) {
+        const Range& c0 = block[static_cast<size_t>(ty * width + column)];
+        const Range& c1 = block[static_cast<size_t>(ty * width + column + 1)];
+        Range& row = rows[static_cast<size_t>(ty)];
+        for (size_t k = 0; k < channels; ++k) row[k] = c0[k] + (c1[k] - c0[k]) * fx;
+      }
+      for (size_t j = 0; j < ys.count; ++j) {
+        const double ty = ys.at[j] - 0.5;
+        const double by = std::floor(ty), fy = ty - by;
+        const Range& row0 = rows[static_cast<size_t>(static_cast<int>(by) - origin.y)];
+        const Range& row1 = rows[static_cast<size_t>(static_cast<int>(by) - origin.y + 1)];
         Range value;
-        for (size_t k = 0; k < 8; ++k) {
-          const double row0 = c00[k] + (c10[k] - c00[k]) * fx;
-          const double row1 = c01[k] + (c11[k] - c01[k]) * fx;
-          value[k] = row0 + (row1 - row0) * fy;
-        }
+        for (size_t k = 0; k < channels; ++k) value[k] = row0[k] + (row1[k] - row0[k]) * fy;
+        if (channels == 4)
+          for (size_t k = 0; k < 4; ++k) value[k + 4] = value[k];
         include(value);
       }
+    }
     return colour();
   }
 
