@@ -91,16 +91,22 @@ Interval PerturbedTriangle::affineOver(const AffinePlane& p, const WindowBox& bo
 }
 
 std::array<Interval, 3> PerturbedTriangle::barycentrics(double cx, double cy) const {
-  const WindowBox box = sourceBox(cx, cy);
+  return barycentrics(sourceBox(cx, cy));
+}
+
+std::array<Interval, 3> PerturbedTriangle::barycentrics(const WindowBox& box) const {
   return {affineOver(lambda_[0], box), affineOver(lambda_[1], box), affineOver(lambda_[2], box)};
 }
 
-Interval PerturbedTriangle::depth(double cx, double cy) const {
-  return affineOver(z_, sourceBox(cx, cy));
-}
+Interval PerturbedTriangle::depth(double cx, double cy) const { return depth(sourceBox(cx, cy)); }
+
+Interval PerturbedTriangle::depth(const WindowBox& box) const { return affineOver(z_, box); }
 
 Interval PerturbedTriangle::ratio(const AffinePlane& numerator, double cx, double cy) const {
-  const WindowBox box = sourceBox(cx, cy);
+  return ratio(numerator, sourceBox(cx, cy));
+}
+
+Interval PerturbedTriangle::ratio(const AffinePlane& numerator, const WindowBox& box) const {
   const Interval w = affineOver(oneOverW_, box);
   if (w.containsZero()) return Interval::everything();
   // A ratio of two affine functions is monotonic along every line where its denominator keeps its

@@ -64,6 +64,11 @@ class PerturbedTriangle {
   // derivative along x (axis 0) or y (axis 1): from the centre (cx, cy) to the next pixel's.
   // Everything where 1/w may vanish.
   Interval ratio(const AffinePlane& numerator, double cx, double cy) const;
+
+  // The same three from a centre's sourceBox, for a caller that needs several at one centre.
+  std::array<Interval, 3> barycentrics(const WindowBox& source) const;
+  Interval depth(const WindowBox& source) const;
+  Interval ratio(const AffinePlane& numerator, const WindowBox& source) const;
   Interval ratioStep(const AffinePlane& numerator, double cx, double cy, int axis) const;
 
   // The plane through the corners' s/w (or t/w).

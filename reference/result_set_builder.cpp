@@ -12,6 +12,7 @@
 namespace vt::reference {
 namespace {
 
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // One unit in the last place of a float in [1, 2).
 constexpr double kFloatUlp = 0x1p-23;
 // Half of it: the error of one correctly rounded float operation, relative.
@@ -106,11 +107,24 @@ struct Snapped {
   // a quad's two pixels of a row step from the same left centre, those of a column from the same
   // lower one, so the two latest per axis serve the next pixels of the quad.
   struct Steps {
-    double x = std::numeric_limits<double>::quiet_NaN(), y = 0;
+    double x = kNaN, y = 0;
     Interval s, t;
   };
   std::array<std::array<Steps, 2>, 2> steps;  // [axis][slot]
   std::array<uint8_t, 2> nextSlot{};
+  // Where the last pixel centre asked for maps from (PerturbedTriangle::sourceBox): its
+  // coverage, depth and fragment all start there.
+  double sourceX = kNaN, sourceY = 0;
+  WindowBox source;
+
+  const WindowBox& sourceAt(double cx, double cy) {
+    if (cx != sourceX || cy != sourceY) {
+      source = perturbed.sourceBox(cx, cy);
+      sourceX = cx;
+      sourceY = cy;
+    }
+    return source;
+  }
 
   const Steps& stepsFrom(double x, double y, int axis) {
     auto& kept = steps[static_cast<size_t>(axis)];
@@ -203,15 +217,16 @@ class Builder {
       s = perturbed.attribute({t.corners[0].sw, t.corners[1].sw, t.corners[2].sw});
       tt = perturbed.attribute({t.corners[0].tw, t.corners[1].tw, t.corners[2].tw});
     }
-    return &snapped_.emplace(index, Snapped{boxes, perturbed, s, tt, {}, {}}).first->second;
+    return &snapped_.emplace(index, Snapped{boxes, perturbed, s, tt, {}, {}, kNaN, 0, {}})
+                .first->second;
   }
 
   // Coverage of candidate t at the centre of (px, py); `s` is needed unless coverage is pinned.
-  PieceCoverage coverage(const SetupTriangle& t, const Snapped* s, int px, int py) const {
+  PieceCoverage coverage(const SetupTriangle& t, Snapped* s, int px, int py) const {
     if (model_.coveragePinned()) return {t.covers(px, py) ? 2 : 0};
     std::array<Interval, 3> lambda;
     if (s->perturbed.bounded()) {
-      lambda = s->perturbed.barycentrics(px + 0.5, py + 0.5);
+      lambda = s->perturbed.barycentrics(s->sourceAt(px + 0.5, py + 0.5));
     } else {
       const Barycentrics l = barycentrics(s->boxes, px + 0.5, py + 0.5);
       if (l.degenerate) return {1};
@@ -235,7 +250,7 @@ class Builder {
   }
 
   // Window depth of candidate t at (px, py) as the depth test compares it.
-  Interval depth(const SetupTriangle& t, const Snapped* s, int px, int py,
+  Interval depth(const SetupTriangle& t, Snapped* s, int px, int py,
                  DepthFormat format) const {
     const bool pinned =
         model_.coveragePinned() && model_.depthUlps == 0 && model_.depthRoundsToNearest;
@@ -246,7 +261,7 @@ class Builder {
         perturbed.bounded() ? Barycentrics{} : barycentrics(s->boxes, px + 0.5, py + 0.5);
     Interval z = Interval::everything();
     if (perturbed.bounded() || !l.degenerate) {
-      z = perturbed.bounded() ? perturbed.depth(px + 0.5, py + 0.5)
+      z = perturbed.bounded() ? perturbed.depth(s->sourceAt(px + 0.5, py + 0.5))
                           : interpolate(l, t.corners[0].z, t.corners[1].z, t.corners[2].z).value;
       // depthUlps counts units of 2^-23 of the depth range [0, 1] (precision_model.h): the error
       // of a plane evaluation scales with its terms, not with the value they sum to.
@@ -297,7 +312,8 @@ class Builder {
         // (perturbed_triangle.h), at least the value's.
         const double sScale = perturbed.ratioScale(s, cx, cy),
                      tScale = perturbed.ratioScale(tt, cx, cy);
-        const Interval sHere = perturbed.ratio(s, cx, cy), tHere = perturbed.ratio(tt, cx, cy);
+        const WindowBox& source = snapped->sourceAt(cx, cy);
+        const Interval sHere = perturbed.ratio(s, source), tHere = perturbed.ratio(tt, source);
         f.s = widen(sHere, 0, relative * std::max(sScale, sHere.magnitude()) + kFloatUlp);
         f.t = widen(tHere, 0, relative * std::max(tScale, tHere.magnitude()) + kFloatUlp);
         // Fine derivatives: from the left pixel of the quad row, from the lower of its column.
