@@ -98,6 +98,10 @@ std::array<Interval, 3> PerturbedTriangle::barycentrics(const WindowBox& box) co
   return {affineOver(lambda_[0], box), affineOver(lambda_[1], box), affineOver(lambda_[2], box)};
 }
 
+Interval PerturbedTriangle::barycentric(size_t i, const WindowBox& box) const {
+  return affineOver(lambda_[i], box);
+}
+
 Interval PerturbedTriangle::depth(double cx, double cy) const { return depth(sourceBox(cx, cy)); }
 
 Interval PerturbedTriangle::depth(const WindowBox& box) const { return affineOver(z_, box); }

@@ -67,6 +67,7 @@ class PerturbedTriangle {
 
   // The same three from a centre's sourceBox, for a caller that needs several at one centre.
   std::array<Interval, 3> barycentrics(const WindowBox& source) const;
+  Interval barycentric(size_t i, const WindowBox& source) const;  // lambda'_i alone
   Interval depth(const WindowBox& source) const;
   Interval ratio(const AffinePlane& numerator, const WindowBox& source) const;
   Interval ratioStep(const AffinePlane& numerator, double cx, double cy, int axis) const;

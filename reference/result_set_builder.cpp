@@ -226,7 +226,12 @@ class Builder {
     if (model_.coveragePinned()) return {t.covers(px, py) ? 2 : 0};
     std::array<Interval, 3> lambda;
     if (s->perturbed.bounded()) {
-      lambda = s->perturbed.barycentrics(s->sourceAt(px + 0.5, py + 0.5));
+      // Each coordinate only while none so far is surely negative (most candidates are outside).
+      const WindowBox& source = s->sourceAt(px + 0.5, py + 0.5);
+      for (size_t i = 0; i < 3; ++i) {
+        lambda[i] = s->perturbed.barycentric(i, source);
+        if (lambda[i].hi < 0) return {0};
+      }
     } else {
       const Barycentrics l = barycentrics(s->boxes, px + 0.5, py + 0.5);
       if (l.degenerate) return {1};
