@@ -54,7 +54,7 @@ struct TileSets {
 };
 
 // Gathers the tiles' alternatives into `sets`, one set per pixel in pixel order, the tiles' copies
-// in parallel. `sets` keeps its storage: a frame drawn again allocates nothing here.
+// in parallel. `sets` keeps its storage from frame to frame.
 void gatherSets(const std::vector<TileSets>& tiles, size_t pixels, unsigned threads,
                 ResultSets& sets) {
   sets.offsets.assign(pixels + 1, 0);
@@ -344,6 +344,19 @@ class TileShader {
     sets_->pixels.emplace_back(indexOf(px, py), 1u);
   }
 
+  // The result set's candidates at (px, py), from one Embree packet per 4 x 4 block of the tile:
+  // a quad row of the tile meets four blocks, each block two quad rows, so the row's four are kept.
+  const std::vector<int32_t>& candidatesAt(int px, int py) {
+    constexpr int kBlock = Visibility::kBlock;
+    const int bx = px - px % kBlock, by = py - py % kBlock;
+    const size_t slot = static_cast<size_t>((bx / kBlock) % (kTile / kBlock));
+    if (candidateBlocks_[slot].x != bx || candidateBlocks_[slot].y != by) {
+      job_.visibility.blockCandidates(bx, by, blockCandidates_[slot]);
+      candidateBlocks_[slot] = {bx, by};
+    }
+    return blockCandidates_[slot][static_cast<size_t>((px - bx) + kBlock * (py - by))];
+  }
+
   // vtNeedOfFragment (src/shader/virtual_texture.glsl): the LOD and the needbuffer entry alone.
   Fragment needOfFragment(vec2 uvIn, vec2 dUVdx, vec2 dUVdy) {
     return shader_.vtNeedOfFragment(uvIn, dUVdx, dUVdy, job_.parameters);
@@ -352,11 +365,10 @@ class TileShader {
   // The pixel's result set under the model, after the oracle's own value.
   void addSet(int px, int py, const OracleFragment& own) {
     const size_t before = sets_->alternatives.size();
-    job_.visibility.candidates(px, py, candidates_);
     if (!setBuilder_)
       setBuilder_.emplace(*job_.model, job_.shading, job_.triangles, job_.viewport,
                             job_.settings.depthFormat, texels_);
-    setBuilder_->append(candidates_, px, py, own, sets_->alternatives);
+    setBuilder_->append(candidatesAt(px, py), px, py, own, sets_->alternatives);
     sets_->pixels.emplace_back(indexOf(px, py),
                                static_cast<uint32_t>(sets_->alternatives.size() - before));
   }
@@ -367,7 +379,10 @@ class TileShader {
   BackendTexels<shader::ShaderLogic<Backend>> texels_;
   TileSets* sets_ = nullptr;
   std::optional<ResultSetBuilder> setBuilder_;  // made by the first pixel that needs a set
-  std::vector<int32_t> candidates_;
+  // The candidates of the blocks of the current row of blocks, by block column.
+  std::array<Visibility::BlockCandidates, kTile / Visibility::kBlock> blockCandidates_;
+  std::array<glm::ivec2, kTile / Visibility::kBlock> candidateBlocks_{
+      glm::ivec2(-1), glm::ivec2(-1), glm::ivec2(-1), glm::ivec2(-1)};
   // The triangles met in the current quad: slots below slots_ hold their attributes.
   std::array<int32_t, 4> quadTriangle_{};
   std::array<std::array<Attributes, 4>, 4> quadAttributes_{};

@@ -28,8 +28,19 @@ struct BlockQuery {
   const Arithmetic* arithmetic;
   std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> hits;
   std::array<uint32_t, Visibility::kBlock * Visibility::kBlock> keys;
-  std::vector<int32_t>* collect = nullptr;  // Visibility::candidates: every box crossed
+  // Visibility::candidates and blockCandidates: every triangle whose grown box holds a ray's
+  // pixel centre, per ray (one list for a single ray).
+  std::vector<int32_t>* collect = nullptr;
+  bool collectPerPixel = false;  // collect[dx + 4 dy] (blockCandidates), else collect[0]
+  int margin = 0;
 };
+
+// Whether set-up triangle t's box, grown by `margin`, holds the centre of (px, py): Embree calls
+// back for every box of a leaf its rays reach, so the candidates keep those whose own box does.
+bool boxHolds(const SetupTriangle& t, int margin, int px, int py) {
+  return t.minX - margin <= px && px <= t.maxX + margin && t.minY - margin <= py &&
+         py <= t.maxY + margin;
+}
 
 // The stored depth as an ordered key (smaller is nearer), in the depth member
 // (render/arithmetic.h). Z24 is round-half-even(z * 16777215) (rule 7) or the C cast (unsigned)(z *
@@ -100,12 +111,21 @@ inline void considerCandidate(const SetupTriangle& t, int32_t k, int px, int py,
 void testCandidate(const RTCIntersectFunctionNArguments* args) {
   auto* query = reinterpret_cast<BlockQuery*>(args->context);
   const int32_t k = static_cast<int32_t>(args->primID);
-  if (query->collect) {
-    query->collect->push_back(k);
-    return;
-  }
   const SetupTriangle& t = (*query->triangles)[static_cast<size_t>(k)];
   RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
+  if (query->collect) {
+    for (unsigned lane = 0; lane < args->N; ++lane) {
+      if (!args->valid[lane]) continue;
+      const int px = static_cast<int>(RTCRayN_org_x(rays, args->N, lane));
+      const int py = static_cast<int>(RTCRayN_org_y(rays, args->N, lane));
+      const size_t list = query->collectPerPixel ? static_cast<size_t>(
+                                                       (px - query->x0) +
+                                                       Visibility::kBlock * (py - query->y0))
+                                                 : 0;
+      if (boxHolds(t, query->margin, px, py)) query->collect[list].push_back(k);
+    }
+    return;
+  }
   for (unsigned lane = 0; lane < args->N; ++lane) {
     if (!args->valid[lane]) continue;
     const int px = static_cast<int>(RTCRayN_org_x(rays, args->N, lane));
@@ -142,11 +162,9 @@ Visibility::Visibility(const std::vector<SetupTriangle>& triangles, Viewport vie
   tilesX_ = (viewport.width + kTile - 1) / kTile;
   const int tilesY = (viewport.height + kTile - 1) / kTile;
   binStart_.assign(static_cast<size_t>(tilesX_) * static_cast<size_t>(tilesY) + 1, 0);
-  // A triangle goes into every tile its box, grown by the margin, touches: the tiles' winners
-  // (tile) skip the margin's rows and columns, the candidates (candidates) need them.
   const auto forEachTile = [&](const SetupTriangle& t, const auto& visit) {
-    const int x0 = std::max(t.minX - margin, 0), x1 = std::min(t.maxX + margin, viewport.width - 1);
-    const int y0 = std::max(t.minY - margin, 0), y1 = std::min(t.maxY + margin, viewport.height - 1);
+    const int x0 = std::max(t.minX, 0), x1 = std::min(t.maxX, viewport.width - 1);
+    const int y0 = std::max(t.minY, 0), y1 = std::min(t.maxY, viewport.height - 1);
     if (x0 > x1 || y0 > y1) return;
     for (int ty = y0 / kTile; ty <= y1 / kTile; ++ty)
       for (int tx = x0 / kTile; tx <= x1 / kTile; ++tx)
@@ -247,16 +265,58 @@ std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> Visibility::block(
 
 void Visibility::candidates(int px, int py, std::vector<int32_t>& out) const {
   out.clear();
-  if (px < 0 || py < 0 || px >= viewport_.width || py >= viewport_.height) return;
-  // The pixel's tile holds every triangle whose grown box reaches it, in draw order.
-  const size_t bin = static_cast<size_t>(py / kTile) * static_cast<size_t>(tilesX_) +
-                     static_cast<size_t>(px / kTile);
-  for (uint32_t i = binStart_[bin]; i < binStart_[bin + 1]; ++i) {
-    const SetupTriangle& t = triangles_[binned_[i]];
-    if (t.minX - margin_ <= px && px <= t.maxX + margin_ && t.minY - margin_ <= py &&
-        py <= t.maxY + margin_)
-      out.push_back(static_cast<int32_t>(binned_[i]));
+  buildScene();
+  BlockQuery query;
+  rtcInitIntersectContext(&query.context);
+  query.triangles = &triangles_;
+  query.x0 = px;
+  query.y0 = py;
+  query.format = format_;
+  query.arithmetic = &arithmetic_;
+  query.collect = &out;
+  query.margin = margin_;
+  RTCRayHit ray{};
+  ray.ray.org_x = static_cast<float>(px) + 0.5f;
+  ray.ray.org_y = static_cast<float>(py) + 0.5f;
+  ray.ray.org_z = -1.0f;
+  ray.ray.dir_z = 1.0f;
+  ray.ray.tnear = 0.0f;
+  ray.ray.tfar = std::numeric_limits<float>::infinity();
+  ray.ray.mask = 0xffffffffu;
+  ray.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &query.context, &ray);
+  std::sort(out.begin(), out.end());
+}
+
+void Visibility::blockCandidates(int x0, int y0, BlockCandidates& out) const {
+  for (std::vector<int32_t>& list : out) list.clear();
+  buildScene();
+  BlockQuery query;
+  rtcInitIntersectContext(&query.context);
+  query.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  query.triangles = &triangles_;
+  query.x0 = x0;
+  query.y0 = y0;
+  query.format = format_;
+  query.arithmetic = &arithmetic_;
+  query.collect = out.data();
+  query.collectPerPixel = true;
+  query.margin = margin_;
+  alignas(64) RTCRayHit16 rays{};
+  alignas(64) int valid[16];
+  for (int lane = 0; lane < 16; ++lane) {
+    const int px = x0 + lane % kBlock, py = y0 + lane / kBlock;
+    valid[lane] = px < viewport_.width && py < viewport_.height ? -1 : 0;
+    rays.ray.org_x[lane] = static_cast<float>(px) + 0.5f;
+    rays.ray.org_y[lane] = static_cast<float>(py) + 0.5f;
+    rays.ray.org_z[lane] = -1.0f;
+    rays.ray.dir_z[lane] = 1.0f;
+    rays.ray.tfar[lane] = std::numeric_limits<float>::infinity();
+    rays.ray.mask[lane] = 0xffffffffu;
+    rays.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
   }
+  rtcIntersect16(valid, scene_, &query.context, &rays);
+  for (std::vector<int32_t>& list : out) std::sort(list.begin(), list.end());
 }
 
 PixelHit Visibility::at(int px, int py) const {

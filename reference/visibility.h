@@ -5,8 +5,7 @@
 // pixels its box of candidate centres touches (in draw order), and a tile's pixels are decided by
 // walking its triangles' boxes inside it, as a tile-binned GL rasterizer does.
 //
-// The result sets' candidates at a pixel come from its tile's bin (binned with the margin).
-// Embree supplies the search for single pixels and blocks (tests, captures):
+// Embree supplies the search for single pixels and blocks (the result sets' candidates, tests):
 // every set-up triangle is a user primitive whose box, in window coordinates, spans the pixel
 // centres its snapped vertices can enclose (an integer range, so the box is exact, not estimated).
 // The ray of pixel (px, py) runs along +z through its centre, so it meets the box of every
@@ -66,8 +65,12 @@ class Visibility {
   // Thread-safe.
   std::array<PixelHit, kBlock * kBlock> block(int x0, int y0) const;
   // Every set-up triangle (index) whose box, grown by the margin, holds the centre of (px, py),
-  // in draw order; none outside the viewport. Thread-safe.
+  // in draw order. Thread-safe.
   void candidates(int px, int py, std::vector<int32_t>& out) const;
+  // The same for the 4 x 4 pixels from (x0, y0), in one packet: out[dx + 4 dy]; pixels outside
+  // the viewport get none. Thread-safe.
+  using BlockCandidates = std::array<std::vector<int32_t>, kBlock * kBlock>;
+  void blockCandidates(int x0, int y0, BlockCandidates& out) const;
 
  private:
   const std::vector<SetupTriangle>& triangles_;
