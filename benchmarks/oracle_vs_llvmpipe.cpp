@@ -9,13 +9,18 @@
 // the oracle's scaling from 1 to 2 threads (target >= 1.8) and the cost of gl45 over the pinned
 // model (target <= 2.0). benchmarks/oracle_vs_llvmpipe.sh builds the maps and runs this three
 // times.
-// --pinned-only leaves gl45 out (quick runs, profiles of the pinned path).
-//   usage: oracle_vs_llvmpipe [--frames N] [--pinned-only] [--map NAME TEXTURE.vt MESH.obj
-//          PATH.json]...
+// --pinned-only leaves gl45 out (quick runs, profiles of the pinned path). --census adds, per
+// row, what gl45's sets hold: the pixels whose set is one triangle's alternative, those with
+// several or with the empty one besides, and the empty pixels, each with its share of the
+// triangles' alternatives (each costs a fragment's and a colour's bounds; the empty one
+// nothing).
+//   usage: oracle_vs_llvmpipe [--frames N] [--pinned-only] [--census] [--map NAME TEXTURE.vt
+//          MESH.obj PATH.json]...
 
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -110,16 +115,42 @@ Scene mapScene(const std::string& name, const std::filesystem::path& texture,
 
 int usage() {
   std::fprintf(stderr,
-               "usage: oracle_vs_llvmpipe [--frames N] [--pinned-only] [--map NAME TEXTURE.vt "
-               "MESH.obj PATH.json]...\n");
+               "usage: oracle_vs_llvmpipe [--frames N] [--pinned-only] [--census] [--map NAME "
+               "TEXTURE.vt MESH.obj PATH.json]...\n");
   return 2;
 }
+
+// Pixels and alternatives of a frame's sets by kind: one triangle's alternative alone, several
+// (or a triangle's and the empty one), empty only.
+struct Census {
+  std::array<uint64_t, 3> pixels{}, alternatives{};  // alternatives: those with a triangle
+  void add(const vt::ResultSets& sets) {
+    for (size_t i = 0; i + 1 < sets.offsets.size(); ++i) {
+      const uint32_t first = sets.offsets[i], last = sets.offsets[i + 1];
+      uint32_t triangles = 0;
+      for (uint32_t k = first; k < last; ++k) triangles += sets.alternatives[k].triangle >= 0;
+      const size_t kind = triangles == 0 ? 2 : last - first == 1 ? 0 : 1;
+      ++pixels[kind];
+      alternatives[kind] += triangles;
+    }
+  }
+  void print() const {
+    const double p = static_cast<double>(pixels[0] + pixels[1] + pixels[2]);
+    const double a = static_cast<double>(alternatives[0] + alternatives[1] + alternatives[2]);
+    const char* const names[3] = {"one alternative", "several", "empty"};
+    std::printf("  census:");
+    for (size_t k = 0; k < 3; ++k)
+      std::printf(" %s %.1f%% of pixels (%.1f%% of alternatives)%s", names[k],
+                  100.0 * static_cast<double>(pixels[k]) / p,
+                  100.0 * static_cast<double>(alternatives[k]) / a, k < 2 ? "," : "\n");
+  }
+};
 
 }  // namespace
 
 int main(int argc, char** argv) {
   int repeats = 5;
-  bool pinnedOnly = false;
+  bool pinnedOnly = false, census = false;
   struct MapArguments {
     std::string name, texture, mesh, path;
   };
@@ -127,6 +158,8 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--pinned-only") == 0) {
       pinnedOnly = true;
+    } else if (std::strcmp(argv[i], "--census") == 0) {
+      census = true;
     } else if (std::strcmp(argv[i], "--frames") == 0 && i + 1 < argc) {
       repeats = std::max(1, std::atoi(argv[++i]));
     } else if (std::strcmp(argv[i], "--map") == 0 && i + 4 < argc) {
@@ -198,6 +231,14 @@ int main(int argc, char** argv) {
                   scene.name.c_str(), size.c_str(), frames.size(), llvmpipe / count,
                   oracle2 / count, oracle1 / count, sets2 / count, oracle2 / llvmpipe,
                   oracle1 / oracle2, sets2 / oracle2);
+      if (census && !pinnedOnly) {
+        Census counts;
+        for (const vt::ClipSpaceMesh& mesh : frames) {
+          vt::reference::renderFrame(mesh, *scene.cache, bounded, frame);
+          counts.add(frame.sets);
+        }
+        counts.print();
+      }
       std::fflush(stdout);
     }
   std::printf(
