@@ -598,8 +598,7 @@ class Builder {
       for (int ty = static_cast<int>(std::floor(y.lo - 0.5));
            ty <= static_cast<int>(std::floor(y.hi - 0.5)) + 1; ++ty)
         for (int tx = static_cast<int>(std::floor(x.lo - 0.5));
-             tx <= static_cast<int>(std::floor(x.hi - 0.5)) + 1; ++tx)
-        {
+             tx <= static_cast<int>(std::floor(x.hi - 0.5)) + 1; ++tx) {
           Range v;
           fetch({tx, ty}, v);
           include(v);

@@ -139,6 +139,30 @@ void testCandidate(const RTCIntersectFunctionNArguments* args) {
 
 void testCandidateOccluded(const RTCOccludedFunctionNArguments*) {}
 
+// Traces the 4 x 4 rays of the block at (query.x0, query.y0) as one coherent packet, each along
+// +z through its pixel centre and the boxes' [0, 1]; pixels outside the viewport stay inactive.
+// The query's callbacks (testCandidate) gather what they are asked for.
+void traceBlock(RTCScene scene, Viewport viewport, BlockQuery& query) {
+  query.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) RTCRayHit16 rays{};
+  alignas(64) int valid[16];
+  for (int lane = 0; lane < 16; ++lane) {
+    const int px = query.x0 + lane % Visibility::kBlock, py = query.y0 + lane / Visibility::kBlock;
+    valid[lane] = px < viewport.width && py < viewport.height ? -1 : 0;
+    rays.ray.org_x[lane] = static_cast<float>(px) + 0.5f;
+    rays.ray.org_y[lane] = static_cast<float>(py) + 0.5f;
+    rays.ray.org_z[lane] = -1.0f;
+    rays.ray.dir_x[lane] = 0.0f;
+    rays.ray.dir_y[lane] = 0.0f;
+    rays.ray.dir_z[lane] = 1.0f;
+    rays.ray.tnear[lane] = 0.0f;
+    rays.ray.tfar[lane] = std::numeric_limits<float>::infinity();
+    rays.ray.mask[lane] = 0xffffffffu;
+    rays.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect16(valid, scene, &query.context, &rays);
+}
+
 }  // namespace
 
 float windowDepth(const SetupTriangle& t, int px, int py, const Arithmetic& arithmetic) {
@@ -231,9 +255,9 @@ void Visibility::tile(int x0, int y0, std::span<PixelHit, kTile * kTile> hits) c
 
 std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> Visibility::block(int x0,
                                                                                 int y0) const {
+  buildScene();
   BlockQuery query;
   rtcInitIntersectContext(&query.context);
-  query.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   query.triangles = &triangles_;
   query.x0 = x0;
   query.y0 = y0;
@@ -241,25 +265,7 @@ std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> Visibility::block(
   query.arithmetic = &arithmetic_;
   query.hits.fill(PixelHit{});
   query.keys.fill(0);
-  buildScene();
-  alignas(64) RTCRayHit16 rays{};
-  alignas(64) int valid[16];
-  for (int lane = 0; lane < 16; ++lane) {
-    const int px = x0 + lane % kBlock, py = y0 + lane / kBlock;
-    valid[lane] = px < viewport_.width && py < viewport_.height ? -1 : 0;
-    // The ray through the pixel centre, along +z through the boxes' [0, 1].
-    rays.ray.org_x[lane] = static_cast<float>(px) + 0.5f;
-    rays.ray.org_y[lane] = static_cast<float>(py) + 0.5f;
-    rays.ray.org_z[lane] = -1.0f;
-    rays.ray.dir_x[lane] = 0.0f;
-    rays.ray.dir_y[lane] = 0.0f;
-    rays.ray.dir_z[lane] = 1.0f;
-    rays.ray.tnear[lane] = 0.0f;
-    rays.ray.tfar[lane] = std::numeric_limits<float>::infinity();
-    rays.ray.mask[lane] = 0xffffffffu;
-    rays.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
-  }
-  rtcIntersect16(valid, scene_, &query.context, &rays);
+  traceBlock(scene_, viewport_, query);
   return query.hits;
 }
 
@@ -293,7 +299,6 @@ void Visibility::blockCandidates(int x0, int y0, BlockCandidates& out) const {
   buildScene();
   BlockQuery query;
   rtcInitIntersectContext(&query.context);
-  query.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   query.triangles = &triangles_;
   query.x0 = x0;
   query.y0 = y0;
@@ -302,20 +307,7 @@ void Visibility::blockCandidates(int x0, int y0, BlockCandidates& out) const {
   query.collect = out.data();
   query.collectPerPixel = true;
   query.margin = margin_;
-  alignas(64) RTCRayHit16 rays{};
-  alignas(64) int valid[16];
-  for (int lane = 0; lane < 16; ++lane) {
-    const int px = x0 + lane % kBlock, py = y0 + lane / kBlock;
-    valid[lane] = px < viewport_.width && py < viewport_.height ? -1 : 0;
-    rays.ray.org_x[lane] = static_cast<float>(px) + 0.5f;
-    rays.ray.org_y[lane] = static_cast<float>(py) + 0.5f;
-    rays.ray.org_z[lane] = -1.0f;
-    rays.ray.dir_z[lane] = 1.0f;
-    rays.ray.tfar[lane] = std::numeric_limits<float>::infinity();
-    rays.ray.mask[lane] = 0xffffffffu;
-    rays.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
-  }
-  rtcIntersect16(valid, scene_, &query.context, &rays);
+  traceBlock(scene_, viewport_, query);
   for (std::vector<int32_t>& list : out) std::sort(list.begin(), list.end());
 }
 
