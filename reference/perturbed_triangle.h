@@ -54,6 +54,12 @@ class PerturbedTriangle {
 
   // Where phi(p) lies for the pixel centre p = (cx, cy).
   WindowBox sourceBox(double cx, double cy) const;
+  // A box that holds sourceBox(cx, cy) as computed, for every centre in [x0, x1] x [y0, y1]: the
+  // growth is convex in the centre, so its largest value lies at a corner; a sixteenth of the
+  // corners' rounding term covers the few units of 2^-53 by which a centre inside may compute
+  // above them. Bounds over it hold at each centre: the interval evaluations here are monotone in
+  // their box, rounding to nearest included.
+  WindowBox sourceBoxOver(double x0, double y0, double x1, double y1) const;
 
   // lambda' at the centre: the barycentric coordinates of the moved triangle.
   std::array<Interval, 3> barycentrics(double cx, double cy) const;

@@ -147,6 +147,15 @@ struct PieceCoverage {
   bool boundarySure = true;
 };
 
+// What a candidate is over the kBlock x kBlock pixels of the block that holds a pixel, decided once
+// per block from a box that holds every centre's source box (PerturbedTriangle::sourceBoxOver):
+// the interval bounds over it hold those over each centre's, so its decisions are each pixel's.
+struct BlockClass {
+  int32_t index = -1;
+  int8_t cover = -1;  // 0: surely covers no centre; 2: surely every centre; -1: pixel by pixel
+  Interval z = Interval::everything();  // what depth() bounds at every centre
+};
+
 // An interpolated plane: value at a pixel and change per pixel in x and y.
 struct PlaneRange {
   Interval value, ddx, ddy;
@@ -181,6 +190,9 @@ struct FragmentRange {
   Interval lod;
   bool everything = false;  // a w near zero: any (s, t) and any level
 };
+
+// 2^m for a level m (0 to 31), exact.
+double powerOfTwo(int m) { return static_cast<double>(uint64_t{1} << m); }
 
 int floorToInt(double x, int hi) {
   if (!(x >= 0)) return 0;
@@ -221,6 +233,50 @@ class Builder {
                 .first->second;
   }
 
+  // Candidate `index`'s class over the block that holds (px, py); its pixels decide alone (cover
+  // -1, any depth) under pinned coverage and for triangles too small for first-order bounds. The
+  // blocks of a quad row of a tile are visited in turns, so one slot per block column is kept.
+  BlockClass blockClass(const SetupTriangle& t, int32_t index, int px, int py, DepthFormat format) {
+    if (model_.coveragePinned()) return {index};
+    constexpr int kBlock = Visibility::kBlock;
+    const int bx = px - px % kBlock, by = py - py % kBlock;
+    BlockSlot& slot = blocks_[static_cast<size_t>((bx / kBlock) % kBlockSlots)];
+    if (slot.x != bx || slot.y != by) {
+      slot.x = bx;
+      slot.y = by;
+      slot.classes.clear();
+    }
+    for (const BlockClass& c : slot.classes)
+      if (c.index == index) return c;
+    BlockClass c;
+    c.index = index;
+    Snapped* s = snapped(t, index);
+    if (!s->perturbed.bounded()) {
+      slot.classes.push_back(c);
+      return c;
+    }
+    const WindowBox box = s->perturbed.sourceBoxOver(bx + 0.5, by + 0.5, bx + kBlock - 0.5,
+                                                     by + kBlock - 0.5);
+    c.cover = 2;
+    for (size_t i = 0; i < 3 && c.cover != 0; ++i) {
+      const Interval lambda = s->perturbed.barycentric(i, box);
+      if (lambda.hi < 0) c.cover = 0;
+      else if (!(lambda.lo > 0)) c.cover = -1;
+    }
+    if (c.cover != 0) {
+      // depth() at each centre, its steps over the block's box and the hull of its own values.
+      Interval own = {std::numeric_limits<double>::infinity(),
+                      -std::numeric_limits<double>::infinity()};
+      for (int y = by; y < by + kBlock; ++y)
+        for (int x = bx; x < bx + kBlock; ++x)
+          own = hull(own, Interval::point(windowDepth(t, x, y, model_.arithmetic)));
+      const Interval z = widen(s->perturbed.depth(box), 0, (model_.depthUlps + 1) * kFloatUlp);
+      c.z = depthStored(hull(z, own), format);
+    }
+    slot.classes.push_back(c);
+    return c;
+  }
+
   // Coverage of candidate t at the centre of (px, py); `s` is needed unless coverage is pinned.
   PieceCoverage coverage(const SetupTriangle& t, Snapped* s, int px, int py) const {
     if (model_.coveragePinned()) return {t.covers(px, py) ? 2 : 0};
@@ -257,10 +313,8 @@ class Builder {
   // Window depth of candidate t at (px, py) as the depth test compares it.
   Interval depth(const SetupTriangle& t, Snapped* s, int px, int py,
                  DepthFormat format) const {
-    const bool pinned =
-        model_.coveragePinned() && model_.depthUlps == 0 && model_.depthRoundsToNearest;
     const double own = windowDepth(t, px, py, model_.arithmetic);
-    if (pinned) return Interval::point(own);
+    if (depthPinned()) return Interval::point(own);
     const PerturbedTriangle& perturbed = s->perturbed;
     const Barycentrics l =
         perturbed.bounded() ? Barycentrics{} : barycentrics(s->boxes, px + 0.5, py + 0.5);
@@ -272,10 +326,7 @@ class Builder {
       // of a plane evaluation scales with its terms, not with the value they sum to.
       z = widen(z, 0, (model_.depthUlps + 1) * kFloatUlp);
     }
-    z = hull(z, Interval::point(own));
-    if (format == DepthFormat::kDepth24)
-      z = widen(z, 0, (model_.depthRoundsToNearest ? 0.5 : 1.0) / 16777215.0);
-    return clamp(z, 0, 1);
+    return depthStored(hull(z, Interval::point(own)), format);
   }
 
   FragmentRange fragment(const SetupTriangle& t, Snapped* snapped, int px, int py) const {
@@ -410,6 +461,16 @@ class Builder {
   }
 
  private:
+  bool depthPinned() const {
+    return model_.coveragePinned() && model_.depthUlps == 0 && model_.depthRoundsToNearest;
+  }
+  // A window depth as the depth buffer stores it: a 24-bit one rounds (to nearest or either way).
+  Interval depthStored(Interval z, DepthFormat format) const {
+    if (format == DepthFormat::kDepth24)
+      z = widen(z, 0, (model_.depthRoundsToNearest ? 0.5 : 1.0) / 16777215.0);
+    return clamp(z, 0, 1);
+  }
+
   // How far the model lets a vertex lie from its float window position: its snapping.
   double snapRadius() const { return std::ldexp(1.0, -model_.subpixelBits); }
 
@@ -479,7 +540,7 @@ class Builder {
   // through its indirection entry (the page or its resident ancestor).
   Colour sampleLevel(Interval s, Interval t, int m) {
     const int last = (1 << m) - 1;
-    const double scale = std::ldexp(1.0, m);
+    const double scale = powerOfTwo(m);
     const int x0 = floorToInt(s.lo * scale, last), x1 = floorToInt(s.hi * scale, last);
     const int y0 = floorToInt(t.lo * scale, last), y1 = floorToInt(t.hi * scale, last);
     if (x1 - x0 > 3 || y1 - y0 > 3) return {Interval{0, 255}, {0, 255}, {0, 255}, {0, 255}};
@@ -502,7 +563,7 @@ class Builder {
     const int i = static_cast<int>(e.z);
     const glm::ivec2 resident(page.x >> (m - i), page.y >> (m - i));
     const int stored = shading_.pageSize + 2 * shading_.border;
-    const double scale = std::ldexp(1.0, i);
+    const double scale = powerOfTwo(i);
     const double ox = static_cast<double>(e.x) * stored + shading_.border;
     const double oy = static_cast<double>(e.y) * stored + shading_.border;
     Interval x{ox + (s.lo * scale - resident.x) * shading_.pageSize,
@@ -676,6 +737,12 @@ class Builder {
   TexelSource& source_;
   double finestSide_ = 1;
   std::unordered_map<int32_t, Snapped> snapped_;  // by set-up index (elements never move)
+  struct BlockSlot {
+    int x = -1, y = -1;
+    std::vector<BlockClass> classes;
+  };
+  static constexpr int kBlockSlots = Visibility::kTile / Visibility::kBlock;
+  std::array<BlockSlot, kBlockSlots> blocks_;
 };
 
 // A fan piece whose centre is surely inside the mesh triangle's edges and may lie beyond edges it
@@ -748,6 +815,7 @@ struct ResultSetBuilder::Impl {
   Builder builder;
   const std::vector<SetupTriangle>& triangles;
   DepthFormat depthFormat;
+  std::vector<BlockClass> classes;  // of the current pixel's candidates
 };
 
 ResultSetBuilder::ResultSetBuilder(const PrecisionModel& model, const SetShading& shading,
@@ -769,12 +837,31 @@ void ResultSetBuilder::append(const std::vector<int32_t>& candidates, int px, in
     Interval z;
     int cover;  // of the mesh triangle: the piece's, or 2 where its fan surely covers
   };
-  std::vector<Candidate> list;
-  list.reserve(candidates.size());
+  // The candidates' classes over the pixel's block; those that surely cover no centre of it
+  // drop out at once.
+  std::vector<BlockClass>& classes = impl_->classes;
+  classes.clear();
+  double front = std::numeric_limits<double>::infinity();  // of those surely covering the block
   for (int32_t index : candidates) {
     const SetupTriangle& t = triangles[static_cast<size_t>(index)];
+    const BlockClass c = builder.blockClass(t, index, px, py, depthFormat);
+    if (c.cover == 0) continue;
+    classes.push_back(c);
+    if (c.cover == 2 && c.z.hi < 1.0) front = std::min(front, c.z.hi);
+  }
+  std::vector<Candidate> list;
+  list.reserve(classes.size());
+  for (const BlockClass& c : classes) {
+    const int32_t index = c.index;
+    const SetupTriangle& t = triangles[static_cast<size_t>(index)];
+    // Behind a candidate that surely covers every centre of the block and is surely nearer
+    // everywhere in it: at this pixel too it surely beats this one, and beats whatever this one
+    // beats, so leaving it out changes nothing; unless it is the oracle's own, or a piece of a
+    // clipped fan (the fan's union reads its pieces).
+    const bool fanPiece = t.fanNeighbour[0] != 0 || t.fanNeighbour[1] != 0 || t.fanNeighbour[2] != 0;
+    if (front < c.z.lo && index != oracle.index && !fanPiece) continue;
     Snapped* s = builder.snapped(t, index);
-    const PieceCoverage piece = builder.coverage(t, s, px, py);
+    const PieceCoverage piece = c.cover == 2 ? PieceCoverage{2} : builder.coverage(t, s, px, py);
     if (piece.cover == 0) continue;
     const Interval z = builder.depth(t, s, px, py, depthFormat);
     if (!(z.lo < 1.0)) continue;  // never passes GL_LESS against the cleared 1.0

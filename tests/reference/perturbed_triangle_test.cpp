@@ -126,6 +126,44 @@ TEST(PerturbedTriangle, LargeTrianglesGetFirstOrderBounds) {
   EXPECT_LT(dy.width() / std::fabs(dy.lo + dy.hi) * 2, 0.02);
 }
 
+// A block's source box holds every centre's source box as computed, and the bounds over it hold
+// the bounds at each centre (what ResultSetBuilder's block classes rely on), for blocks inside,
+// across and outside random triangles, near the window's origin and far from it.
+TEST(PerturbedTriangle, ABlocksSourceBoxHoldsEachCentresBoxAndBounds) {
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> pixel(-60, 360);
+  int checked = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const SetupTriangle t = randomTriangle(rng, trial % 2 ? 200.0 : 12.0);
+    const PerturbedTriangle bounds(t, 1.0 / 256);
+    if (!bounds.bounded()) continue;
+    for (int b = 0; b < 20; ++b) {
+      const int bx = pixel(rng) & ~3, by = pixel(rng) & ~3;
+      const WindowBox block = bounds.sourceBoxOver(bx + 0.5, by + 0.5, bx + 3.5, by + 3.5);
+      const std::array<Interval, 3> blockLambda = bounds.barycentrics(block);
+      const Interval blockZ = bounds.depth(block);
+      for (int y = by; y < by + 4; ++y)
+        for (int x = bx; x < bx + 4; ++x) {
+          const WindowBox own = bounds.sourceBox(x + 0.5, y + 0.5);
+          ASSERT_LE(block.x.lo, own.x.lo);
+          ASSERT_GE(block.x.hi, own.x.hi);
+          ASSERT_LE(block.y.lo, own.y.lo);
+          ASSERT_GE(block.y.hi, own.y.hi);
+          const std::array<Interval, 3> lambda = bounds.barycentrics(own);
+          for (size_t i = 0; i < 3; ++i) {
+            ASSERT_LE(blockLambda[i].lo, lambda[i].lo);
+            ASSERT_GE(blockLambda[i].hi, lambda[i].hi);
+          }
+          const Interval z = bounds.depth(own);
+          ASSERT_LE(blockZ.lo, z.lo);
+          ASSERT_GE(blockZ.hi, z.hi);
+          ++checked;
+        }
+    }
+  }
+  EXPECT_GT(checked, 50000);
+}
+
 // Triangles too small for first-order bounds, and degenerate ones, say so.
 TEST(PerturbedTriangle, SmallAndDegenerateTrianglesAreNotBounded) {
   SetupTriangle small;
