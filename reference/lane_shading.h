@@ -32,6 +32,7 @@ struct LaneResults {
   uint8_t color[lanes::kLanes][4];
   uint32_t need[lanes::kLanes][4];
   float lod[lanes::kLanes];
+  int32_t neededLevel[lanes::kLanes];
   int32_t residentLevel[lanes::kLanes];
 };
 
@@ -211,6 +212,7 @@ void shadeLanes(Scalar& scalar, const Arithmetic& arithmetic, const shader::VtPa
     out.need[k][2] = f.need.z[k];
     out.need[k][3] = f.need.w[k];
     out.lod[k] = f.lod[k];
+    out.neededLevel[k] = f.neededLevel[k];
     out.residentLevel[k] = f.residentLevel[k];
   }
 }

@@ -70,9 +70,18 @@ double PerturbedTriangle::terms(const AffinePlane& p, double cx, double cy) cons
 }
 
 double PerturbedTriangle::ratioScale(const AffinePlane& numerator, double cx, double cy) const {
+  return ratioScales(numerator, numerator, cx, cy)[0];
+}
+
+std::array<double, 2> PerturbedTriangle::ratioScales(const AffinePlane& a, const AffinePlane& b,
+                                                     double cx, double cy) const {
   const double w = std::fabs(oneOverW_.at(cx, cy));
-  const double value = std::fabs(numerator.at(cx, cy)) / w;
-  return (terms(numerator, cx, cy) + value * terms(oneOverW_, cx, cy)) / w;
+  const double wTerms = terms(oneOverW_, cx, cy);
+  const auto scale = [&](const AffinePlane& numerator) {
+    const double value = std::fabs(numerator.at(cx, cy)) / w;
+    return (terms(numerator, cx, cy) + value * wTerms) / w;
+  };
+  return {scale(a), scale(b)};
 }
 
 WindowBox PerturbedTriangle::sourceBox(double cx, double cy) const {
@@ -127,29 +136,36 @@ Interval PerturbedTriangle::ratio(const AffinePlane& numerator, double cx, doubl
 }
 
 Interval PerturbedTriangle::ratio(const AffinePlane& numerator, const WindowBox& box) const {
-  const Interval w = affineOver(oneOverW_, box);
-  if (w.containsZero()) return Interval::everything();
-  // A ratio of two affine functions is monotonic along every line where its denominator keeps its
-  // sign: over a box its bounds lie at the corners.
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (double x : {box.x.lo, box.x.hi})
-    for (double y : {box.y.lo, box.y.hi}) {
-      const double v = numerator.at(x, y) / oneOverW_.at(x, y);
-      lo = std::min(lo, v);
-      hi = std::max(hi, v);
-    }
-  const double wMin = std::min(std::fabs(w.lo), std::fabs(w.hi));
-  const double rounding = (slack(numerator, box) + std::max(std::fabs(lo), std::fabs(hi)) *
-                                                       slack(oneOverW_, box)) / wMin;
-  return widen({lo, hi}, kDoubleSlack, rounding);
+  return ratios(numerator, numerator, box)[0];
 }
 
-std::array<Interval, 2> PerturbedTriangle::ratioGradient(const AffinePlane& n,
-                                                         const WindowBox& box) const {
+std::array<Interval, 2> PerturbedTriangle::ratios(const AffinePlane& a, const AffinePlane& b,
+                                                  const WindowBox& box) const {
+  const Interval w = affineOver(oneOverW_, box);
+  if (w.containsZero()) return {Interval::everything(), Interval::everything()};
+  // A ratio of two affine functions is monotonic along every line where its denominator keeps its
+  // sign: over a box its bounds lie at the corners.
+  const double inf = std::numeric_limits<double>::infinity();
+  std::array<double, 2> lo{inf, inf}, hi{-inf, -inf};
+  for (double x : {box.x.lo, box.x.hi})
+    for (double y : {box.y.lo, box.y.hi}) {
+      const double d = oneOverW_.at(x, y);
+      const double va = a.at(x, y) / d, vb = b.at(x, y) / d;
+      lo = {std::min(lo[0], va), std::min(lo[1], vb)};
+      hi = {std::max(hi[0], va), std::max(hi[1], vb)};
+    }
+  const double wMin = std::min(std::fabs(w.lo), std::fabs(w.hi));
+  const double wSlack = slack(oneOverW_, box);
+  const auto bound = [&](const AffinePlane& n, double l, double h) {
+    const double rounding = (slack(n, box) + std::max(std::fabs(l), std::fabs(h)) * wSlack) / wMin;
+    return widen({l, h}, kDoubleSlack, rounding);
+  };
+  return {bound(a, lo[0], hi[0]), bound(b, lo[1], hi[1])};
+}
+
+std::array<Interval, 2> PerturbedTriangle::ratioGradient(const AffinePlane& n, const WindowBox& box,
+                                                         Interval w2) const {
   const AffinePlane& w = oneOverW_;
-  const Interval wRange = affineOver(w, box);
-  if (wRange.containsZero()) return {Interval::everything(), Interval::everything()};
-  const Interval w2 = square(wRange);
   // d/dx (n / w) = ((nx w0 - n0 wx) + (nx wy - ny wx) y) / w^2, and alike for y.
   const double cross = n.ax * w.ay - n.ay * w.ax;
   const Interval numX = Interval::point(n.ax * w.a0 - n.a0 * w.ax) + box.y * cross;
@@ -164,18 +180,29 @@ std::array<Interval, 2> PerturbedTriangle::ratioGradient(const AffinePlane& n,
 
 Interval PerturbedTriangle::ratioStep(const AffinePlane& numerator, double cx, double cy,
                                       int axis) const {
+  return ratioSteps(numerator, numerator, cx, cy, axis)[0];
+}
+
+std::array<Interval, 2> PerturbedTriangle::ratioSteps(const AffinePlane& a, const AffinePlane& b,
+                                                      double cx, double cy, int axis) const {
   const WindowBox from = sourceBox(cx, cy);
   // q in `from`, the step's far end at q + e_axis + eps: the box around both ends.
   WindowBox around = from;
   (axis == 0 ? around.x.hi : around.y.hi) += 1;
-  around = grown(around, stepRadius_[static_cast<size_t>(axis)]);
-  const std::array<Interval, 2> gradient = ratioGradient(numerator, around);
-  if (!gradient[0].finite() || !gradient[1].finite()) return Interval::everything();
-  // n/w(q + e) - n/w(q) by the mean-value theorem along the step; plus n/w(q + e + eps) -
-  // n/w(q + e), within the gradient's magnitude times eps.
-  const double moved = (gradient[0].magnitude() + gradient[1].magnitude()) *
-                       stepRadius_[static_cast<size_t>(axis)];
-  return widen(gradient[static_cast<size_t>(axis)], 0, moved);
+  const double eps = stepRadius_[static_cast<size_t>(axis)];
+  around = grown(around, eps);
+  const Interval wRange = affineOver(oneOverW_, around);
+  if (wRange.containsZero()) return {Interval::everything(), Interval::everything()};
+  const Interval w2 = square(wRange);
+  const auto step = [&](const AffinePlane& numerator) {
+    const std::array<Interval, 2> gradient = ratioGradient(numerator, around, w2);
+    if (!gradient[0].finite() || !gradient[1].finite()) return Interval::everything();
+    // n/w(q + e) - n/w(q) by the mean-value theorem along the step; plus n/w(q + e + eps) -
+    // n/w(q + e), within the gradient's magnitude times eps.
+    const double moved = (gradient[0].magnitude() + gradient[1].magnitude()) * eps;
+    return widen(gradient[static_cast<size_t>(axis)], 0, moved);
+  };
+  return {step(a), step(b)};
 }
 
 }  // namespace vt::reference

@@ -77,6 +77,11 @@ class PerturbedTriangle {
   Interval depth(const WindowBox& source) const;
   Interval ratio(const AffinePlane& numerator, const WindowBox& source) const;
   Interval ratioStep(const AffinePlane& numerator, double cx, double cy, int axis) const;
+  // Two attributes at once (s and t), sharing 1/w's evaluations: each the same as alone.
+  std::array<Interval, 2> ratios(const AffinePlane& a, const AffinePlane& b,
+                                 const WindowBox& source) const;
+  std::array<Interval, 2> ratioSteps(const AffinePlane& a, const AffinePlane& b, double cx,
+                                     double cy, int axis) const;
 
   // The plane through the corners' s/w (or t/w).
   AffinePlane attribute(const std::array<float, 3>& values) const;
@@ -87,11 +92,14 @@ class PerturbedTriangle {
   // float evaluation errs relative to this, not to the value, which cancellation makes small
   // (near a horizon, 1/w is a small difference of large terms).
   double ratioScale(const AffinePlane& numerator, double cx, double cy) const;
+  std::array<double, 2> ratioScales(const AffinePlane& a, const AffinePlane& b, double cx,
+                                    double cy) const;
 
  private:
   Interval affineOver(const AffinePlane& plane, const WindowBox& box) const;
-  // The gradient of numerator / (1/w) over a box, per axis.
-  std::array<Interval, 2> ratioGradient(const AffinePlane& numerator, const WindowBox& box) const;
+  // The gradient of numerator / (1/w) over a box, per axis, given 1/w's square over it.
+  std::array<Interval, 2> ratioGradient(const AffinePlane& numerator, const WindowBox& box,
+                                        Interval w2) const;
 
   double terms(const AffinePlane& plane, double cx, double cy) const;
 

@@ -102,7 +102,9 @@ struct FrameJob {
   SetShading shading;
   shader::VtParameters parameters;
   glm::uvec4 noNeed;
-  bool lanes;  // shade eight pixels at a time (lane_shading.h): only without result sets
+  // Shade eight pixels at a time (lane_shading.h); not where a pixel's set is the value shaded with
+  // denormals the other way (addDenormalSet shades it alone).
+  bool lanes;
   Frame& frame;
 };
 
@@ -188,12 +190,16 @@ class TileShader {
       const int px = qx0 + 2 * half + (k & 1), py = qy + (k >> 1);
       const PixelInputs pixel{vec2(in.u[lane], in.v[lane]), vec2(in.dudx[lane], in.dvdx[lane]),
                               vec2(in.dudy[lane], in.dvdy[lane])};
+      const PixelHit& hit = hitAt(px, py);
+      const glm::u8vec4 color(out.color[lane][0], out.color[lane][1], out.color[lane][2],
+                              out.color[lane][3]);
       writePixel(
-          px, py, hitAt(px, py), pixel,
-          glm::u8vec4(out.color[lane][0], out.color[lane][1], out.color[lane][2],
-                      out.color[lane][3]),
+          px, py, hit, pixel, color,
           glm::uvec4(out.need[lane][0], out.need[lane][1], out.need[lane][2], out.need[lane][3]),
           out.lod[lane], out.residentLevel[lane]);
+      if (job_.model)
+        addSet(px, py,
+               OracleFragment{hit.triangle, color, pixel.uv, out.neededLevel[lane], out.lod[lane]});
     }
   }
 
@@ -427,7 +433,8 @@ void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescr
                      setShading(d, settings),
                      shaderParameters(d, cacheSize, settings),
                      needClearValue(settings.need8),
-                     model == nullptr && !settings.scalarShading && lanes::lanesAvailable(),
+                     !(model != nullptr && model->onlyDenormalsFree()) &&
+                         !settings.scalarShading && lanes::lanesAvailable(),
                      frame};
 
   constexpr int kTile = TileShader<Backend, Source>::kTile;

@@ -132,7 +132,8 @@ struct Snapped {
       if (k.x == x && k.y == y) return k;
     Steps& slot = kept[nextSlot[static_cast<size_t>(axis)]];
     nextSlot[static_cast<size_t>(axis)] ^= 1;
-    slot = {x, y, perturbed.ratioStep(s, x, y, axis), perturbed.ratioStep(t, x, y, axis)};
+    const std::array<Interval, 2> st = perturbed.ratioSteps(s, t, x, y, axis);
+    slot = {x, y, st[0], st[1]};
     return slot;
   }
 };
@@ -366,10 +367,10 @@ class Builder {
         const double cx = px + 0.5, cy = py + 0.5, lx = qx + 0.5, by = qy + 0.5;
         // The model's float error is relative to the size of the terms the evaluation sums
         // (perturbed_triangle.h), at least the value's.
-        const double sScale = perturbed.ratioScale(s, cx, cy),
-                     tScale = perturbed.ratioScale(tt, cx, cy);
-        const WindowBox& source = snapped->sourceAt(cx, cy);
-        const Interval sHere = perturbed.ratio(s, source), tHere = perturbed.ratio(tt, source);
+        const std::array<double, 2> scales = perturbed.ratioScales(s, tt, cx, cy);
+        const double sScale = scales[0], tScale = scales[1];
+        const std::array<Interval, 2> here = perturbed.ratios(s, tt, snapped->sourceAt(cx, cy));
+        const Interval sHere = here[0], tHere = here[1];
         f.s = widen(sHere, 0, relative * std::max(sScale, sHere.magnitude()) + kFloatUlp);
         f.t = widen(tHere, 0, relative * std::max(tScale, tHere.magnitude()) + kFloatUlp);
         // Fine derivatives: from the left pixel of the quad row, from the lower of its column.
