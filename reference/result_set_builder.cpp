@@ -622,6 +622,13 @@ class Builder {
       out.at[out.count++] = v.hi;
       return true;
     };
+    if (model_.decodingPinned || !shading_.blockCompressed) {
+      // The common box: inside one cell between texel centres on both axes (a box narrower than a
+      // texel mostly is), where the stops are its ends alone.
+      const double cx0 = std::floor(x.lo - 0.5), cy0 = std::floor(y.lo - 0.5);
+      if (cx0 == std::floor(x.hi - 0.5) && cy0 == std::floor(y.hi - 0.5))
+        return bilinearInCell(x, y, cx0, cy0);
+    }
     Stops xs, ys;
     // Each texel as the least and greatest value it may have: one value unless the block
     // decoding is free. Channels as doubles (exact): the least values of the four channels, then
@@ -712,6 +719,29 @@ class Builder {
     return colour();
   }
 
+  // bilinearRange for a box inside the cell whose lower-left texel is (cx0, cy0), texels of one
+  // value: the same operations as the general case on its four texels, at the box's corners.
+  Colour bilinearInCell(Interval x, Interval y, double cx0, double cy0) {
+    const glm::ivec2 origin(static_cast<int>(cx0), static_cast<int>(cy0));
+    const glm::dvec4 c00(source_.texel(origin)), c10(source_.texel(origin + glm::ivec2(1, 0)));
+    const glm::dvec4 c01(source_.texel(origin + glm::ivec2(0, 1)));
+    const glm::dvec4 c11(source_.texel(origin + glm::ivec2(1, 1)));
+    const double fx[2] = {(x.lo - 0.5) - cx0, (x.hi - 0.5) - cx0};
+    const double fy[2] = {(y.lo - 0.5) - cy0, (y.hi - 0.5) - cy0};
+    glm::dvec4 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+    for (double wx : fx) {
+      const glm::dvec4 row0 = c00 + (c10 - c00) * wx, row1 = c01 + (c11 - c01) * wx;
+      for (double wy : fy) {
+        const glm::dvec4 v = row0 + (row1 - row0) * wy;
+        for (int k = 0; k < 4; ++k) {
+          lo[k] = std::min(lo[k], v[k]);
+          hi[k] = std::max(hi[k], v[k]);
+        }
+      }
+    }
+    return {Interval{lo[0], hi[0]}, {lo[1], hi[1]}, {lo[2], hi[2]}, {lo[3], hi[3]}};
+  }
+
   // Float colour bounds (units of 1/255) to 8-bit bounds under the model's conversion.
   void store(const Colour& c, glm::u8vec4& lo, glm::u8vec4& hi) const {
     // The float colour (value x 255 in [0, 255]) carries the rounding of its last few float
@@ -746,14 +776,22 @@ class Builder {
   std::array<BlockSlot, kBlockSlots> blocks_;
 };
 
+// A candidate that may cover the pixel, with its depth there.
+struct PixelCandidate {
+  int32_t index;
+  Snapped* snapped;  // when the model moves vertices
+  PieceCoverage piece;
+  Interval z;
+  int cover;  // of the mesh triangle: the piece's, or 2 where its fan surely covers
+};
+
 // A fan piece whose centre is surely inside the mesh triangle's edges and may lie beyond edges it
 // shares with neighbours surely covers the mesh triangle when each such neighbour is a candidate
 // of the same kind: walking across the open edges from piece to piece ends in the piece that holds
 // the centre (the fan turns one way around its first vertex), whatever the vertices' moves.
-template <typename Candidate>
 void surelyCoveredByTheirFans(const std::vector<SetupTriangle>& triangles,
-                              std::vector<Candidate>& list) {
-  const auto fanOf = [&](const Candidate& c) -> const SetupTriangle& {
+                              std::vector<PixelCandidate>& list) {
+  const auto fanOf = [&](const PixelCandidate& c) -> const SetupTriangle& {
     return triangles[static_cast<size_t>(c.index)];
   };
   // Whether the fan of set-up triangle `index` has a triangle at fanIndex `position`, or the fan
@@ -770,14 +808,15 @@ void surelyCoveredByTheirFans(const std::vector<SetupTriangle>& triangles,
     }
     return position > last;
   };
+  const auto memberOf = [](const PieceCoverage& p) {
+    return p.cover == 2 || (p.boundarySure && p.openFanEdges != 0);
+  };
+  if (std::none_of(list.begin(), list.end(), [&](const PixelCandidate& c) {
+        return c.piece.cover == 1 && memberOf(c.piece);
+      }))
+    return;
   std::vector<char> member(list.size());
-  bool any = false;
-  for (size_t i = 0; i < list.size(); ++i) {
-    const PieceCoverage& p = list[i].piece;
-    member[i] = p.cover == 2 || (p.boundarySure && p.openFanEdges != 0);
-    any = any || (member[i] && p.cover == 1);
-  }
-  if (!any) return;
+  for (size_t i = 0; i < list.size(); ++i) member[i] = memberOf(list[i].piece);
   // Drop members with an open edge whose neighbour is no member, until none is left to drop.
   for (bool dropped = true; dropped;) {
     dropped = false;
@@ -816,7 +855,8 @@ struct ResultSetBuilder::Impl {
   Builder builder;
   const std::vector<SetupTriangle>& triangles;
   DepthFormat depthFormat;
-  std::vector<BlockClass> classes;  // of the current pixel's candidates
+  std::vector<BlockClass> classes;     // of the current pixel's candidates
+  std::vector<PixelCandidate> list;    // those that may cover it
 };
 
 ResultSetBuilder::ResultSetBuilder(const PrecisionModel& model, const SetShading& shading,
@@ -831,13 +871,6 @@ void ResultSetBuilder::append(const std::vector<int32_t>& candidates, int px, in
   Builder& builder = impl_->builder;
   const std::vector<SetupTriangle>& triangles = impl_->triangles;
   const DepthFormat depthFormat = impl_->depthFormat;
-  struct Candidate {
-    int32_t index;
-    Snapped* snapped;  // when the model moves vertices
-    PieceCoverage piece;
-    Interval z;
-    int cover;  // of the mesh triangle: the piece's, or 2 where its fan surely covers
-  };
   // The candidates' classes over the pixel's block; those that surely cover no centre of it
   // drop out at once.
   std::vector<BlockClass>& classes = impl_->classes;
@@ -850,8 +883,8 @@ void ResultSetBuilder::append(const std::vector<int32_t>& candidates, int px, in
     classes.push_back(c);
     if (c.cover == 2 && c.z.hi < 1.0) front = std::min(front, c.z.hi);
   }
-  std::vector<Candidate> list;
-  list.reserve(classes.size());
+  std::vector<PixelCandidate>& list = impl_->list;
+  list.clear();
   for (const BlockClass& c : classes) {
     const int32_t index = c.index;
     const SetupTriangle& t = triangles[static_cast<size_t>(index)];
@@ -869,7 +902,7 @@ void ResultSetBuilder::append(const std::vector<int32_t>& candidates, int px, in
     list.push_back({index, s, piece, z, piece.cover});
   }
   surelyCoveredByTheirFans(triangles, list);
-  const auto surelyBeats = [](const Candidate& d, const Candidate& c) {
+  const auto surelyBeats = [](const PixelCandidate& d, const PixelCandidate& c) {
     if (d.cover != 2 || !(d.z.hi < 1.0)) return false;
     // Points: the pinned depth test, where the earlier drawn triangle wins a tie.
     if (d.z.lo == d.z.hi && c.z.lo == c.z.hi)
@@ -877,14 +910,14 @@ void ResultSetBuilder::append(const std::vector<int32_t>& candidates, int px, in
     return d.z.hi < c.z.lo;
   };
   bool mayBeEmpty = true;
-  const Candidate* own = nullptr;
-  for (const Candidate& c : list) {
+  const PixelCandidate* own = nullptr;
+  for (const PixelCandidate& c : list) {
     if (c.cover == 2 && c.z.hi < 1.0) mayBeEmpty = false;
     if (c.index == oracle.index) own = &c;
   }
-  for (const Candidate& c : list) {
+  for (const PixelCandidate& c : list) {
     bool possible = true;
-    for (const Candidate& d : list)
+    for (const PixelCandidate& d : list)
       if (&d != &c && surelyBeats(d, c)) possible = false;
     if (!possible && c.index != oracle.index) continue;
     const SetupTriangle& t = triangles[static_cast<size_t>(c.index)];
