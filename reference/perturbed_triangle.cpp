@@ -164,7 +164,7 @@ std::array<Interval, 2> PerturbedTriangle::ratios(const AffinePlane& a, const Af
 }
 
 std::array<Interval, 2> PerturbedTriangle::ratioGradient(const AffinePlane& n, const WindowBox& box,
-                                                         Interval w2) const {
+                                                         Interval inverseW2) const {
   const AffinePlane& w = oneOverW_;
   // d/dx (n / w) = ((nx w0 - n0 wx) + (nx wy - ny wx) y) / w^2, and alike for y.
   const double cross = n.ax * w.ay - n.ay * w.ax;
@@ -174,8 +174,8 @@ std::array<Interval, 2> PerturbedTriangle::ratioGradient(const AffinePlane& n, c
                         (std::fabs(n.ax * w.ay) + std::fabs(n.ay * w.ax)) * box.y.magnitude();
   const double termsY = std::fabs(n.ay * w.a0) + std::fabs(n.a0 * w.ay) +
                         (std::fabs(n.ax * w.ay) + std::fabs(n.ay * w.ax)) * box.x.magnitude();
-  return {widen(widen(numX, 0, kDoubleSlack * termsX) / w2, kDoubleSlack),
-          widen(widen(numY, 0, kDoubleSlack * termsY) / w2, kDoubleSlack)};
+  return {widen(widen(numX, 0, kDoubleSlack * termsX) * inverseW2, kDoubleSlack),
+          widen(widen(numY, 0, kDoubleSlack * termsY) * inverseW2, kDoubleSlack)};
 }
 
 Interval PerturbedTriangle::ratioStep(const AffinePlane& numerator, double cx, double cy,
@@ -194,8 +194,11 @@ std::array<Interval, 2> PerturbedTriangle::ratioSteps(const AffinePlane& a, cons
   const Interval wRange = affineOver(oneOverW_, around);
   if (wRange.containsZero()) return {Interval::everything(), Interval::everything()};
   const Interval w2 = square(wRange);
+  if (w2.containsZero()) return {Interval::everything(), Interval::everything()};
+  // Dividing by w2 is multiplying by this (interval.h), once for the four quotients.
+  const Interval inverseW2{1.0 / w2.hi, 1.0 / w2.lo};
   const auto step = [&](const AffinePlane& numerator) {
-    const std::array<Interval, 2> gradient = ratioGradient(numerator, around, w2);
+    const std::array<Interval, 2> gradient = ratioGradient(numerator, around, inverseW2);
     if (!gradient[0].finite() || !gradient[1].finite()) return Interval::everything();
     // n/w(q + e) - n/w(q) by the mean-value theorem along the step; plus n/w(q + e + eps) -
     // n/w(q + e), within the gradient's magnitude times eps.

@@ -97,9 +97,10 @@ class PerturbedTriangle {
 
  private:
   Interval affineOver(const AffinePlane& plane, const WindowBox& box) const;
-  // The gradient of numerator / (1/w) over a box, per axis, given 1/w's square over it.
+  // The gradient of numerator / (1/w) over a box, per axis, given the reciprocal of 1/w's square
+  // over it.
   std::array<Interval, 2> ratioGradient(const AffinePlane& numerator, const WindowBox& box,
-                                        Interval w2) const;
+                                        Interval inverseW2) const;
 
   double terms(const AffinePlane& plane, double cx, double cy) const;
 

@@ -723,9 +723,22 @@ class Builder {
   // value: the same operations as the general case on its four texels, at the box's corners.
   Colour bilinearInCell(Interval x, Interval y, double cx0, double cy0) {
     const glm::ivec2 origin(static_cast<int>(cx0), static_cast<int>(cy0));
-    const glm::dvec4 c00(source_.texel(origin)), c10(source_.texel(origin + glm::ivec2(1, 0)));
-    const glm::dvec4 c01(source_.texel(origin + glm::ivec2(0, 1)));
-    const glm::dvec4 c11(source_.texel(origin + glm::ivec2(1, 1)));
+    // The two last cells read are kept: a pixel's box and its oracle's point mostly share the
+    // cells of the two levels they blend.
+    Cell* cell = &cells_[0];
+    if (cells_[1].origin == origin) {
+      cell = &cells_[1];
+    } else if (cells_[0].origin != origin) {
+      cell = &cells_[nextCell_];
+      nextCell_ ^= 1;
+      cell->origin = origin;
+      cell->texels = {glm::dvec4(source_.texel(origin)),
+                      glm::dvec4(source_.texel(origin + glm::ivec2(1, 0))),
+                      glm::dvec4(source_.texel(origin + glm::ivec2(0, 1))),
+                      glm::dvec4(source_.texel(origin + glm::ivec2(1, 1)))};
+    }
+    const glm::dvec4 &c00 = cell->texels[0], &c10 = cell->texels[1], &c01 = cell->texels[2],
+                     &c11 = cell->texels[3];
     const double fx[2] = {(x.lo - 0.5) - cx0, (x.hi - 0.5) - cx0};
     const double fy[2] = {(y.lo - 0.5) - cy0, (y.hi - 0.5) - cy0};
     glm::dvec4 lo(std::numeric_limits<double>::infinity()), hi(-lo);
@@ -768,6 +781,13 @@ class Builder {
   TexelSource& source_;
   double finestSide_ = 1;
   std::unordered_map<int32_t, Snapped> snapped_;  // by set-up index (elements never move)
+  // The four texels of the cells bilinearInCell read last (the cache does not change meanwhile).
+  struct Cell {
+    glm::ivec2 origin{std::numeric_limits<int>::min()};
+    std::array<glm::dvec4, 4> texels;
+  };
+  std::array<Cell, 2> cells_;
+  size_t nextCell_ = 0;
   struct BlockSlot {
     int x = -1, y = -1;
     std::vector<BlockClass> classes;
