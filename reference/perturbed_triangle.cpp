@@ -5,22 +5,10 @@
 #include <limits>
 
 namespace vt::reference {
-namespace {
 
-// The rounding of a double evaluation, absolute, from the magnitudes of its terms (perturbed_
-// triangle.h: far below every radius the bounds carry).
-constexpr double kDoubleSlack = 0x1p-40;
-
-double slack(const AffinePlane& p, const WindowBox& box) {
-  return kDoubleSlack *
-         (std::fabs(p.a0) + std::fabs(p.ax) * box.x.magnitude() + std::fabs(p.ay) * box.y.magnitude());
-}
-
-WindowBox grown(const WindowBox& box, double by) {
-  return {{box.x.lo - by, box.x.hi + by}, {box.y.lo - by, box.y.hi + by}};
-}
-
-}  // namespace
+using perturbed_detail::grown;
+using perturbed_detail::kDoubleSlack;
+using perturbed_detail::slack;
 
 PerturbedTriangle::PerturbedTriangle(const SetupTriangle& t, double radius) : radius_(radius) {
   std::array<double, 3> x, y;
@@ -84,15 +72,6 @@ std::array<double, 2> PerturbedTriangle::ratioScales(const AffinePlane& a, const
   return {scale(a), scale(b)};
 }
 
-WindowBox PerturbedTriangle::sourceBox(double cx, double cy) const {
-  double sum = 0;
-  for (const AffinePlane& l : lambda_) sum += std::fabs(l.at(cx, cy));
-  const WindowBox centre{Interval::point(cx), Interval::point(cy)};
-  double rounding = 0;
-  for (const AffinePlane& l : lambda_) rounding += slack(l, centre);
-  return grown(centre, radius_ * (sum + rounding) * shrink_);
-}
-
 WindowBox PerturbedTriangle::sourceBoxOver(double x0, double y0, double x1, double y1) const {
   double inner = 0, roundings = 0;
   for (double cx : {x0, x1})
@@ -109,12 +88,6 @@ WindowBox PerturbedTriangle::sourceBoxOver(double x0, double y0, double x1, doub
   return {{x0 - by, x1 + by}, {y0 - by, y1 + by}};
 }
 
-Interval PerturbedTriangle::affineOver(const AffinePlane& p, const WindowBox& box) const {
-  // Each variable once: interval evaluation of an affine function is exact.
-  const Interval v = Interval::point(p.a0) + box.x * p.ax + box.y * p.ay;
-  return widen(v, 0, slack(p, box));
-}
-
 std::array<Interval, 3> PerturbedTriangle::barycentrics(double cx, double cy) const {
   return barycentrics(sourceBox(cx, cy));
 }
@@ -123,13 +96,7 @@ std::array<Interval, 3> PerturbedTriangle::barycentrics(const WindowBox& box) co
   return {affineOver(lambda_[0], box), affineOver(lambda_[1], box), affineOver(lambda_[2], box)};
 }
 
-Interval PerturbedTriangle::barycentric(size_t i, const WindowBox& box) const {
-  return affineOver(lambda_[i], box);
-}
-
 Interval PerturbedTriangle::depth(double cx, double cy) const { return depth(sourceBox(cx, cy)); }
-
-Interval PerturbedTriangle::depth(const WindowBox& box) const { return affineOver(z_, box); }
 
 Interval PerturbedTriangle::ratio(const AffinePlane& numerator, double cx, double cy) const {
   return ratio(numerator, sourceBox(cx, cy));

@@ -27,6 +27,7 @@
 // the terms it sums, which covers their rounding (a few units of 2^-53 each) many times over.
 
 #include <array>
+#include <cmath>
 
 #include "reference/interval.h"
 #include "reference/triangle_setup.h"
@@ -111,5 +112,44 @@ class PerturbedTriangle {
   std::array<double, 2> stepRadius_{};  // rho1 per axis
   bool bounded_ = false;
 };
+
+// The small bounds every pixel asks for, here so that callers inline them.
+namespace perturbed_detail {
+
+// The rounding of a double evaluation, absolute, from the magnitudes of its terms (far below every
+// radius the bounds carry).
+inline constexpr double kDoubleSlack = 0x1p-40;
+
+inline double slack(const AffinePlane& p, const WindowBox& box) {
+  return kDoubleSlack * (std::fabs(p.a0) + std::fabs(p.ax) * box.x.magnitude() +
+                         std::fabs(p.ay) * box.y.magnitude());
+}
+
+inline WindowBox grown(const WindowBox& box, double by) {
+  return {{box.x.lo - by, box.x.hi + by}, {box.y.lo - by, box.y.hi + by}};
+}
+
+}  // namespace perturbed_detail
+
+inline WindowBox PerturbedTriangle::sourceBox(double cx, double cy) const {
+  double sum = 0;
+  for (const AffinePlane& l : lambda_) sum += std::fabs(l.at(cx, cy));
+  const WindowBox centre{Interval::point(cx), Interval::point(cy)};
+  double rounding = 0;
+  for (const AffinePlane& l : lambda_) rounding += perturbed_detail::slack(l, centre);
+  return perturbed_detail::grown(centre, radius_ * (sum + rounding) * shrink_);
+}
+
+inline Interval PerturbedTriangle::affineOver(const AffinePlane& p, const WindowBox& box) const {
+  // Each variable once: interval evaluation of an affine function is exact.
+  const Interval v = Interval::point(p.a0) + box.x * p.ax + box.y * p.ay;
+  return widen(v, 0, perturbed_detail::slack(p, box));
+}
+
+inline Interval PerturbedTriangle::barycentric(size_t i, const WindowBox& box) const {
+  return affineOver(lambda_[i], box);
+}
+
+inline Interval PerturbedTriangle::depth(const WindowBox& box) const { return affineOver(z_, box); }
 
 }  // namespace vt::reference
