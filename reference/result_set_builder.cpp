@@ -24,21 +24,21 @@ constexpr double kGlslLog2Ulps = 3;
 // GL_LINEAR with 8-bit weights: texel positions on a grid of 2^-8 texel (DESIGN section 7).
 constexpr int kFixedPointSubTexelBits = 8;
 
-using Colour = std::array<Interval, 4>;  // per channel, in units of 1/255
+// Per channel the least and greatest value, in units of 1/255 (channel by channel the operations
+// of an Interval, four at a time).
+struct Colour {
+  glm::dvec4 lo, hi;
+};
 
 Colour nothing() {
-  const Interval empty{std::numeric_limits<double>::infinity(),
-                       -std::numeric_limits<double>::infinity()};
-  return {empty, empty, empty, empty};
+  return {glm::dvec4(std::numeric_limits<double>::infinity()),
+          glm::dvec4(-std::numeric_limits<double>::infinity())};
 }
+Colour everyValue() { return {glm::dvec4(0), glm::dvec4(255)}; }
 Colour hull(const Colour& a, const Colour& b) {
-  return {hull(a[0], b[0]), hull(a[1], b[1]), hull(a[2], b[2]), hull(a[3], b[3])};
+  return {glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)};
 }
-Colour widen(const Colour& a, double absolute) {
-  Colour r;
-  for (size_t c = 0; c < 4; ++c) r[c] = {a[c].lo - absolute, a[c].hi + absolute};
-  return r;
-}
+Colour widen(const Colour& a, double absolute) { return {a.lo - absolute, a.hi + absolute}; }
 
 // The corners of a triangle as boxes: each within `radius` pixels (the model's snapping) plus the
 // float error of its window transform (x / w * W / 2 + W / 2: a few roundings of values up to the
@@ -519,19 +519,15 @@ class Builder {
       }
       const Colour c1 = atCoarse = sampleLevel(s, t, coarse + 1);
       const Interval w = clamp(Interval{lod.lo - coarse, lod.hi - coarse}, 0, 1);
-      Colour blend;
-      for (size_t k = 0; k < 4; ++k) {
-        // c0 + (c1 - c0) w is multilinear in (c0, c1, w): its bounds lie at the corners.
-        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-        for (double a : {c0[k].lo, c0[k].hi})
-          for (double b : {c1[k].lo, c1[k].hi})
-            for (double x : {w.lo, w.hi}) {
-              const double v = a + (b - a) * x;
-              lo = std::min(lo, v);
-              hi = std::max(hi, v);
-            }
-        blend[k] = {lo, hi};
-      }
+      // c0 + (c1 - c0) w is multilinear in (c0, c1, w): its bounds lie at the corners.
+      Colour blend = nothing();
+      for (const glm::dvec4& a : {c0.lo, c0.hi})
+        for (const glm::dvec4& b : {c1.lo, c1.hi})
+          for (double x : {w.lo, w.hi}) {
+            const glm::dvec4 v = a + (b - a) * x;
+            blend.lo = glm::min(blend.lo, v);
+            blend.hi = glm::max(blend.hi, v);
+          }
       c = hull(c, blend);
     }
     return widen(c, tiny);
@@ -544,7 +540,7 @@ class Builder {
     const double scale = powerOfTwo(m);
     const int x0 = floorToInt(s.lo * scale, last), x1 = floorToInt(s.hi * scale, last);
     const int y0 = floorToInt(t.lo * scale, last), y1 = floorToInt(t.hi * scale, last);
-    if (x1 - x0 > 3 || y1 - y0 > 3) return {Interval{0, 255}, {0, 255}, {0, 255}, {0, 255}};
+    if (x1 - x0 > 3 || y1 - y0 > 3) return everyValue();
     Colour c = nothing();
     for (int py = y0; py <= y1; ++py)
       for (int px = x0; px <= x1; ++px) {
@@ -606,7 +602,7 @@ class Builder {
     // stops than fit, so it is wide whatever the other axis.
     constexpr double kSurelyWide = kMaxPoints + 2;
     if (x.width() >= kSurelyWide || y.width() >= kSurelyWide)
-      return {Interval{0, 255}, {0, 255}, {0, 255}, {0, 255}};
+      return everyValue();
     struct Stops {
       std::array<double, kMaxPoints + 2> at;
       size_t count = 0;
@@ -657,13 +653,13 @@ class Builder {
       for (size_t k = 4; k < 8; ++k) bounds[k] = std::max(bounds[k], v[k]);
     };
     const auto colour = [&bounds] {
-      return Colour{Interval{bounds[0], bounds[4]}, Interval{bounds[1], bounds[5]},
-                    Interval{bounds[2], bounds[6]}, Interval{bounds[3], bounds[7]}};
+      return Colour{{bounds[0], bounds[1], bounds[2], bounds[3]},
+                    {bounds[4], bounds[5], bounds[6], bounds[7]}};
     };
     if (!stops(x, xs) || !stops(y, ys) || xs.count * ys.count > kMaxPoints) {
       // A wide box: every texel it reaches bounds the filter (a convex combination of them);
       // beyond 16 x 16 texels, the whole range (cheaper than reading them, and still a bound).
-      if (y.width() > 16 || x.width() > 16) return {Interval{0, 255}, {0, 255}, {0, 255}, {0, 255}};
+      if (y.width() > 16 || x.width() > 16) return everyValue();
       for (int ty = static_cast<int>(std::floor(y.lo - 0.5));
            ty <= static_cast<int>(std::floor(y.hi - 0.5)) + 1; ++ty)
         for (int tx = static_cast<int>(std::floor(x.lo - 0.5));
@@ -682,7 +678,7 @@ class Builder {
     const int height = static_cast<int>(std::floor(y.hi - 0.5)) + 2 - origin.y;
     constexpr int kMaxTexels = 128;
     if (width * height > kMaxTexels)  // never (see above); a bound all the same
-      return {Interval{0, 255}, {0, 255}, {0, 255}, {0, 255}};
+      return everyValue();
     std::array<Range, kMaxTexels> block;
     for (int ty = 0; ty < height; ++ty)
       for (int tx = 0; tx < width; ++tx)
@@ -741,18 +737,16 @@ class Builder {
                      &c11 = cell->texels[3];
     const double fx[2] = {(x.lo - 0.5) - cx0, (x.hi - 0.5) - cx0};
     const double fy[2] = {(y.lo - 0.5) - cy0, (y.hi - 0.5) - cy0};
-    glm::dvec4 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+    Colour c = nothing();
     for (double wx : fx) {
       const glm::dvec4 row0 = c00 + (c10 - c00) * wx, row1 = c01 + (c11 - c01) * wx;
       for (double wy : fy) {
         const glm::dvec4 v = row0 + (row1 - row0) * wy;
-        for (int k = 0; k < 4; ++k) {
-          lo[k] = std::min(lo[k], v[k]);
-          hi[k] = std::max(hi[k], v[k]);
-        }
+        c.lo = glm::min(c.lo, v);
+        c.hi = glm::max(c.hi, v);
       }
     }
-    return {Interval{lo[0], hi[0]}, {lo[1], hi[1]}, {lo[2], hi[2]}, {lo[3], hi[3]}};
+    return c;
   }
 
   // Float colour bounds (units of 1/255) to 8-bit bounds under the model's conversion.
@@ -761,7 +755,7 @@ class Builder {
     // operations, 16 units of 2^-23 of 255 as valueError counts them: below 2^-11.
     constexpr double kSlack = 16 * kFloatUlp * 255;
     for (int k = 0; k < 4; ++k) {
-      const Interval v = clamp(c[static_cast<size_t>(k)], 0, 255);
+      const Interval v = clamp(Interval{c.lo[k], c.hi[k]}, 0, 255);
       double l, h;
       if (model_.colorRoundsToNearest) {
         l = std::ceil(v.lo - 0.5 - kSlack);
