@@ -442,12 +442,22 @@ void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescr
             tilesY = (viewport.height + kTile - 1) / kTile;
   const size_t tiles = static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY);
   std::vector<TileSets> tileSets(model ? tiles : 0);
-  parallelFor(tiles, settings.threads, [&](size_t tile) {
-    TileShader<Backend, Source> shader(job, texture);
-    shader.shadeTile(static_cast<int>(tile % static_cast<size_t>(tilesX)) * kTile,
-                     static_cast<int>(tile / static_cast<size_t>(tilesX)) * kTile,
-                     model ? &tileSets[tile] : nullptr);
-  });
+  if (model) {
+    // A row of tiles per task, so that its set builder keeps what it bounded of each triangle
+    // (ResultSetBuilder) from tile to tile.
+    parallelFor(static_cast<size_t>(tilesY), settings.threads, [&](size_t row) {
+      TileShader<Backend, Source> shader(job, texture);
+      for (int column = 0; column < tilesX; ++column)
+        shader.shadeTile(column * kTile, static_cast<int>(row) * kTile,
+                         &tileSets[row * static_cast<size_t>(tilesX) + static_cast<size_t>(column)]);
+    });
+  } else {
+    parallelFor(tiles, settings.threads, [&](size_t tile) {
+      TileShader<Backend, Source> shader(job, texture);
+      shader.shadeTile(static_cast<int>(tile % static_cast<size_t>(tilesX)) * kTile,
+                       static_cast<int>(tile / static_cast<size_t>(tilesX)) * kTile, nullptr);
+    });
+  }
   if (model)
     gatherSets(tileSets,
                static_cast<size_t>(viewport.width) * static_cast<size_t>(viewport.height),

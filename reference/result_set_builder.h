@@ -67,8 +67,8 @@ struct OracleFragment {
 };
 
 // Builds pixels' result sets, one pixel at a time, for one frame's set-up triangles. What a
-// candidate's moved corners bound (its snapping) is made once per builder: a tile's pixels share
-// it. Not thread-safe; one builder per worker.
+// candidate's moved corners bound (its snapping) is made once per builder, for every pixel of the
+// tiles it builds. Not thread-safe; one builder per worker.
 class ResultSetBuilder {
  public:
   ResultSetBuilder(const PrecisionModel& model, const SetShading& shading,
