@@ -350,9 +350,9 @@ class TileShader {
     sets_->pixels.emplace_back(indexOf(px, py), 1u);
   }
 
-  // The result set's candidates at (px, py), from one Embree packet per 4 x 4 block of the tile:
+  // The result set's candidates of the 4 x 4 block that holds (px, py), from one Embree packet:
   // a quad row of the tile meets four blocks, each block two quad rows, so the row's four are kept.
-  const std::vector<int32_t>& candidatesAt(int px, int py) {
+  const Visibility::BlockCandidates& candidatesAt(int px, int py) {
     constexpr int kBlock = Visibility::kBlock;
     const int bx = px - px % kBlock, by = py - py % kBlock;
     const size_t slot = static_cast<size_t>((bx / kBlock) % (kTile / kBlock));
@@ -360,7 +360,7 @@ class TileShader {
       job_.visibility.blockCandidates(bx, by, blockCandidates_[slot]);
       candidateBlocks_[slot] = {bx, by};
     }
-    return blockCandidates_[slot][static_cast<size_t>((px - bx) + kBlock * (py - by))];
+    return blockCandidates_[slot];
   }
 
   // vtNeedOfFragment (src/shader/virtual_texture.glsl): the LOD and the needbuffer entry alone.

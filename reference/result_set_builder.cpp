@@ -153,7 +153,8 @@ struct PieceCoverage {
 // the interval bounds over it hold those over each centre's, so its decisions are each pixel's.
 struct BlockClass {
   int32_t index = -1;
-  int8_t cover = -1;  // 0: surely covers no centre; 2: surely every centre; -1: pixel by pixel
+  // 0: surely covers no centre; 2: surely every centre; -1: pixel by pixel; -2: not classed yet.
+  int8_t cover = -2;
   Interval z = Interval::everything();  // what depth() bounds at every centre
 };
 
@@ -234,28 +235,31 @@ class Builder {
                 .first->second;
   }
 
-  // Candidate `index`'s class over the block that holds (px, py); its pixels decide alone (cover
-  // -1, any depth) under pinned coverage and for triangles too small for first-order bounds. The
-  // blocks of a quad row of a tile are visited in turns, so one slot per block column is kept.
-  BlockClass blockClass(const SetupTriangle& t, int32_t index, int px, int py, DepthFormat format) {
-    if (model_.coveragePinned()) return {index};
+  // The classes over the block that holds (px, py) of its candidates (`count` of them), by
+  // their position in its list, each made by the first pixel that asks (cover unknown before).
+  // The blocks of a quad row of a tile are visited in turns, so one slot per block column is kept.
+  std::vector<BlockClass>& blockClasses(int px, int py, size_t count) {
     constexpr int kBlock = Visibility::kBlock;
     const int bx = px - px % kBlock, by = py - py % kBlock;
     BlockSlot& slot = blocks_[static_cast<size_t>((bx / kBlock) % kBlockSlots)];
-    if (slot.x != bx || slot.y != by) {
+    if (slot.x != bx || slot.y != by || slot.classes.size() != count) {
       slot.x = bx;
       slot.y = by;
-      slot.classes.clear();
+      slot.classes.assign(count, BlockClass{});
     }
-    for (const BlockClass& c : slot.classes)
-      if (c.index == index) return c;
+    return slot.classes;
+  }
+
+  // Candidate `index`'s class over the block from (bx, by); its pixels decide alone (cover -1, any
+  // depth) under pinned coverage and for triangles too small for first-order bounds.
+  BlockClass blockClass(const SetupTriangle& t, int32_t index, int bx, int by, DepthFormat format) {
+    constexpr int kBlock = Visibility::kBlock;
     BlockClass c;
     c.index = index;
+    c.cover = -1;
+    if (model_.coveragePinned()) return c;
     Snapped* s = snapped(t, index);
-    if (!s->perturbed.bounded()) {
-      slot.classes.push_back(c);
-      return c;
-    }
+    if (!s->perturbed.bounded()) return c;
     const WindowBox box = s->perturbed.sourceBoxOver(bx + 0.5, by + 0.5, bx + kBlock - 0.5,
                                                      by + kBlock - 0.5);
     c.cover = 2;
@@ -274,7 +278,6 @@ class Builder {
       const Interval z = widen(s->perturbed.depth(box), 0, (model_.depthUlps + 1) * kFloatUlp);
       c.z = depthStored(hull(z, own), format);
     }
-    slot.classes.push_back(c);
     return c;
   }
 
@@ -880,7 +883,7 @@ ResultSetBuilder::ResultSetBuilder(const PrecisionModel& model, const SetShading
 
 ResultSetBuilder::~ResultSetBuilder() = default;
 
-void ResultSetBuilder::append(const std::vector<int32_t>& candidates, int px, int py,
+void ResultSetBuilder::append(const Visibility::BlockCandidates& candidates, int px, int py,
                               const OracleFragment& oracle, std::vector<Alternative>& out) {
   Builder& builder = impl_->builder;
   const std::vector<SetupTriangle>& triangles = impl_->triangles;
@@ -890,9 +893,17 @@ void ResultSetBuilder::append(const std::vector<int32_t>& candidates, int px, in
   std::vector<BlockClass>& classes = impl_->classes;
   classes.clear();
   double front = std::numeric_limits<double>::infinity();  // of those surely covering the block
-  for (int32_t index : candidates) {
-    const SetupTriangle& t = triangles[static_cast<size_t>(index)];
-    const BlockClass c = builder.blockClass(t, index, px, py, depthFormat);
+  constexpr int kBlock = Visibility::kBlock;
+  const int bx = px - px % kBlock, by = py - py % kBlock;
+  const uint32_t bit = 1u << ((px - bx) + kBlock * (py - by));
+  std::vector<BlockClass>& known = builder.blockClasses(px, py, candidates.triangles.size());
+  for (size_t i = 0; i < candidates.triangles.size(); ++i) {
+    if (!(candidates.pixels[i] & bit)) continue;
+    const int32_t index = candidates.triangles[i];
+    if (known[i].cover == -2)
+      known[i] = builder.blockClass(triangles[static_cast<size_t>(index)], index, bx, by,
+                                    depthFormat);
+    const BlockClass& c = known[i];
     if (c.cover == 0) continue;
     classes.push_back(c);
     if (c.cover == 2 && c.z.hi < 1.0) front = std::min(front, c.z.hi);

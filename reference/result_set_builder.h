@@ -78,10 +78,10 @@ class ResultSetBuilder {
   ResultSetBuilder(const ResultSetBuilder&) = delete;
   ResultSetBuilder& operator=(const ResultSetBuilder&) = delete;
 
-  // Appends the alternatives of pixel (px, py) to `out`. `candidates` are the set-up triangles
-  // whose boxes reach the pixel (Visibility::candidates).
-  void append(const std::vector<int32_t>& candidates, int px, int py, const OracleFragment& oracle,
-              std::vector<Alternative>& out);
+  // Appends the alternatives of pixel (px, py) to `out`. `candidates` are those of the 4 x 4 block
+  // that holds the pixel (Visibility::blockCandidates): the set-up triangles whose boxes reach it.
+  void append(const Visibility::BlockCandidates& candidates, int px, int py,
+              const OracleFragment& oracle, std::vector<Alternative>& out);
 
  private:
   struct Impl;

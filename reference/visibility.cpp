@@ -28,10 +28,11 @@ struct BlockQuery {
   const Arithmetic* arithmetic;
   std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> hits;
   std::array<uint32_t, Visibility::kBlock * Visibility::kBlock> keys;
-  // Visibility::candidates and blockCandidates: every triangle whose grown box holds a ray's
-  // pixel centre, per ray (one list for a single ray).
+  // Visibility::candidates: every triangle whose grown box holds the ray's pixel centre.
   std::vector<int32_t>* collect = nullptr;
-  bool collectPerPixel = false;  // collect[dx + 4 dy] (blockCandidates), else collect[0]
+  // Visibility::blockCandidates: every triangle whose grown box holds some ray's pixel centre,
+  // with those rays (bit dx + 4 dy).
+  std::vector<std::pair<int32_t, uint16_t>>* collectBlock = nullptr;
   int margin = 0;
 };
 
@@ -113,17 +114,20 @@ void testCandidate(const RTCIntersectFunctionNArguments* args) {
   const int32_t k = static_cast<int32_t>(args->primID);
   const SetupTriangle& t = (*query->triangles)[static_cast<size_t>(k)];
   RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
-  if (query->collect) {
+  if (query->collect || query->collectBlock) {
+    uint32_t pixels = 0;
     for (unsigned lane = 0; lane < args->N; ++lane) {
       if (!args->valid[lane]) continue;
       const int px = static_cast<int>(RTCRayN_org_x(rays, args->N, lane));
       const int py = static_cast<int>(RTCRayN_org_y(rays, args->N, lane));
-      const size_t list = query->collectPerPixel ? static_cast<size_t>(
-                                                       (px - query->x0) +
-                                                       Visibility::kBlock * (py - query->y0))
-                                                 : 0;
-      if (boxHolds(t, query->margin, px, py)) query->collect[list].push_back(k);
+      if (boxHolds(t, query->margin, px, py))
+        pixels |= 1u << ((px - query->x0) + Visibility::kBlock * (py - query->y0));
     }
+    if (pixels == 0) return;
+    if (query->collectBlock)
+      query->collectBlock->emplace_back(k, static_cast<uint16_t>(pixels));
+    else
+      query->collect->push_back(k);
     return;
   }
   for (unsigned lane = 0; lane < args->N; ++lane) {
@@ -294,8 +298,16 @@ void Visibility::candidates(int px, int py, std::vector<int32_t>& out) const {
   std::sort(out.begin(), out.end());
 }
 
+void Visibility::BlockCandidates::of(int dx, int dy, std::vector<int32_t>& out) const {
+  out.clear();
+  const uint32_t bit = 1u << (dx + kBlock * dy);
+  for (size_t i = 0; i < triangles.size(); ++i)
+    if (pixels[i] & bit) out.push_back(triangles[i]);
+}
+
 void Visibility::blockCandidates(int x0, int y0, BlockCandidates& out) const {
-  for (std::vector<int32_t>& list : out) list.clear();
+  out.triangles.clear();
+  out.pixels.clear();
   buildScene();
   BlockQuery query;
   rtcInitIntersectContext(&query.context);
@@ -304,11 +316,21 @@ void Visibility::blockCandidates(int x0, int y0, BlockCandidates& out) const {
   query.y0 = y0;
   query.format = format_;
   query.arithmetic = &arithmetic_;
-  query.collect = out.data();
-  query.collectPerPixel = true;
+  thread_local std::vector<std::pair<int32_t, uint16_t>> reports;
+  reports.clear();
+  query.collectBlock = &reports;
   query.margin = margin_;
   traceBlock(scene_, viewport_, query);
-  for (std::vector<int32_t>& list : out) std::sort(list.begin(), list.end());
+  // Draw order; a triangle Embree reported more than once keeps the union of its pixels.
+  std::sort(reports.begin(), reports.end());
+  for (const auto& [triangle, pixels] : reports) {
+    if (!out.triangles.empty() && out.triangles.back() == triangle) {
+      out.pixels.back() = static_cast<uint16_t>(out.pixels.back() | pixels);
+      continue;
+    }
+    out.triangles.push_back(triangle);
+    out.pixels.push_back(pixels);
+  }
 }
 
 PixelHit Visibility::at(int px, int py) const {

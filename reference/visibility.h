@@ -67,9 +67,15 @@ class Visibility {
   // Every set-up triangle (index) whose box, grown by the margin, holds the centre of (px, py),
   // in draw order. Thread-safe.
   void candidates(int px, int py, std::vector<int32_t>& out) const;
-  // The same for the 4 x 4 pixels from (x0, y0), in one packet: out[dx + 4 dy]; pixels outside
-  // the viewport get none. Thread-safe.
-  using BlockCandidates = std::array<std::vector<int32_t>, kBlock * kBlock>;
+  // The same for the 4 x 4 pixels from (x0, y0), in one packet: every triangle that is some
+  // pixel's candidate, in draw order, once each, with the pixels (bit dx + 4 dy) whose candidate
+  // it is; pixels outside the viewport have none. Thread-safe.
+  struct BlockCandidates {
+    std::vector<int32_t> triangles;
+    std::vector<uint16_t> pixels;  // per triangle
+    // Pixel (dx, dy)'s candidates, in draw order.
+    void of(int dx, int dy, std::vector<int32_t>& out) const;
+  };
   void blockCandidates(int x0, int y0, BlockCandidates& out) const;
 
  private:

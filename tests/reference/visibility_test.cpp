@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "reference/random_triangles.h"
@@ -12,7 +13,8 @@ namespace {
 
 TEST(Visibility, CandidatesAreEveryTriangleWhoseGrownBoxHoldsThePixelInDrawOrder) {
   // The result sets' candidates come from Embree, one ray per pixel or one packet per 4 x 4
-  // block, its reports kept where the triangle's own grown box holds the pixel. Random
+  // block, its reports kept where the triangle's own grown box holds the pixel (a block's list
+  // holds each triangle once, with its pixels). Random
   // triangles, many reaching past the window, on a window that is no multiple of the block: for
   // every margin each pixel's candidates must be those a search of every triangle finds, in draw
   // order, both ways.
@@ -39,7 +41,8 @@ TEST(Visibility, CandidatesAreEveryTriangleWhoseGrownBoxHoldsThePixelInDrawOrder
                   py <= t.maxY + margin)
                 expected.push_back(static_cast<int32_t>(i));
             }
-          ASSERT_EQ(block[static_cast<size_t>(k)], expected)
+          block.of(k % Visibility::kBlock, k / Visibility::kBlock, found);
+          ASSERT_EQ(found, expected)
               << "pixel " << px << ", " << py << ", margin " << margin;
           if (px < viewport.width && py < viewport.height) {
             visibility.candidates(px, py, found);
@@ -47,6 +50,9 @@ TEST(Visibility, CandidatesAreEveryTriangleWhoseGrownBoxHoldsThePixelInDrawOrder
           }
           listed += expected.size();
         }
+        ASSERT_TRUE(std::is_sorted(block.triangles.begin(), block.triangles.end()));
+        ASSERT_EQ(std::adjacent_find(block.triangles.begin(), block.triangles.end()),
+                  block.triangles.end());
       }
   }
   EXPECT_GT(listed, 100000u);
