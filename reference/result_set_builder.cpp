@@ -544,16 +544,20 @@ class Builder {
     const int x0 = floorToInt(s.lo * scale, last), x1 = floorToInt(s.hi * scale, last);
     const int y0 = floorToInt(t.lo * scale, last), y1 = floorToInt(t.hi * scale, last);
     if (x1 - x0 > 3 || y1 - y0 > 3) return everyValue();
+    const double step = 1 / scale;  // exact: a page's side in (s, t)
     Colour c = nothing();
+    bool any = false;
     for (int py = y0; py <= y1; ++py)
       for (int px = x0; px <= x1; ++px) {
-        const Interval ps{std::max(s.lo, px / scale),
-                          std::min(s.hi, px == last ? 1.0 : (px + 1) / scale)};
-        const Interval pt{std::max(t.lo, py / scale),
-                          std::min(t.hi, py == last ? 1.0 : (py + 1) / scale)};
+        const Interval ps{std::max(s.lo, px * step),
+                          std::min(s.hi, px == last ? 1.0 : (px + 1) * step)};
+        const Interval pt{std::max(t.lo, py * step),
+                          std::min(t.hi, py == last ? 1.0 : (py + 1) * step)};
         // A box reaching no texel of this page (s or t outside [0, 1]) adds nothing.
         if (!(ps.lo <= ps.hi) || !(pt.lo <= pt.hi)) continue;
-        c = hull(c, samplePage(ps, pt, glm::ivec2(px, py), m));
+        const Colour page = samplePage(ps, pt, glm::ivec2(px, py), m);
+        c = any ? hull(c, page) : page;  // (finite bounds: the first hull would return them)
+        any = true;
       }
     return c;
   }
