@@ -186,6 +186,13 @@ PlaneRange moved(const PlaneRange& p, int dx, int dy) {
   return {widen(p.value + p.ddx * dx + p.ddy * dy), p.ddx, p.ddy};
 }
 
+// A fine derivative whose two values each differ by `relative` of their size (at least `scale`)
+// plus a float rounding: the difference by the sum of both.
+inline Interval floatStep(Interval v, double scale, double relative) {
+  const double size = 2 * (scale + v.magnitude()) + v.magnitude();
+  return widen(v, 0, (relative + kFloatUlp) * size);
+}
+
 // Everything the shader computes of one candidate at one pixel, as intervals.
 struct FragmentRange {
   Interval s, t;  // after the clamp
@@ -358,12 +365,6 @@ class Builder {
                                  ? Barycentrics{}
                                  : barycentrics(snapped->boxes, px + 0.5, py + 0.5);
       const double relative = model_.attributeUlps * kFloatUlp;
-      // Each of a step's two values differs by `relative` of its size; their difference by the
-      // sum.
-      const auto floatStep = [&](Interval v, double scale) {
-        const double size = 2 * (scale + v.magnitude()) + v.magnitude();
-        return widen(v, 0, (relative + kFloatUlp) * size);
-      };
       if (perturbed.bounded()) {
         const AffinePlane& s = snapped->s;
         const AffinePlane& tt = snapped->t;
@@ -379,10 +380,10 @@ class Builder {
         // Fine derivatives: from the left pixel of the quad row, from the lower of its column.
         const Snapped::Steps& alongX = snapped->stepsFrom(lx, cy, 0);
         const Snapped::Steps& alongY = snapped->stepsFrom(cx, by, 1);
-        dsdx = floatStep(alongX.s, std::max(sScale, sHere.magnitude()));
-        dtdx = floatStep(alongX.t, std::max(tScale, tHere.magnitude()));
-        dsdy = floatStep(alongY.s, std::max(sScale, sHere.magnitude()));
-        dtdy = floatStep(alongY.t, std::max(tScale, tHere.magnitude()));
+        dsdx = floatStep(alongX.s, std::max(sScale, sHere.magnitude()), relative);
+        dtdx = floatStep(alongX.t, std::max(tScale, tHere.magnitude()), relative);
+        dsdy = floatStep(alongY.s, std::max(sScale, sHere.magnitude()), relative);
+        dtdy = floatStep(alongY.t, std::max(tScale, tHere.magnitude()), relative);
         if (!f.s.finite() || !f.t.finite() || !dsdx.finite() || !dtdx.finite() ||
             !dsdy.finite() || !dtdy.finite())
           f.everything = true;
