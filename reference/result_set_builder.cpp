@@ -22,7 +22,7 @@ constexpr double kRounding = 0x1p-24;
 constexpr double kGlslLog2AbsoluteError = 0x1p-21;
 constexpr double kGlslLog2Ulps = 3;
 // GL_LINEAR with 8-bit weights: texel positions on a grid of 2^-8 texel (DESIGN section 7).
-constexpr int kFixedPointSubTexelBits = 8;
+constexpr double kFixedPointSubTexelStep = 0x1p-8;
 
 // Per channel the least and greatest value, in units of 1/255 (channel by channel the operations
 // of an Interval, four at a time).
@@ -216,6 +216,7 @@ class Builder {
     finestSide_ = std::ldexp(
         static_cast<double>(shading.pageSize) * static_cast<double>(1 << shading.finestLevel),
         -shading.needScaleLog2);
+    subTexelStep_ = std::ldexp(1.0, -model.subTexelBits);
   }
 
   // Whether the model lets vertices move at all (else coverage, depth and attributes are the
@@ -584,10 +585,10 @@ class Builder {
       // roundings), then quantised to its sub-texel grid; the lerps round as the model says.
       positionError *= 2;
       if (!model_.filterPinned) {
-        positionError += std::ldexp(1.0, -model_.subTexelBits);
+        positionError += subTexelStep_;
         valueError = model_.filterErrorUnits;
       } else if (model_.arithmetic.filter.weights == FilterWeights::kFixedPoint8) {
-        positionError += std::ldexp(1.0, -kFixedPointSubTexelBits);
+        positionError += kFixedPointSubTexelStep;
         // Three lerps, each rounded to nearest: 0.5 + 0.5; each floored: under 1 + 1.
         valueError =
             model_.arithmetic.filter.lerpRounding == LerpRounding::kNearest ? 1.0 : 2.0;
@@ -782,6 +783,7 @@ class Builder {
   Viewport viewport_;
   TexelSource& source_;
   double finestSide_ = 1;
+  double subTexelStep_ = 1;  // a free sampler's texel positions: 2^-subTexelBits texel
   std::unordered_map<int32_t, Snapped> snapped_;  // by set-up index (elements never move)
   // The four texels of the cells bilinearInCell read last (the cache does not change meanwhile).
   struct Cell {

@@ -187,6 +187,24 @@ uint64_t pagesInUnion(std::span<const PageRange> ranges) {
   return pages;
 }
 
+// pixelSetWidths of a set of one alternative: the same counts without the unions.
+SetWidths alternativeWidths(const Alternative& a) {
+  if (a.triangle < 0) return {};
+  const int lastLevel = std::min<int>(a.levelHi, kMaxLevel);
+  if (a.levelLo > lastLevel) return {};
+  SetWidths widths;
+  widths.covered = 1;
+  for (int c = 0; c < 4; ++c)
+    widths.colorWidthSum += a.colorHi[c] >= a.colorLo[c] ? a.colorHi[c] - a.colorLo[c] : -1;
+  widths.colorWidthSum /= 4;
+  widths.levelSum = static_cast<uint64_t>(lastLevel - a.levelLo + 1);
+  for (int m = a.levelLo; m <= lastLevel; ++m) {
+    const PageRange r = pageRange(a, m);
+    widths.pageSum += pagesInUnion(std::span<const PageRange>(&r, 1));
+  }
+  return widths;
+}
+
 double mean(double sum, uint64_t count) { return count ? sum / static_cast<double>(count) : 0.0; }
 
 }  // namespace
@@ -206,6 +224,7 @@ SetWidths pixelSetWidths(const ResultSets& sets, size_t pixel) {
   if (sets.empty()) return {};
   const std::span<const Alternative> set(sets.alternatives.data() + sets.offsets[pixel],
                                          sets.offsets[pixel + 1] - sets.offsets[pixel]);
+  if (set.size() == 1) return alternativeWidths(set[0]);
   std::array<ChannelValues, 4> channels;
   uint32_t levels = 0;  // bit m: level m admitted
   for (const Alternative& a : set) {
