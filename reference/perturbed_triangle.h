@@ -113,7 +113,8 @@ class PerturbedTriangle {
   bool bounded_ = false;
 };
 
-// The small bounds every pixel asks for, here so that callers inline them.
+// The small bounds every pixel asks for, here so that callers inline them (always: called apart,
+// their intervals travel through the stack, a stall on every call).
 namespace perturbed_detail {
 
 // The rounding of a double evaluation, absolute, from the magnitudes of its terms (far below every
@@ -131,7 +132,7 @@ inline WindowBox grown(const WindowBox& box, double by) {
 
 }  // namespace perturbed_detail
 
-inline WindowBox PerturbedTriangle::sourceBox(double cx, double cy) const {
+[[gnu::always_inline]] inline WindowBox PerturbedTriangle::sourceBox(double cx, double cy) const {
   double sum = 0;
   for (const AffinePlane& l : lambda_) sum += std::fabs(l.at(cx, cy));
   const WindowBox centre{Interval::point(cx), Interval::point(cy)};
@@ -140,7 +141,8 @@ inline WindowBox PerturbedTriangle::sourceBox(double cx, double cy) const {
   return perturbed_detail::grown(centre, radius_ * (sum + rounding) * shrink_);
 }
 
-inline Interval PerturbedTriangle::affineOver(const AffinePlane& p, const WindowBox& box) const {
+[[gnu::always_inline]] inline Interval PerturbedTriangle::affineOver(const AffinePlane& p,
+                                                                  const WindowBox& box) const {
   // Each variable once: interval evaluation of an affine function is exact.
   const Interval v = Interval::point(p.a0) + box.x * p.ax + box.y * p.ay;
   return widen(v, 0, perturbed_detail::slack(p, box));

@@ -188,7 +188,7 @@ PlaneRange moved(const PlaneRange& p, int dx, int dy) {
 
 // A fine derivative whose two values each differ by `relative` of their size (at least `scale`)
 // plus a float rounding: the difference by the sum of both.
-inline Interval floatStep(Interval v, double scale, double relative) {
+[[gnu::always_inline]] inline Interval floatStep(Interval v, double scale, double relative) {
   const double size = 2 * (scale + v.magnitude()) + v.magnitude();
   return widen(v, 0, (relative + kFloatUlp) * size);
 }
