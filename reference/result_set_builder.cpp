@@ -277,7 +277,8 @@ class Builder {
       else if (!(lambda.lo > 0)) c.cover = -1;
     }
     if (c.cover != 0) {
-      // depth() at each centre, its steps over the block's box and the hull of its own values.
+      // What depth() bounds at each centre: its steps over the block's box instead of a centre's
+      // source box, with the arithmetic's own window depth at every centre of the block.
       Interval own = {std::numeric_limits<double>::infinity(),
                       -std::numeric_limits<double>::infinity()};
       for (int y = by; y < by + kBlock; ++y)
