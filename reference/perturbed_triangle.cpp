@@ -76,13 +76,9 @@ WindowBox PerturbedTriangle::sourceBoxOver(double x0, double y0, double x1, doub
   double inner = 0, roundings = 0;
   for (double cx : {x0, x1})
     for (double cy : {y0, y1}) {
-      double sum = 0;
-      for (const AffinePlane& l : lambda_) sum += std::fabs(l.at(cx, cy));
-      const WindowBox centre{Interval::point(cx), Interval::point(cy)};
-      double rounding = 0;
-      for (const AffinePlane& l : lambda_) rounding += slack(l, centre);
-      inner = std::max(inner, sum + rounding);
-      roundings = std::max(roundings, rounding);
+      const Growth g = growthAt(cx, cy);
+      inner = std::max(inner, g.sum + g.rounding);
+      roundings = std::max(roundings, g.rounding);
     }
   const double by = radius_ * (inner + roundings / 16) * shrink_;
   return {{x0 - by, x1 + by}, {y0 - by, y1 + by}};

@@ -104,6 +104,12 @@ class PerturbedTriangle {
                                         Interval inverseW2) const;
 
   double terms(const AffinePlane& plane, double cx, double cy) const;
+  // What the source box at centre (cx, cy) grows by, before radius and shrink: sum_j
+  // |lambda_j| and the rounding of its evaluation (sourceBox, sourceBoxOver).
+  struct Growth {
+    double sum, rounding;
+  };
+  Growth growthAt(double cx, double cy) const;
 
   std::array<AffinePlane, 3> lambda_;
   std::array<double, 3> cornerX_{}, cornerY_{};
@@ -132,13 +138,19 @@ inline WindowBox grown(const WindowBox& box, double by) {
 
 }  // namespace perturbed_detail
 
-[[gnu::always_inline]] inline WindowBox PerturbedTriangle::sourceBox(double cx, double cy) const {
-  double sum = 0;
-  for (const AffinePlane& l : lambda_) sum += std::fabs(l.at(cx, cy));
+[[gnu::always_inline]] inline PerturbedTriangle::Growth PerturbedTriangle::growthAt(
+    double cx, double cy) const {
+  Growth g{0, 0};
+  for (const AffinePlane& l : lambda_) g.sum += std::fabs(l.at(cx, cy));
   const WindowBox centre{Interval::point(cx), Interval::point(cy)};
-  double rounding = 0;
-  for (const AffinePlane& l : lambda_) rounding += perturbed_detail::slack(l, centre);
-  return perturbed_detail::grown(centre, radius_ * (sum + rounding) * shrink_);
+  for (const AffinePlane& l : lambda_) g.rounding += perturbed_detail::slack(l, centre);
+  return g;
+}
+
+[[gnu::always_inline]] inline WindowBox PerturbedTriangle::sourceBox(double cx, double cy) const {
+  const Growth g = growthAt(cx, cy);
+  const WindowBox centre{Interval::point(cx), Interval::point(cy)};
+  return perturbed_detail::grown(centre, radius_ * (g.sum + g.rounding) * shrink_);
 }
 
 [[gnu::always_inline]] inline Interval PerturbedTriangle::affineOver(const AffinePlane& p,

@@ -21,19 +21,26 @@ namespace {
 
 // What one packet collects while Embree walks the boxes its rays cross.
 struct BlockQuery {
+  // A query of the rays from (x0, y0), for the set-up `triangles`, which it keeps by pointer.
+  BlockQuery(const std::vector<SetupTriangle>& triangles, int x0, int y0, DepthFormat format,
+             const Arithmetic& arithmetic, int margin)
+      : triangles(&triangles), x0(x0), y0(y0), format(format), arithmetic(&arithmetic),
+        margin(margin) {
+    rtcInitIntersectContext(&context);
+  }
   RTCIntersectContext context;  // first member: Embree hands its address back to the callbacks
   const std::vector<SetupTriangle>* triangles;
   int x0, y0;
   DepthFormat format;
   const Arithmetic* arithmetic;
-  std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> hits;
-  std::array<uint32_t, Visibility::kBlock * Visibility::kBlock> keys;
+  std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> hits{};
+  std::array<uint32_t, Visibility::kBlock * Visibility::kBlock> keys{};
   // Visibility::candidates: every triangle whose grown box holds the ray's pixel centre.
   std::vector<int32_t>* collect = nullptr;
   // Visibility::blockCandidates: every triangle whose grown box holds some ray's pixel centre,
   // with those rays (bit dx + 4 dy).
   std::vector<std::pair<int32_t, uint16_t>>* collectBlock = nullptr;
-  int margin = 0;
+  int margin;
 };
 
 // Whether set-up triangle t's box, grown by `margin`, holds the centre of (px, py): Embree calls
@@ -260,15 +267,7 @@ void Visibility::tile(int x0, int y0, std::span<PixelHit, kTile * kTile> hits) c
 std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> Visibility::block(int x0,
                                                                                 int y0) const {
   buildScene();
-  BlockQuery query;
-  rtcInitIntersectContext(&query.context);
-  query.triangles = &triangles_;
-  query.x0 = x0;
-  query.y0 = y0;
-  query.format = format_;
-  query.arithmetic = &arithmetic_;
-  query.hits.fill(PixelHit{});
-  query.keys.fill(0);
+  BlockQuery query(triangles_, x0, y0, format_, arithmetic_, margin_);
   traceBlock(scene_, viewport_, query);
   return query.hits;
 }
@@ -276,15 +275,8 @@ std::array<PixelHit, Visibility::kBlock * Visibility::kBlock> Visibility::block(
 void Visibility::candidates(int px, int py, std::vector<int32_t>& out) const {
   out.clear();
   buildScene();
-  BlockQuery query;
-  rtcInitIntersectContext(&query.context);
-  query.triangles = &triangles_;
-  query.x0 = px;
-  query.y0 = py;
-  query.format = format_;
-  query.arithmetic = &arithmetic_;
+  BlockQuery query(triangles_, px, py, format_, arithmetic_, margin_);
   query.collect = &out;
-  query.margin = margin_;
   RTCRayHit ray{};
   ray.ray.org_x = static_cast<float>(px) + 0.5f;
   ray.ray.org_y = static_cast<float>(py) + 0.5f;
@@ -309,17 +301,10 @@ void Visibility::blockCandidates(int x0, int y0, BlockCandidates& out) const {
   out.triangles.clear();
   out.pixels.clear();
   buildScene();
-  BlockQuery query;
-  rtcInitIntersectContext(&query.context);
-  query.triangles = &triangles_;
-  query.x0 = x0;
-  query.y0 = y0;
-  query.format = format_;
-  query.arithmetic = &arithmetic_;
+  BlockQuery query(triangles_, x0, y0, format_, arithmetic_, margin_);
   thread_local std::vector<std::pair<int32_t, uint16_t>> reports;
   reports.clear();
   query.collectBlock = &reports;
-  query.margin = margin_;
   traceBlock(scene_, viewport_, query);
   // Draw order; a triangle Embree reported more than once keeps the union of its pixels.
   std::sort(reports.begin(), reports.end());
