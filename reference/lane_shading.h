@@ -14,6 +14,7 @@
 #include <limits>
 
 #include "reference/shader_math.h"
+#include "reference/triangle_setup.h"
 #include "render/arithmetic.h"
 #include "shader/shader_lanes.h"
 
@@ -89,7 +90,55 @@ inline lanes::Float8 polynomialLog2(lanes::Float8 x, bool fused) {
   return mix(result, Float8(std::bit_cast<float>(0x7fc00000u)), nanOrNegative);
 }
 
+// evaluatePlane (reference/triangle_setup.h) at eight pixels (x, y), step by step the same
+// operations; (x0, y0) is each pixel's quad origin and oddX, oddY say whether it lies in the quad's
+// right column or upper row (the quad-stepped form's steps).
+inline lanes::Float8 evaluatePlane(const Plane& plane, lanes::Float8 x, lanes::Float8 y,
+                                   lanes::Float8 x0, lanes::Float8 y0, lanes::Bool8 oddX,
+                                   lanes::Bool8 oddY, PlaneEvaluation evaluation) {
+  using lanes::Float8;
+  const Float8 a0(plane.a0), dadx(plane.dadx), dady(plane.dady);
+  if (evaluation == PlaneEvaluation::kQuadStepped) {
+    Float8 value = (a0 + dadx * x0) + dady * y0;
+    value = mix(value, value + dadx, oddX);
+    return mix(value, value + dady, oddY);
+  }
+  if (evaluation == PlaneEvaluation::kFused)
+    return multiplyAdd(dady, y, multiplyAdd(dadx, x, a0, true), true);
+  return dady * y + (dadx * x + a0);
+}
+
 }  // namespace lane_detail
+
+// attributesAt (reference/triangle_setup.h) of `t` at the eight pixels of the quads at (qx, qy)
+// and (qx + 2, qy), qx and qy even, helpers included: lane 4 h + k is pixel k of quad h, (qx + 2 h
+// + (k & 1), qy + (k >> 1)). Each lane's (u, v) are the bits the one-pixel function gives.
+inline void quadPairAttributes(const SetupTriangle& t, int qx, int qy,
+                               const Arithmetic& arithmetic, float* u, float* v) {
+  using lanes::Float8;
+  using lanes::Int8;
+  const Int8 lane(lanes::i32x8{0, 1, 2, 3, 4, 5, 6, 7});
+  const Int8 column = lane & Int8(1), row = (lane >> Int8(1)) & Int8(1);
+  const Int8 originX = Int8(qx) + ((lane >> Int8(2)) << Int8(1));
+  const Float8 x0(originX), y0(static_cast<float>(qy));
+  const Float8 x(originX + column), y(Int8(qy) + row);
+  const lanes::Bool8 oddX{column.v != 0}, oddY{row.v != 0};
+  const PlaneEvaluation e = arithmetic.planeEvaluation;
+  const Float8 q = lane_detail::evaluatePlane(t.oneOverW, x, y, x0, y0, oddX, oddY, e);
+  const Float8 s = lane_detail::evaluatePlane(t.s, x, y, x0, y0, oddX, oddY, e);
+  const Float8 tt = lane_detail::evaluatePlane(t.t, x, y, x0, y0, oddX, oddY, e);
+  Float8 su, tv;
+  if (arithmetic.perspective == Perspective::kDivided) {
+    su = s / q;
+    tv = tt / q;
+  } else {
+    const Float8 recip = Float8(1.0f) / q;
+    su = s * recip;
+    tv = tt * recip;
+  }
+  std::memcpy(u, &su.v, sizeof su.v);
+  std::memcpy(v, &tv.v, sizeof tv.v);
+}
 
 // polynomialLog2 of eight values at once (tests compare it with the scalar function).
 inline void polynomialLog2EightAtOnce(const float* x, float* out, bool fused) {
