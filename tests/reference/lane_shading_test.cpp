@@ -177,6 +177,38 @@ TEST(LanePolynomialLog2, EveryLaneGivesTheScalarFunctionsBits) {
   }
 }
 
+TEST_P(LaneShading, AQuadPairsAttributesInLanesAreAttributesAtPixelByPixel) {
+  // Planes of random magnitudes (steep, flat, near zero, denormal, huge, zero 1/w) at quad pairs
+  // anywhere in a 16384-pixel viewport, under both denormal modes: every lane the bits of the
+  // one-pixel function at its pixel, helpers included.
+  const Arithmetic arithmetic = arithmeticPoint(GetParam());
+  std::mt19937 random(23);
+  std::uniform_real_distribution<float> mantissa(-2.0f, 2.0f);
+  std::uniform_int_distribution<int> exponent(-140, 40), position(0, 8191);
+  const auto value = [&] { return std::ldexp(mantissa(random), exponent(random)); };
+  const auto plane = [&] { return Plane{value(), value(), value()}; };
+  for (const bool flush : {false, true}) {
+    const DenormalMode mode(flush);
+    for (int k = 0; k < 4000; ++k) {
+      SetupTriangle t;
+      t.oneOverW = k % 97 == 0 ? Plane{} : plane();
+      t.s = plane();
+      t.t = plane();
+      const int qx = 2 * position(random), qy = 2 * position(random);
+      float u[lanes::kLanes], v[lanes::kLanes];
+      quadPairAttributes(t, qx, qy, arithmetic, u, v);
+      for (int lane = 0; lane < lanes::kLanes; ++lane) {
+        const int px = qx + 2 * (lane >> 2) + (lane & 1), py = qy + ((lane >> 1) & 1);
+        const glm::vec2 expected = attributesAt(t, px, py, arithmetic).uv;
+        ASSERT_EQ(std::bit_cast<uint32_t>(u[lane]), std::bit_cast<uint32_t>(expected.x))
+            << "lane " << lane << ", plane " << k << (flush ? ", flushing denormals" : "");
+        ASSERT_EQ(std::bit_cast<uint32_t>(v[lane]), std::bit_cast<uint32_t>(expected.y))
+            << "lane " << lane << ", plane " << k << (flush ? ", flushing denormals" : "");
+      }
+    }
+  }
+}
+
 TEST_P(LaneShading, TheTileRasterizerAgreesWithEmbreesPacketsOnEveryPixel) {
   // Random overlapping triangles, two coplanar copies of one (the earlier drawn wins), both depth
   // formats: the winner, its stored depth and the runner-up's must be the same bits.
