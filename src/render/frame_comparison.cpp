@@ -286,10 +286,16 @@ glm::u8vec3 reasonShade(int reason) {
 
 FrameComparison compareFrames(const Frame& oracle, std::span<const uint8_t> color,
                               std::span<const glm::uvec4> need, bool need8) {
+  return compareFrames(oracle, oracle.sets, color, need, need8);
+}
+
+FrameComparison compareFrames(const Frame& oracle, const ResultSets& sets,
+                              std::span<const uint8_t> color, std::span<const glm::uvec4> need,
+                              bool need8) {
   const size_t pixels = oracle.need.size();
   if (color.size() != pixels * 4 || need.size() != pixels)
     throw std::invalid_argument("compareFrames: frames of different sizes");
-  if (!oracle.sets.empty() && oracle.sets.offsets.size() != pixels + 1)
+  if (!sets.empty() && sets.offsets.size() != pixels + 1)
     throw std::invalid_argument("compareFrames: result sets of another size");
   FrameComparison result;
   result.pixels = pixels;
@@ -314,7 +320,7 @@ FrameComparison compareFrames(const Frame& oracle, std::span<const uint8_t> colo
               static_cast<uint8_t>(std::min(255, difference * 16));
       }
       result.maxColorDifference = std::max(result.maxColorDifference, largest);
-      const bool isAmbiguous = ambiguous(oracle.sets, i);
+      const bool isAmbiguous = ambiguous(sets, i);
       result.ambiguous += isAmbiguous;
       glm::u8vec3 shade = isAmbiguous ? glm::u8vec3(64, 64, 64) : glm::u8vec3(0, 0, 0);
       if (need[i] == oracle.need[i] && largest == 0) {
@@ -330,11 +336,11 @@ FrameComparison compareFrames(const Frame& oracle, std::span<const uint8_t> colo
                (distanceRank(v.reason) == distanceRank(best.reason) && v.widenBy < best.widenBy)))
             best = v;
         };
-        if (oracle.sets.empty()) {
+        if (sets.empty()) {
           consider(pointAlternative(oracle, i, need8));
         } else {
-          for (uint32_t k = oracle.sets.offsets[i]; k < oracle.sets.offsets[i + 1]; ++k)
-            consider(oracle.sets.alternatives[k]);
+          for (uint32_t k = sets.offsets[i]; k < sets.offsets[i + 1]; ++k)
+            consider(sets.alternatives[k]);
         }
         const size_t r = static_cast<size_t>(std::max(best.reason, 0));
         if (best.explained) {

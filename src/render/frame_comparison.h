@@ -62,6 +62,11 @@ glm::u8vec3 reasonShade(int reason);
 // top), of the oracle frame's size; `need8` says the needbuffer's encoding.
 FrameComparison compareFrames(const Frame& oracle, std::span<const uint8_t> color,
                               std::span<const glm::uvec4> need, bool need8);
+// The same with the oracle frame's result sets held apart (`oracle.sets` is not read), so that a
+// caller holding them elsewhere need not copy them into the frame.
+FrameComparison compareFrames(const Frame& oracle, const ResultSets& sets,
+                              std::span<const uint8_t> color, std::span<const glm::uvec4> need,
+                              bool need8);
 
 // Adds another frame's counts (totals over frames; the listed pixels and images stay).
 void accumulate(FrameComparison& total, const FrameComparison& frame);
