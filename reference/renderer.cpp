@@ -111,7 +111,8 @@ struct FrameJob {
 // One worker's shading of a frame: a tile of pixels at a time, its winners from the tile
 // rasterizer (visibility.h), then quad by quad, or two quads side by side per SIMD call
 // (lane_shading.h). A triangle's planes are evaluated once at its quad's four pixels (helpers
-// included) and serve every pixel of the quad that shows it. Pixel k of quad (qx, qy) is
+// included) and serve every pixel of the quad that shows it; a quad pair inside one triangle has
+// them evaluated at its eight pixels at once. Pixel k of quad (qx, qy) is
 // (qx + column, qy + row), column = k & 1, row = k >> 1; window y points up:
 //
 //     row 1:  2 3    dUV/dx = right - left in the pixel's row
@@ -186,10 +187,11 @@ class TileShader {
     // quad's triangles are evaluated pixel by pixel, once per quad.
     std::array<std::array<Attributes, 4>, 2> sharedAt;
     if (single) {
-      float u[lanes::kLanes], w[lanes::kLanes];
-      quadPairAttributes(job_.triangles[static_cast<size_t>(only)], qx0, qy, job_.arithmetic, u, w);
-      for (size_t lane = 0; lane < lanes::kLanes; ++lane)
-        sharedAt[lane >> 2][lane & 3] = Attributes{vec2(u[lane], w[lane]), 0.0f};
+      float uLanes[lanes::kLanes], vLanes[lanes::kLanes];
+      quadPairAttributes(job_.triangles[static_cast<size_t>(only)], qx0, qy, job_.arithmetic,
+                         uLanes, vLanes);
+      for (size_t lane = 0; lane < lanes::kLanes; ++lane)  // (1/w is not read here)
+        sharedAt[lane >> 2][lane & 3] = Attributes{vec2(uLanes[lane], vLanes[lane]), 0.0f};
     }
     for (int half = 0; half < 2; ++half) {
       slots_ = 0;
