@@ -14,7 +14,8 @@
 namespace vt {
 
 void writeImage8(const std::filesystem::path& path, uint32_t width, uint32_t height,
-                 uint32_t channels, std::span<const std::byte> texels) {
+                 uint32_t channels, std::span<const std::byte> texels,
+                 PngCompression compression) {
   if (texels.size() != uint64_t{width} * height * channels)
     throw std::invalid_argument("writeImage8: texel count does not match the size");
   // The temporary file carries the destination's extension, from which OpenImageIO picks the
@@ -28,6 +29,11 @@ void writeImage8(const std::filesystem::path& path, uint32_t width, uint32_t hei
                        static_cast<int>(channels), OIIO::TypeDesc::UINT8);
   // The texels are stored as given: alpha is not taken as premultiplied.
   spec.attribute("oiio:UnassociatedAlpha", 1);
+  if (compression == PngCompression::kFast) {
+    constexpr int kNoRowFilter = 0x08;  // libpng's PNG_FILTER_NONE
+    spec.attribute("png:compressionLevel", 1);
+    spec.attribute("png:filter", kNoRowFilter);
+  }
   const bool ok = writer->open(staging, spec) &&
                   writer->write_image(OIIO::TypeDesc::UINT8, texels.data()) && writer->close();
   if (!ok) throw InputError(path, "cannot write image: " + writer->geterror());

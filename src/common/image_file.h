@@ -13,9 +13,16 @@
 
 namespace vt {
 
+// How a PNG is compressed (other formats ignore it): kSmall with zlib's default level and
+// libpng's adaptive row filters, for images kept; kFast with level 1 and no row filter, for the
+// images a check writes frame after frame (vt crosscheck's comparison images), where compressing
+// at the default level took a fifth of a gl45 crosscheck (README, Benchmarks).
+enum class PngCompression { kSmall, kFast };
+
 // Rows of `width` texels of `channels` bytes each, top row first.
 void writeImage8(const std::filesystem::path& path, uint32_t width, uint32_t height,
-                 uint32_t channels, std::span<const std::byte> texels);
+                 uint32_t channels, std::span<const std::byte> texels,
+                 PngCompression compression = PngCompression::kSmall);
 
 // An 8-bit image as its file stores it, rows top to bottom.
 struct Image8 {

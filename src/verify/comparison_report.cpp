@@ -138,9 +138,9 @@ void writeComparisonImages(const std::filesystem::path& folder, const std::strin
   const auto width = static_cast<uint32_t>(viewport.width),
              height = static_cast<uint32_t>(viewport.height);
   writeImage8(folder / (stem + "-color-difference.png"), width, height, 4,
-              std::as_bytes(std::span(c.colorDifferenceImage)));
+              std::as_bytes(std::span(c.colorDifferenceImage)), PngCompression::kFast);
   writeImage8(folder / (stem + "-classes.png"), width, height, 4,
-              std::as_bytes(std::span(c.classificationImage)));
+              std::as_bytes(std::span(c.classificationImage)), PngCompression::kFast);
 }
 
 }  // namespace vt

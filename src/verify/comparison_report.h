@@ -45,7 +45,8 @@ void printComparison(const std::string& name, const std::string& detail,
 std::vector<std::pair<std::string, std::string>> widthProperties(
     const oracle::Comparison& c, const SetWidths& widths);
 
-// <stem>-color-difference.png and <stem>-classes.png in `folder`.
+// <stem>-color-difference.png and <stem>-classes.png in `folder`, compressed fast (written frame
+// after frame).
 void writeComparisonImages(const std::filesystem::path& folder, const std::string& stem,
                            oracle::Viewport viewport, const oracle::Comparison& c);
 
