@@ -243,12 +243,11 @@ class Builder {
                 .first->second;
   }
 
-  // The classes over the block that holds (px, py) of its candidates (`count` of them), by
-  // their position in its list, each made by the first pixel that asks (cover unknown before).
-  // The blocks of a quad row of a tile are visited in turns, so one slot per block column is kept.
-  std::vector<BlockClass>& blockClasses(int px, int py, size_t count) {
+  // The classes over the block from (bx, by) of its candidates (`count` of them), by their
+  // position in its list, each made by the first pixel that asks (cover unknown before). The
+  // blocks of a quad row of a tile are visited in turns, so one slot per block column is kept.
+  std::vector<BlockClass>& blockClasses(int bx, int by, size_t count) {
     constexpr int kBlock = Visibility::kBlock;
-    const int bx = px - px % kBlock, by = py - py % kBlock;
     BlockSlot& slot = blocks_[static_cast<size_t>((bx / kBlock) % kBlockSlots)];
     if (slot.x != bx || slot.y != by || slot.classes.size() != count) {
       slot.x = bx;
@@ -903,8 +902,8 @@ void ResultSetBuilder::append(const Visibility::BlockCandidates& candidates, int
   double front = std::numeric_limits<double>::infinity();  // of those surely covering the block
   constexpr int kBlock = Visibility::kBlock;
   const int bx = px - px % kBlock, by = py - py % kBlock;
-  const uint32_t bit = 1u << ((px - bx) + kBlock * (py - by));
-  std::vector<BlockClass>& known = builder.blockClasses(px, py, candidates.triangles.size());
+  const uint16_t bit = Visibility::BlockCandidates::bitOf(px - bx, py - by);
+  std::vector<BlockClass>& known = builder.blockClasses(bx, by, candidates.triangles.size());
   for (size_t i = 0; i < candidates.triangles.size(); ++i) {
     if (!(candidates.pixels[i] & bit)) continue;
     const int32_t index = candidates.triangles[i];

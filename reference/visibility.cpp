@@ -128,7 +128,7 @@ void testCandidate(const RTCIntersectFunctionNArguments* args) {
       const int px = static_cast<int>(RTCRayN_org_x(rays, args->N, lane));
       const int py = static_cast<int>(RTCRayN_org_y(rays, args->N, lane));
       if (boxHolds(t, query->margin, px, py))
-        pixels |= 1u << ((px - query->x0) + Visibility::kBlock * (py - query->y0));
+        pixels |= Visibility::BlockCandidates::bitOf(px - query->x0, py - query->y0);
     }
     if (pixels == 0) return;
     if (query->collectBlock)
@@ -292,7 +292,7 @@ void Visibility::candidates(int px, int py, std::vector<int32_t>& out) const {
 
 void Visibility::BlockCandidates::of(int dx, int dy, std::vector<int32_t>& out) const {
   out.clear();
-  const uint32_t bit = 1u << (dx + kBlock * dy);
+  const uint16_t bit = bitOf(dx, dy);
   for (size_t i = 0; i < triangles.size(); ++i)
     if (pixels[i] & bit) out.push_back(triangles[i]);
 }

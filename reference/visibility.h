@@ -72,7 +72,10 @@ class Visibility {
   // it is; pixels outside the viewport have none. Thread-safe.
   struct BlockCandidates {
     std::vector<int32_t> triangles;
-    std::vector<uint16_t> pixels;  // per triangle
+    std::vector<uint16_t> pixels;  // per triangle, pixel (dx, dy) of the block as bitOf(dx, dy)
+    static uint16_t bitOf(int dx, int dy) {
+      return static_cast<uint16_t>(1u << (dx + kBlock * dy));
+    }
     // Pixel (dx, dy)'s candidates, in draw order.
     void of(int dx, int dy, std::vector<int32_t>& out) const;
   };

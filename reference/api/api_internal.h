@@ -65,6 +65,13 @@ struct ResultSets {
   vt::ResultSets sets;
 };
 
+// A frame's result sets as the oracle's type, read where they are: empty (a pinned model's, whose
+// frames carry none) when the frame has none.
+inline const vt::ResultSets& internalSets(const Frame& frame) {
+  static const vt::ResultSets kNone;
+  return frame.sets ? frame.sets->sets : kNone;
+}
+
 vt::PrecisionModel internalModel(Profile profile);
 Profile publicProfile(const vt::PrecisionModel& model);
 vt::RenderSettings internalSettings(Viewport viewport, const RenderOptions& options);

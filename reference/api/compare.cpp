@@ -25,9 +25,8 @@ Comparison compare(const Frame& oracle, std::span<const uint8_t> color,
     vt::Frame expected;
     expected.viewport = {oracle.viewport.width, oracle.viewport.height};
     expected.color = oracle.color;
-    // The sets are read where they are (tens of megabytes a frame under a bounded model).
-    static const vt::ResultSets kPinned;
-    const vt::ResultSets& sets = oracle.sets ? oracle.sets->sets : kPinned;
+    // Not copied into `expected`: tens of megabytes a frame under a bounded model.
+    const vt::ResultSets& sets = internalSets(oracle);
     if (!sets.empty() && sets.offsets.size() != pixels + 1)
       throw Error("compare: the oracle frame's result sets do not match its viewport");
     std::vector<glm::uvec4> actualNeed(pixels);

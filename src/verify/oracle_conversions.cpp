@@ -33,8 +33,7 @@ oracle::RenderOptions publicRenderOptions(const RenderSettings& settings,
 }
 
 SetWidths verdictWidths(const oracle::Frame& frame) {
-  static const vt::ResultSets kPinned;
-  const vt::ResultSets& sets = frame.sets ? frame.sets->sets : kPinned;
+  const vt::ResultSets& sets = oracle::internalSets(frame);
   std::vector<glm::uvec4> need;
   if (sets.empty()) {
     need.reserve(frame.need.size() / 4);
