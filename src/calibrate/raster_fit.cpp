@@ -14,6 +14,8 @@
 #include "calibrate/probe_texture.h"
 #include "reference/renderer.h"
 #include "render/precision_model.h"
+#include "scene/camera.h"
+#include "scene/mesh.h"
 
 namespace vt::calibrate {
 namespace {}  // namespace
@@ -129,12 +131,57 @@ ClipSpaceMesh nearPlaneTriangles(unsigned seed, int triangles) {
   return mesh;
 }
 
+// A plane reaching the horizon under strong perspective, cut by the near plane, its two
+// triangles each with their own vertices (probe_draws.h). Its triangles span the screen, so
+// vertices moved within a sub-pixel grid move the texture coordinates by almost nothing, while
+// the plane evaluation's terms dwarf the values they sum to: what the implementation's
+// interpolation arithmetic does shows here, unmasked by vertex movement. On random triangles an
+// H100's coordinates stayed within what its 8-bit grid explains, and its horizon captures did not
+// (README, "Judging a GPU").
+struct HorizonView {
+  float height;      // camera above the plane
+  float yawDegrees;  // about the plane's normal
+  float rollDegrees;
+  float offset;       // the plane's centre from the camera, along its s axis, in plane widths
+  float tiltDegrees;  // the plane's tilt about its t axis (89.9: nearly edge-on)
+};
+
+ClipSpaceMesh horizonPlane(const HorizonView& view, Viewport viewport) {
+  const float width = 2e5f;
+  const float tilt = glm::radians(view.tiltDegrees);
+  const glm::vec3 along(std::cos(tilt), std::sin(tilt), 0.0f), depth(0.0f, 0.0f, -1.0f);
+  const glm::vec3 origin =
+      -0.5f * width * along + 0.5f * width * glm::vec3(0, 0, 1) + view.offset * width * along;
+  Mesh mesh;
+  for (const glm::vec2 c : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)}) {
+    mesh.positions.push_back(origin + c.x * width * along + c.y * width * depth);
+    mesh.uvs.emplace_back(c.x, 1.0f - c.y);
+  }
+  mesh.indices = {0, 1, 2, 0, 2, 3};
+  const float yaw = glm::radians(view.yawDegrees), roll = glm::radians(view.rollDegrees);
+  Camera camera;
+  camera.position = {0.0f, view.height, 0.0f};
+  const glm::vec3 forward(std::sin(yaw), -std::tan(glm::radians(30.0f)) / 32.0f, -std::cos(yaw));
+  camera.target = camera.position + forward;
+  const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+  camera.up = std::cos(roll) * glm::vec3(0, 1, 0) + std::sin(roll) * right;
+  camera.nearPlane = 0.05f;
+  camera.farPlane = 1e7f;
+  const ClipSpaceMesh shared = toClipSpace(mesh, camera, viewport);
+  ClipSpaceMesh clip;
+  for (const uint32_t index : shared.indices) {
+    clip.vertices.push_back(shared.vertices[index]);
+    clip.indices.push_back(static_cast<uint32_t>(clip.vertices.size() - 1));
+  }
+  return clip;
+}
+
 // What the result sets of `model` leave unexplained of the implementation's readbacks: pixels
-// whose triangle no alternative names, and how far (s, t) lies outside its alternative's
-// interval, in the precision model's unit (2^-23 of |s|: reference/result_set_builder.cpp).
+// whose triangle no alternative names, and pixels whose (s, t) lies outside its alternative's
+// interval.
 struct SetResiduals {
   uint64_t unexplainedOwners = 0;
-  double attributeUlps = 0;
+  uint64_t attributesOutside = 0;
 };
 
 SetResiduals setResiduals(const PrecisionModel& model,
@@ -156,16 +203,35 @@ SetResiduals setResiduals(const PrecisionModel& model,
         continue;
       }
       if (gl.triangle[i] < 0) continue;
+      bool outside = false;
       for (int k = 0; k < 2; ++k) {
-        const double uv = std::clamp(gl.uv[i][k], 0.0f, 1.0f);
-        const double outside = std::max(match->uvLo[k] - uv, uv - match->uvHi[k]);
-        if (outside > 0)
-          r.attributeUlps =
-              std::max(r.attributeUlps, outside / (kFloatUlp * std::max(uv, 0x1p-126)));
+        const float uv = std::clamp(gl.uv[i][k], 0.0f, 1.0f);
+        outside |= uv < match->uvLo[k] || uv > match->uvHi[k];
       }
+      r.attributesOutside += outside;
     }
   }
   return r;
+}
+
+// The smallest whole bound b >= 1 with admits(b) (admits grows with b), doubling from 1 up to
+// `limit` and then halving the interval; 0 where admits(0) already holds; `limit` doubled until
+// it admits (or 2^30) where nothing up to `limit` does.
+template <typename Admits>
+double smallestBound(Admits admits, double limit) {
+  if (admits(0.0)) return 0;
+  double lo = 0, hi = 1;
+  bool admitted = admits(hi);
+  while (!admitted && hi < 0x1p30) {
+    lo = hi;
+    hi = hi < limit ? std::min(2 * hi, limit) : 2 * hi;
+    admitted = admits(hi);
+  }
+  while (hi - lo > 1) {
+    const double mid = std::floor((lo + hi) / 2);
+    (admits(mid) ? hi : lo) = mid;
+  }
+  return hi;
 }
 
 // One combination of the rasterization members.
@@ -210,9 +276,17 @@ RasterFits fitRasterization(const Arithmetic& base) {
               a.depth.offsetAndClamp = offsetAndClamp;
               combinations.push_back({a, {}});
             }
+  std::vector<ClipSpaceMesh> meshes;
+  for (const unsigned seed : {1u, 2u, 3u}) meshes.push_back(randomTriangles(seed, 120));
+  meshes.push_back(nearPlaneTriangles(4, 60));
+  // Centred (s = 1/2 on the middle column, as a symmetric scene has it), turned and rolled, and
+  // a plane nearly edge-on.
+  for (const HorizonView& view :
+       {HorizonView{1.0f, 0.0f, 0.0f, 0.0f, 0.0f}, HorizonView{2.5f, 31.0f, 17.0f, 0.13f, 0.0f},
+        HorizonView{40.0f, 7.0f, -23.0f, 0.0f, 89.9f}})
+    meshes.push_back(horizonPlane(view, viewport));
   std::vector<std::pair<ClipSpaceMesh, RasterReadback>> drawn;
-  for (const unsigned seed : {1u, 2u, 3u, 4u}) {
-    const ClipSpaceMesh mesh = seed < 4 ? randomTriangles(seed, 120) : nearPlaneTriangles(seed, 60);
+  for (const ClipSpaceMesh& mesh : meshes) {
     const RasterReadback gl = drawTriangles(mesh, viewport);
     for (Combination& c : combinations)
       compareRaster(gl, draw(mesh, c.arithmetic, DepthFormat::kDepth32F), c.counts);
@@ -236,7 +310,8 @@ RasterFits fitRasterization(const Arithmetic& base) {
   // Each family's evidence: per member, the fewest values any combination with it misses.
   const std::string probe =
       "360 random triangles (slivers, perspective, near-plane clipping, a "
-      "coplanar pair) and 60 cut just behind the near plane, at 160 x 120";
+      "coplanar pair), 60 cut just behind the near plane and three planes to the horizon, at "
+      "160 x 120";
   // What memberSummary counts for a rasterization family.
   const std::string pixelsCounted =
       " pixels, in coverage, coordinates or depth, with the member's best combination";
@@ -268,8 +343,7 @@ RasterFits fitRasterization(const Arithmetic& base) {
       fit.finding = "no combination of members reproduces every probe; closest " + fit.chosen +
                     " (" + fit.memberSummary() + pixelsCounted + ")";
     else if (reproducing.size() == 1)
-      fit.finding = fit.chosen + ", bit for bit (" + fit.memberSummary() +
-                    pixelsCounted + ")";
+      fit.finding = fit.chosen + ", bit for bit (" + fit.memberSummary() + pixelsCounted + ")";
     else
       fit.finding = std::to_string(reproducing.size()) +
                     " members reproduce every probe, which cannot tell them apart; the first, " +
@@ -320,26 +394,29 @@ RasterFits fitRasterization(const Arithmetic& base) {
     bounds.arithmetic = chosen.arithmetic;
     setCoverageBounds(bounds, result.coveragePinned, grid.coarsestBits);
     bounds.attributeUlps = bounds.depthUlps = 0;
+    // Attributes: the smallest bound, in the unit the result sets apply it (2^-23 of the terms
+    // the plane evaluation sums, at least of the value: reference/result_set_builder.cpp), under
+    // which every pixel's (s, t) lies in its alternative's interval. Measured in that unit, a
+    // bound found on these probes carries over to other geometry; measured against the value
+    // alone, it overstated what the horizon planes need by orders of magnitude.
+    result.attributeUlps = smallestBound(
+        [&](double ulps) {
+          bounds.attributeUlps = ulps;
+          return setResiduals(bounds, drawn, texture, viewport).attributesOutside == 0;
+        },
+        gl45Model().attributeUlps);
+    bounds.attributeUlps = 0;
     SetResiduals r = setResiduals(bounds, drawn, texture, viewport);
-    result.attributeUlps = r.attributeUlps;
     result.unexplainedOwners = r.unexplainedOwners;
     // A pixel whose triangle no set admits: the smallest whole depth bound that admits every one
-    // (doubling up to twice gl45's, then halving the interval), or, past that, the largest error
-    // against the oracle's own value.
+    // (doubling up to gl45's, then halving the interval), or, past that, gl45's own.
     if (r.unexplainedOwners) {
       const double gl45 = gl45Model().depthUlps;
-      double lo = 0, hi = 1;
       const auto explains = [&](double ulps) {
         bounds.depthUlps = ulps;
         return setResiduals(bounds, drawn, texture, viewport).unexplainedOwners == 0;
       };
-      bool explained = explains(hi);
-      while (!explained && hi < gl45) {
-        lo = hi;
-        hi = std::min(2 * hi, gl45);
-        explained = explains(hi);
-      }
-      if (!explained) {
+      if (!explains(gl45)) {
         // Not even gl45's bound admits them. The depth rule itself is probed on its own
         // (calibration.h, depth test); these pixels are where the oracle's sets are narrower
         // than the specification (a limit of the interval arithmetic of
@@ -347,26 +424,24 @@ RasterFits fitRasterization(const Arithmetic& base) {
         result.depthUlps = gl45;
         result.depthBeyondSets = true;
       } else {
-        while (hi - lo > 1) {
-          const double mid = std::floor((lo + hi) / 2);
-          (explains(mid) ? hi : lo) = mid;
-        }
-        result.depthUlps = hi;
+        result.depthUlps = smallestBound(explains, gl45);
       }
     }
   }
   result.attributes = {"attributes", probe, c.shared};
   result.attributes.pinned = c.attributes == 0 && result.coveragePinned;
   result.attributes.mismatches = c.attributes;
-  result.attributes.unit = "units of 2^-23 relative, beyond the sub-pixel grid";
+  result.attributes.unit =
+      "units of 2^-23 of the terms the plane evaluation sums, beyond the sub-pixel grid";
   result.attributes.largestResidual = result.attributeUlps;
   result.attributes.finding =
       c.attributes == 0
           ? "texture coordinates and fine derivatives bit for bit"
           : std::to_string(c.attributes) + " of " + std::to_string(c.shared) +
                 " pixels' coordinates or derivatives differ; beyond what the sub-pixel grid "
-                "explains, the largest is " +
-                std::to_string(result.attributeUlps) + " units of 2^-23 relative";
+                "explains, an error of " +
+                std::to_string(result.attributeUlps) +
+                " units of 2^-23 of the terms the plane evaluation sums admits them all";
   result.depth = {"depth", probe, c.shared};
   result.depth.pinned = c.depth == 0 && result.coveragePinned;
   result.depth.mismatches = c.depth;

@@ -44,6 +44,17 @@ int step(PaletteRule rule, int a, int b, int k, int n) {
 // the truncated member).
 int stepRoundedUp(int a, int b, int k, int n) { return ((n - k) * a + k * b + n - 1) / n; }
 
+// NVIDIA's BC3 alpha palette, measured (block_decoding.h): the k-th of n steps lies between the
+// end points weighted by these sixty-fourths of b, rounded down and rounded up.
+constexpr int kNvidiaAlphaSevenths[6] = {9, 18, 28, 36, 46, 55};
+constexpr int kNvidiaAlphaFifths[4] = {12, 24, 40, 52};
+
+std::array<int, 2> nvidiaAlphaStepRange(int a, int b, int k, int n) {
+  const int w = n == 7 ? kNvidiaAlphaSevenths[k - 1] : kNvidiaAlphaFifths[k - 1];
+  const int sum = (64 - w) * a + w * b;
+  return {sum / 64, (sum + 63) / 64};
+}
+
 // NVIDIA's published colour interpolation: red and blue from their 5-bit end points, green from
 // its 8-bit ones (k = 1: c2, k = 2: c3, or the midpoint when `half`).
 int nvidiaChannel(int channel, int raw0, int raw1, int k, bool half) {
@@ -179,7 +190,12 @@ std::array<BlockTexel, 2> decodeTexelRange(PixelFormat format, const std::byte* 
       aLo = std::min(aLo, v);
       aHi = std::max(aHi, v);
     }
-  if (k >= 1 && k < n) aHi = std::max(aHi, stepRoundedUp(a0, a1, k, n));
+  if (k >= 1 && k < n) {
+    aHi = std::max(aHi, stepRoundedUp(a0, a1, k, n));
+    const std::array<int, 2> nvidia = nvidiaAlphaStepRange(a0, a1, k, n);
+    aLo = std::min(aLo, nvidia[0]);
+    aHi = std::max(aHi, nvidia[1]);
+  }
   lo[3] = static_cast<uint8_t>(aLo);
   hi[3] = static_cast<uint8_t>(aHi);
   return {lo, hi};

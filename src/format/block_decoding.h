@@ -35,6 +35,14 @@
 //                     128 d), as published for NVIDIA GPUs since G80 (NVIDIA Texture Tools, rgbcx)
 // The published hardware members are not measured here; `vt calibrate` measures whichever the
 // implementation under test computes (src/calibrate/decoding_fit.h).
+//
+// NVIDIA's BC3 alpha palette is no member (nothing published reproduces it, and no closed form
+// found here does bit for bit), but it is measured: texelFetch of every alpha end-point pair at
+// every index on an NVIDIA H100 (driver 580.159.04; data/gpus/nvidia-h100/bc3-alpha.u8.gz) gave
+// values that all lie between the end points weighted by 9, 18, 28, 36, 46, 55 sixty-fourths of
+// a1 (a0 > a1) or by 12, 24, 40, 52 sixty-fourths (a0 <= a1), rounded down and rounded up; in the
+// six-value mode that is up to 6.6 / 255 from the specification's fifths. decodeTexelRange takes
+// it in, as it takes in every member.
 
 #include <array>
 #include <cstddef>
@@ -90,9 +98,10 @@ std::array<BlockTexel, 16> decodeBlock(PixelFormat format, const std::byte* bloc
                                        BlockDecoding decoding);
 
 // What any conforming implementation may return for texel `index` (row * 4 + column) of one block:
-// per channel the least and the greatest value of every member above and of the specification's
-// fraction rounded either way (GL 4.5 section 2.3.5.2 lets a conversion to fixed point round either
-// way). End points, c3 black and the alpha constants are exact in every member.
+// per channel the least and the greatest value of every member above, of NVIDIA's measured alpha
+// steps rounded either way, and of the specification's fraction rounded either way (GL 4.5
+// section 2.3.5.2 lets a conversion to fixed point round either way). End points, c3 black and
+// the alpha constants are exact in every member.
 std::array<BlockTexel, 2> decodeTexelRange(PixelFormat format, const std::byte* block,
                                            uint32_t index);
 
