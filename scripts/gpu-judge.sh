@@ -20,17 +20,19 @@ status=0
 echo
 echo "| captures | model | pixels | identical | explained | unexplained | ambiguous | colour width (1/255) | levels | pages |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
-for set in captures q3dm6ish; do
+for set in captures compressed/captures-bc1 compressed/captures-bc3a q3dm6ish; do
   [[ -d $unpacked/$set ]] || continue
-  ln -sf "$kit/data/scene.vt" "$unpacked/$set/scene.vt"
+  texture=scene.vt
+  [[ $set == compressed/* ]] && texture=scene_${set#compressed/captures-}.vt
+  ln -sf "$kit/data/$texture" "$unpacked/$set/$texture"
   models=(gl45)
   [[ -f $out/model.json ]] && models=("$out/model.json" gl45)
   for model in "${models[@]}"; do
     name=$(basename "$model" .json)
-    report=$out/judged-$set-$name
+    report=$out/judged-${set#compressed/}-$name
     "$vt" crosscheck --captures "$unpacked/$set" --model "$model" -o "$report" >/dev/null ||
       status=1
-    python3 - "$report/summary.json" "$set" "$name" <<'EOF'
+    python3 - "$report/summary.json" "${set#compressed/}" "$name" <<'EOF'
 import json, sys
 s = json.load(open(sys.argv[1]))["totals"]
 print(f"| {sys.argv[2]} | {sys.argv[3]} | {s['pixels']} | {s['identical']} | {s['explained']} | "

@@ -2,17 +2,20 @@
 # Builds the GPU kit: what a bare x86-64 Linux machine with an OpenGL driver needs to draw
 # everything `vt` judges (vt-capture, the libraries it links that such a machine lacks, libglvnd's
 # EGL and GL loaders as Debian packages, the probe requests of `vt calibrate`, the demo's texture,
-# q3dm6ish's retextured geometry and tour) and gpu-run.sh, the one command to run there.
-#   scripts/gpu-kit.sh [--no-map] [--no-loaders] [--texture FILE] [KIT]   (default KIT: .gpu-kit)
+# q3dm6ish's retextured geometry and tour, the texture's layout as BC1 pages and as BC3 pages with
+# noise as alpha) and gpu-run.sh, the one command to run there.
+#   scripts/gpu-kit.sh [--no-map] [--no-loaders] [--texture FILE] [--layout LAYOUT] [KIT]
+#                                                                   (default KIT: .gpu-kit)
 # --no-map leaves out q3dm6ish (no OpenArena fetch); --no-loaders the Debian packages (for a run on
 # a machine that has its own, as the tests do); --texture the .vt drawn (default: the demo's,
-# out/demo/scene.vt, made by `vt demo` if missing). Then, on the GPU machine: bash KIT/gpu-run.sh OUT;
-# back here: scripts/gpu-judge.sh OUT KIT.
+# out/demo/scene.vt, made by `vt demo` if missing); --layout the layout it was built from, for the
+# block-compressed textures (default: the demo's, with the demo's texture; else none). Then, on
+# the GPU machine: bash KIT/gpu-run.sh OUT; back here: scripts/gpu-judge.sh OUT KIT.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-map=1 loaders=1 texture=
-usage="usage: scripts/gpu-kit.sh [--no-map] [--no-loaders] [--texture FILE] [KIT]"
+map=1 loaders=1 texture= layout=
+usage="usage: scripts/gpu-kit.sh [--no-map] [--no-loaders] [--texture FILE] [--layout LAYOUT] [KIT]"
 while [[ $# -gt 0 && $1 == --* ]]; do
   case $1 in
     --no-map) map=0 ;;
@@ -20,6 +23,11 @@ while [[ $# -gt 0 && $1 == --* ]]; do
     --texture)
       [[ $# -ge 2 ]] || { echo "$usage" >&2; exit 2; }
       texture=$2
+      shift
+      ;;
+    --layout)
+      [[ $# -ge 2 ]] || { echo "$usage" >&2; exit 2; }
+      layout=$2
       shift
       ;;
     *) echo "$usage" >&2; exit 2 ;;
@@ -70,8 +78,23 @@ done
 if [[ -z $texture ]]; then
   [[ -f out/demo/scene.vt ]] || "$vt" demo --output out/demo >/dev/null
   texture=out/demo/scene.vt
+  layout=${layout:-out/demo/scene/layout.json}
 fi
 cp "$texture" "$staging/data/scene.vt"
+# The layout again as block-compressed pages: BC1, and BC3 with uniform noise as every image's
+# alpha, so that every alpha palette mode shows in the frames (oiiotool: openimageio-tools).
+if [[ -n $layout ]]; then
+  "$vt" build "$layout" --format bc1 -o "$staging/data/scene_bc1.vt" >/dev/null
+  noisy=$work/noisy-alpha
+  mkdir -p "$noisy"
+  python3 scripts/gpu-kit-noisy-layout.py "$layout" "$noisy" >"$noisy/images"
+  while IFS=$'\t' read -r source target; do
+    size=$(oiiotool --info "$source" | grep -o "[0-9]* x *[0-9]*" | head -1 | tr -d ' ')
+    oiiotool "$source" --ch R,G,B --pattern noise:type=uniform:min=0:max=1 "$size" 1 --chappend \
+      -o "$target"
+  done <"$noisy/images"
+  "$vt" build "$noisy/layout.json" --format bc3 -o "$staging/data/scene_bc3a.vt" >/dev/null
+fi
 if ((map)); then
   packages=$(bash scripts/fetch-openarena.sh)
   "$vt" retexture q3dm6ish --packages "$packages" -o "$work/q3" --no-coherence >/dev/null

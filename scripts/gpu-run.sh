@@ -3,11 +3,12 @@
 #   bash KIT/gpu-run.sh OUT
 # Unpacks libglvnd's loaders (root; unless VT_KIT_SYSTEM_GL=1 says the machine has its own),
 # selects the NVIDIA EGL vendor where its file is found, then draws the calibration's probes, the
-# named scenes and the q3dm6ish flythrough (captures) and times them at 1280 x 720 and 1920 x 1080
+# named scenes (of the kit's texture and, where the kit has them, of its BC1 and BC3 versions) and
+# the q3dm6ish flythrough (captures) and times them at 1280 x 720 and 1920 x 1080
 # (VT_KIT_TIMING_SIZES overrides the sizes).
-# OUT receives at most 8 files: log.txt, probes.tar.gz, captures.tar.gz, q3dm6ish.tar.gz,
-# timings.json, timings-q3dm6ish.json. A step that fails is logged and the others still run;
-# the exit status is that of the first failure.
+# OUT receives at most 8 files: log.txt, probes.tar.gz, captures.tar.gz, compressed.tar.gz,
+# q3dm6ish.tar.gz, timings.json, timings-q3dm6ish.json. A step that fails is logged and the others
+# still run; the exit status is that of the first failure.
 set -uo pipefail
 kit=$(cd "$(dirname "$0")" && pwd)
 out=${1:?usage: gpu-run.sh OUT}
@@ -56,6 +57,12 @@ capture=$kit/vt-capture
 texture=$kit/data/scene.vt
 step probes "$capture" probes "$kit/probes" -o "$work/probes"
 step captures "$capture" scenes "$texture" --texture-name scene.vt -o "$work/captures"
+for variant in bc1 bc3a; do
+  if [[ -f $kit/data/scene_$variant.vt ]]; then
+    step "captures-$variant" "$capture" scenes "$kit/data/scene_$variant.vt" \
+      --texture-name "scene_$variant.vt" -o "$work/compressed/captures-$variant"
+  fi
+done
 sizes=${VT_KIT_TIMING_SIZES:-1280x720,1920x1080}
 step timings "$capture" timings "$texture" --sizes "$sizes" -o "$out/timings.json"
 if [[ -f $kit/data/q3dm6ish.obj ]]; then
@@ -65,7 +72,7 @@ if [[ -f $kit/data/q3dm6ish.obj ]]; then
   step timings-q3dm6ish "$capture" timings "$texture" "${map[@]}" --sizes "$sizes" \
     -o "$out/timings-q3dm6ish.json"
 fi
-for folder in probes captures q3dm6ish; do
+for folder in probes captures compressed q3dm6ish; do
   [[ -d $work/$folder ]] && tar -C "$work" -czf "$out/$folder.tar.gz" "$folder"
 done
 echo "== status $status" >>"$log"
