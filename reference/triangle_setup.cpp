@@ -4,6 +4,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <glm/glm.hpp>
 
 #include "common/parallel_for.h"
 
@@ -11,11 +12,13 @@ namespace vt::reference {
 namespace {
 
 // A clip-space vertex with its perspective attributes, as the clipper carries it. Vertices the
-// clipper makes get their window coordinates from llvmpipe's C clipper, without fma.
+// clipper makes get their window coordinates from llvmpipe's C clipper, without fma. `exact`: the
+// position clipped in double precision alongside, the same planes in the same order.
 struct ClipPoint {
   glm::vec4 position;
   glm::vec2 uv;
   bool generated = false;
+  glm::dvec4 exact{0.0};
 };
 
 // Frustum planes in outcode bit order (rule 5): x > w, x + w < 0, y > w, y + w < 0, z + w < 0,
@@ -40,7 +43,8 @@ float distance(const glm::vec4& p, const glm::vec4& plane) {
 // The point where the edge between an inside vertex (distance >= 0) and an outside one crosses
 // the plane, interpolated from the endpoint nearer the plane (the inside one on a tie), in plain
 // float: base + t * (other - base) with t = d_base / (d_base - d_other) <= 1/2.
-ClipPoint intersect(const ClipPoint& inside, float dIn, const ClipPoint& outside, float dOut) {
+ClipPoint intersect(const ClipPoint& inside, float dIn, const ClipPoint& outside, float dOut,
+                    unsigned planeIndex) {
   const bool fromOutside = -dOut < dIn;
   const ClipPoint& base = fromOutside ? outside : inside;
   const ClipPoint& other = fromOutside ? inside : outside;
@@ -49,6 +53,10 @@ ClipPoint intersect(const ClipPoint& inside, float dIn, const ClipPoint& outside
   ClipPoint result;
   for (int k = 0; k < 4; ++k)
     result.position[k] = base.position[k] + t * (other.position[k] - base.position[k]);
+  const glm::dvec4 plane(kPlanes[planeIndex]);
+  const double eBase = glm::dot(base.exact, plane), eOther = glm::dot(other.exact, plane);
+  const double te = eBase / (eBase - eOther);
+  result.exact = base.exact + te * (other.exact - base.exact);
   for (int k = 0; k < 2; ++k) result.uv[k] = base.uv[k] + t * (other.uv[k] - base.uv[k]);
   result.generated = true;
   return result;
@@ -72,8 +80,8 @@ bool clipPolygon(std::vector<ClipPoint>& polygon, unsigned mask) {
       const bool previousInside = dPrevious >= 0.0f, currentInside = d >= 0.0f;
       if (previousInside) output.push_back(previous);
       if (previousInside != currentInside)
-        output.push_back(previousInside ? intersect(previous, dPrevious, current, d)
-                                        : intersect(current, d, previous, dPrevious));
+        output.push_back(previousInside ? intersect(previous, dPrevious, current, d, plane)
+                                        : intersect(current, d, previous, dPrevious, plane));
       previous = current;
       dPrevious = d;
     }
@@ -86,6 +94,7 @@ struct WindowVertex {
   float x, y, z, oow;  // window coordinates and 1/w
   int64_t xf, yf;      // snapped: round((X - 0.5) * 2^bits) as the coverage member says
   glm::vec2 uv;
+  float clipError = 0;  // SetupTriangle::clipError
 };
 
 // (X - 0.5) * 2^bits in float (exact for a power of two unless it overflows), rounded.
@@ -120,6 +129,15 @@ WindowVertex toWindow(const ClipPoint& p, Viewport viewport, const Arithmetic& a
   v.xf = snap(v.x, arithmetic.coverage);
   v.yf = snap(v.y, arithmetic.coverage);
   v.uv = p.uv;
+  if (p.generated) {
+    const double xe = (p.exact.x / p.exact.w + 1.0) * halfWidth;
+    const double ye = (p.exact.y / p.exact.w + 1.0) * halfHeight;
+    const double error = std::max(std::fabs(v.x - xe), std::fabs(v.y - ye));
+    // NaN (an exact w of 0) or beyond float: as far as the viewport reaches.
+    v.clipError =
+        static_cast<float>(std::isfinite(error) ? std::min(error, 4.0 * (halfWidth + halfHeight))
+                                                : 4.0 * (halfWidth + halfHeight));
+  }
   return v;
 }
 
@@ -188,6 +206,7 @@ bool setupEdges(WindowVertex v0, WindowVertex v1, WindowVertex v2, Viewport view
   const Coverage& coverage = arithmetic.coverage;
   out.edges = {edgeOf(v0, v1, coverage), edgeOf(v1, v2, coverage), edgeOf(v2, v0, coverage)};
   out.corners = {cornerOf(v0), cornerOf(v1), cornerOf(v2)};
+  out.clipError = {v0.clipError, v1.clipError, v2.clipError};
 
   // Pixels whose centres (multiples of 2^bits in snapped units) lie within the snapped bounds.
   const int64_t unit = int64_t{1} << coverage.subpixelBits;
@@ -338,6 +357,7 @@ bool setupSpans(const WindowVertex& v0, const WindowVertex& v1, const WindowVert
   else
     firstVertexPlanes(v0, v1, v2, out);
   out.corners = {cornerOf(v0), cornerOf(v1), cornerOf(v2)};
+  out.clipError = {v0.clipError, v1.clipError, v2.clipError};
 
   // The pixels the spans cover inside the viewport bound the candidates exactly.
   out.minX = viewport.width, out.maxX = -1, out.minY = viewport.height, out.maxY = -1;
@@ -385,7 +405,7 @@ void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport,
     const unsigned code = outcode(v.position);
     any |= code;
     all &= code;
-    polygon.push_back({v.position, v.uv});
+    polygon.push_back({v.position, v.uv, false, glm::dvec4(v.position)});
   }
   if (!finite) {
     ++stats.nonFinite;
@@ -419,9 +439,12 @@ void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport,
     const WindowVertex c = toWindow(polygon[fan ? 0 : 2], viewport, arithmetic);
     if (arithmetic.coverage.rule == CoverageRule::kScanlineSpans
             ? setupSpans(a, b, c, viewport, arithmetic, triangle)
-            : setupEdges(a, b, c, viewport, arithmetic, triangle))
+            : setupEdges(a, b, c, viewport, arithmetic, triangle)) {
+      // Twice the largest clip error, beyond the quarter pixel the candidates' boxes keep.
+      const float reach = 2 * std::max({a.clipError, b.clipError, c.clipError});
+      triangle.candidateMargin = reach > 0.25f ? static_cast<int>(std::ceil(reach)) : 0;
       out.push_back(triangle);
-    else
+    } else
       ++stats.empty;
   }
 }

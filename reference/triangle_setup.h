@@ -93,6 +93,13 @@ struct SetupTriangle {
   Plane z;                                       // window z, not perspective-divided
   int minX = 0, minY = 0, maxX = -1, maxY = -1;  // pixels whose centres may be covered
   std::array<WindowCorner, 3> corners;           // in the oriented order of the edges
+  // Per corner, pixels between its window position and that of the same corner clipped in double
+  // precision: 0 for a mesh vertex; for a vertex the clipper made, how far the float clipping
+  // moved it (a huge polygon cut near the camera: pixels). Another conforming clipper may land as
+  // far the other way, so the result sets let the corner move twice this, and the candidates'
+  // boxes grow by candidateMargin pixels (reference/result_set_builder.cpp, visibility.cpp).
+  std::array<float, 3> clipError{};
+  int candidateMargin = 0;
   // Per edge (opposite corner i): 0 on the mesh triangle's boundary; +1 or -1 inside a clipped
   // fan, shared with the triangle of fanIndex + 1 or - 1 (the shared-edge rule gives its pixels
   // to one of the two).

@@ -24,7 +24,11 @@ struct BlockQuery {
   // A query of the rays from (x0, y0), for the set-up `triangles`, which it keeps by pointer.
   BlockQuery(const std::vector<SetupTriangle>& triangles, int x0, int y0, DepthFormat format,
              const Arithmetic& arithmetic, int margin)
-      : triangles(&triangles), x0(x0), y0(y0), format(format), arithmetic(&arithmetic),
+      : triangles(&triangles),
+        x0(x0),
+        y0(y0),
+        format(format),
+        arithmetic(&arithmetic),
         margin(margin) {
     rtcInitIntersectContext(&context);
   }
@@ -43,9 +47,11 @@ struct BlockQuery {
   int margin;
 };
 
-// Whether set-up triangle t's box, grown by `margin`, holds the centre of (px, py): Embree calls
-// back for every box of a leaf its rays reach, so the candidates keep those whose own box does.
+// Whether set-up triangle t's box, grown by `margin` and its own candidateMargin (a corner the
+// clipper moved), holds the centre of (px, py): Embree calls back for every box of a leaf its
+// rays reach, so the candidates keep those whose own box does.
 bool boxHolds(const SetupTriangle& t, int margin, int px, int py) {
+  margin += t.candidateMargin;
   return t.minX - margin <= px && px <= t.maxX + margin && t.minY - margin <= py &&
          py <= t.maxY + margin;
 }
@@ -79,7 +85,7 @@ void boundsOf(const RTCBoundsFunctionArguments* args) {
   const SetupTriangle& t = (*data->triangles)[args->primID];
   // Pixel centres px + 0.5 for px in [minX - margin, maxX + margin], with a quarter pixel to
   // spare each way.
-  const float margin = static_cast<float>(data->margin);
+  const float margin = static_cast<float>(data->margin + t.candidateMargin);
   args->bounds_o->lower_x = static_cast<float>(t.minX) + 0.25f - margin;
   args->bounds_o->upper_x = static_cast<float>(t.maxX) + 0.75f + margin;
   args->bounds_o->lower_y = static_cast<float>(t.minY) + 0.25f - margin;
@@ -247,8 +253,8 @@ Visibility::~Visibility() {
 void Visibility::tile(int x0, int y0, std::span<PixelHit, kTile * kTile> hits) const {
   std::fill(hits.begin(), hits.end(), PixelHit{});
   std::array<uint32_t, kTile * kTile> keys{};
-  const size_t bin =
-      static_cast<size_t>(y0 / kTile) * static_cast<size_t>(tilesX_) + static_cast<size_t>(x0 / kTile);
+  const size_t bin = static_cast<size_t>(y0 / kTile) * static_cast<size_t>(tilesX_) +
+                     static_cast<size_t>(x0 / kTile);
   const int xEnd = std::min(x0 + kTile, viewport_.width) - 1,
             yEnd = std::min(y0 + kTile, viewport_.height) - 1;
   for (uint32_t i = binStart_[bin]; i < binStart_[bin + 1]; ++i) {
