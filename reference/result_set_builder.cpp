@@ -334,12 +334,21 @@ class Builder {
         perturbed.bounded() ? Barycentrics{} : barycentrics(s->boxes, px + 0.5, py + 0.5);
     Interval z = Interval::everything();
     if (perturbed.bounded() || !l.degenerate) {
+      const WindowBox source = perturbed.bounded() ? s->sourceAt(px + 0.5, py + 0.5) : WindowBox{};
       z = perturbed.bounded()
-              ? perturbed.depth(s->sourceAt(px + 0.5, py + 0.5))
+              ? perturbed.depth(source)
               : interpolate(l, t.corners[0].z, t.corners[1].z, t.corners[2].z).value;
       // depthUlps counts units of 2^-23 of the depth range [0, 1] (precision_model.h): the error
       // of a plane evaluation scales with its terms, not with the value they sum to.
       z = widen(z, 0, (model_.depthUlps + 1) * kFloatUlp);
+      // A corner the clipper made: twice its float clipping's depth error, by its weight here.
+      if (t.clipDepthError[0] + t.clipDepthError[1] + t.clipDepthError[2] > 0) {
+        const std::array<Interval, 3> lambda =
+            perturbed.bounded() ? perturbed.barycentrics(source) : l.atCentre;
+        double clipped = 0;
+        for (size_t j = 0; j < 3; ++j) clipped += 2.0 * t.clipDepthError[j] * lambda[j].magnitude();
+        z = std::isfinite(clipped) ? widen(z, 0, clipped) : Interval::everything();
+      }
     }
     return depthStored(hull(z, Interval::point(own)), format);
   }

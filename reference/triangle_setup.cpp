@@ -94,7 +94,8 @@ struct WindowVertex {
   float x, y, z, oow;  // window coordinates and 1/w
   int64_t xf, yf;      // snapped: round((X - 0.5) * 2^bits) as the coverage member says
   glm::vec2 uv;
-  float clipError = 0;  // SetupTriangle::clipError
+  float clipError = 0;       // SetupTriangle::clipError
+  float clipDepthError = 0;  // SetupTriangle::clipDepthError
 };
 
 // (X - 0.5) * 2^bits in float (exact for a power of two unless it overflows), rounded.
@@ -137,6 +138,9 @@ WindowVertex toWindow(const ClipPoint& p, Viewport viewport, const Arithmetic& a
     v.clipError =
         static_cast<float>(std::isfinite(error) ? std::min(error, 4.0 * (halfWidth + halfHeight))
                                                 : 4.0 * (halfWidth + halfHeight));
+    const double depthError = std::fabs(v.z - (p.exact.z / p.exact.w * 0.5 + 0.5));
+    v.clipDepthError =
+        static_cast<float>(std::isfinite(depthError) ? std::min(depthError, 1.0) : 1.0);
   }
   return v;
 }
@@ -207,6 +211,7 @@ bool setupEdges(WindowVertex v0, WindowVertex v1, WindowVertex v2, Viewport view
   out.edges = {edgeOf(v0, v1, coverage), edgeOf(v1, v2, coverage), edgeOf(v2, v0, coverage)};
   out.corners = {cornerOf(v0), cornerOf(v1), cornerOf(v2)};
   out.clipError = {v0.clipError, v1.clipError, v2.clipError};
+  out.clipDepthError = {v0.clipDepthError, v1.clipDepthError, v2.clipDepthError};
 
   // Pixels whose centres (multiples of 2^bits in snapped units) lie within the snapped bounds.
   const int64_t unit = int64_t{1} << coverage.subpixelBits;
@@ -358,6 +363,7 @@ bool setupSpans(const WindowVertex& v0, const WindowVertex& v1, const WindowVert
     firstVertexPlanes(v0, v1, v2, out);
   out.corners = {cornerOf(v0), cornerOf(v1), cornerOf(v2)};
   out.clipError = {v0.clipError, v1.clipError, v2.clipError};
+  out.clipDepthError = {v0.clipDepthError, v1.clipDepthError, v2.clipDepthError};
 
   // The pixels the spans cover inside the viewport bound the candidates exactly.
   out.minX = viewport.width, out.maxX = -1, out.minY = viewport.height, out.maxY = -1;

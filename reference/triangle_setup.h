@@ -99,6 +99,9 @@ struct SetupTriangle {
   // far the other way, so the result sets let the corner move twice this, and the candidates'
   // boxes grow by candidateMargin pixels (reference/result_set_builder.cpp, visibility.cpp).
   std::array<float, 3> clipError{};
+  // Per corner, the same for its window z (depth units): the result sets' depth widens by twice
+  // it, weighted by the corner's barycentric coordinate.
+  std::array<float, 3> clipDepthError{};
   int candidateMargin = 0;
   // Per edge (opposite corner i): 0 on the mesh triangle's boundary; +1 or -1 inside a clipped
   // fan, shared with the triangle of fanIndex + 1 or - 1 (the shared-edge rule gives its pixels
