@@ -43,7 +43,7 @@ Colour widen(const Colour& a, double absolute) { return {a.lo - absolute, a.hi +
 // The corners of a triangle as boxes: each within `radius` pixels (the model's snapping) plus the
 // float error of its window transform (x / w * W / 2 + W / 2: a few roundings of values up to the
 // viewport's size) of its float window position, plus, for a corner the clipper made, twice what
-// the float clipping moved it (SetupTriangle::clipError).
+// the float clipping moved it (WindowCorner::clipError).
 struct CornerBoxes {
   std::array<Interval, 3> x, y;
 };
@@ -54,7 +54,7 @@ CornerBoxes cornerBoxes(const SetupTriangle& t, double radius, Viewport viewport
   for (size_t i = 0; i < 3; ++i) {
     const double window =
         4 * kFloatUlp * (std::fabs(t.corners[i].x) + std::fabs(t.corners[i].y) + extent);
-    const double clipped = 2.0 * t.clipError[i];
+    const double clipped = 2.0 * t.corners[i].clipError;
     b.x[i] = Interval::around(t.corners[i].x, radius + window + clipped);
     b.y[i] = Interval::around(t.corners[i].y, radius + window + clipped);
   }
@@ -342,12 +342,13 @@ class Builder {
       // of a plane evaluation scales with its terms, not with the value they sum to.
       z = widen(z, 0, (model_.depthUlps + 1) * kFloatUlp);
       // A corner the clipper made: twice its float clipping's depth error, by its weight here.
-      if (t.clipDepthError[0] + t.clipDepthError[1] + t.clipDepthError[2] > 0) {
+      if (std::max({t.corners[0].clipDepthError, t.corners[1].clipDepthError,
+                    t.corners[2].clipDepthError}) > 0) {
         const std::array<Interval, 3> lambda =
             perturbed.bounded() ? perturbed.barycentrics(source) : l.atCentre;
         double clipped = 0;
         for (size_t j = 0; j < 3; ++j)
-          clipped += 2.0 * t.clipDepthError[j] * lambda[j].magnitude();
+          clipped += 2.0 * t.corners[j].clipDepthError * lambda[j].magnitude();
         z = std::isfinite(clipped) ? widen(z, 0, clipped) : Interval::everything();
       }
     }

@@ -94,8 +94,7 @@ struct WindowVertex {
   float x, y, z, oow;  // window coordinates and 1/w
   int64_t xf, yf;      // snapped: round((X - 0.5) * 2^bits) as the coverage member says
   glm::vec2 uv;
-  float clipError = 0;       // SetupTriangle::clipError
-  float clipDepthError = 0;  // SetupTriangle::clipDepthError
+  float clipError = 0, clipDepthError = 0;  // WindowCorner's
 };
 
 // (X - 0.5) * 2^bits in float (exact for a power of two unless it overflows), rounded.
@@ -135,9 +134,8 @@ WindowVertex toWindow(const ClipPoint& p, Viewport viewport, const Arithmetic& a
     const double ye = (p.exact.y / p.exact.w + 1.0) * halfHeight;
     const double error = std::max(std::fabs(v.x - xe), std::fabs(v.y - ye));
     // NaN (an exact w of 0) or beyond float: as far as the viewport reaches.
-    v.clipError =
-        static_cast<float>(std::isfinite(error) ? std::min(error, 4.0 * (halfWidth + halfHeight))
-                                                : 4.0 * (halfWidth + halfHeight));
+    const double reach = 4.0 * (halfWidth + halfHeight);
+    v.clipError = static_cast<float>(std::isfinite(error) ? std::min(error, reach) : reach);
     const double depthError = std::fabs(v.z - (p.exact.z / p.exact.w * 0.5 + 0.5));
     v.clipDepthError =
         static_cast<float>(std::isfinite(depthError) ? std::min(depthError, 1.0) : 1.0);
@@ -189,7 +187,8 @@ void firstVertexPlanes(const WindowVertex& v0, const WindowVertex& v1, const Win
 }
 
 WindowCorner cornerOf(const WindowVertex& v) {
-  return WindowCorner{v.x, v.y, v.z, v.oow, v.uv.x * v.oow, v.uv.y * v.oow};
+  return WindowCorner{
+      v.x, v.y, v.z, v.oow, v.uv.x * v.oow, v.uv.y * v.oow, v.clipError, v.clipDepthError};
 }
 
 // The planes as `setup` says, from the triangle in draw order (v0, v1, v2) or oriented.
@@ -210,8 +209,6 @@ bool setupEdges(WindowVertex v0, WindowVertex v1, WindowVertex v2, Viewport view
   const Coverage& coverage = arithmetic.coverage;
   out.edges = {edgeOf(v0, v1, coverage), edgeOf(v1, v2, coverage), edgeOf(v2, v0, coverage)};
   out.corners = {cornerOf(v0), cornerOf(v1), cornerOf(v2)};
-  out.clipError = {v0.clipError, v1.clipError, v2.clipError};
-  out.clipDepthError = {v0.clipDepthError, v1.clipDepthError, v2.clipDepthError};
 
   // Pixels whose centres (multiples of 2^bits in snapped units) lie within the snapped bounds.
   const int64_t unit = int64_t{1} << coverage.subpixelBits;
@@ -362,8 +359,6 @@ bool setupSpans(const WindowVertex& v0, const WindowVertex& v1, const WindowVert
   else
     firstVertexPlanes(v0, v1, v2, out);
   out.corners = {cornerOf(v0), cornerOf(v1), cornerOf(v2)};
-  out.clipError = {v0.clipError, v1.clipError, v2.clipError};
-  out.clipDepthError = {v0.clipDepthError, v1.clipDepthError, v2.clipDepthError};
 
   // The pixels the spans cover inside the viewport bound the candidates exactly.
   out.minX = viewport.width, out.maxX = -1, out.minY = viewport.height, out.maxY = -1;

@@ -66,6 +66,14 @@ struct Edge {
 // perspective attributes s/w and t/w. The result sets (result_set.h) interpolate from these.
 struct WindowCorner {
   float x = 0, y = 0, z = 0, oow = 0, sw = 0, tw = 0;
+  // Pixels between the corner's window position and that of the same corner clipped in double
+  // precision: 0 for a mesh vertex; for a vertex the clipper made, how far the float clipping
+  // moved it (a huge polygon cut near the camera: pixels). Another conforming clipper may land as
+  // far the other way, so the result sets let the corner move twice this, and the candidates'
+  // boxes grow by SetupTriangle::candidateMargin (reference/result_set_builder.cpp,
+  // visibility.cpp). clipDepthError: the same for its window z (depth units); the result sets'
+  // depth widens by twice it, weighted by the corner's barycentric coordinate.
+  float clipError = 0, clipDepthError = 0;
 };
 
 // softpipe's coverage of one half of a triangle (the rows below its middle vertex, or from it up):
@@ -93,15 +101,8 @@ struct SetupTriangle {
   Plane z;                                       // window z, not perspective-divided
   int minX = 0, minY = 0, maxX = -1, maxY = -1;  // pixels whose centres may be covered
   std::array<WindowCorner, 3> corners;           // in the oriented order of the edges
-  // Per corner, pixels between its window position and that of the same corner clipped in double
-  // precision: 0 for a mesh vertex; for a vertex the clipper made, how far the float clipping
-  // moved it (a huge polygon cut near the camera: pixels). Another conforming clipper may land as
-  // far the other way, so the result sets let the corner move twice this, and the candidates'
-  // boxes grow by candidateMargin pixels (reference/result_set_builder.cpp, visibility.cpp).
-  std::array<float, 3> clipError{};
-  // Per corner, the same for its window z (depth units): the result sets' depth widens by twice
-  // it, weighted by the corner's barycentric coordinate.
-  std::array<float, 3> clipDepthError{};
+  // Pixels by which the candidates' boxes grow: twice the corners' largest clipError, where that
+  // passes the quarter pixel the boxes keep (visibility.cpp).
   int candidateMargin = 0;
   // Per edge (opposite corner i): 0 on the mesh triangle's boundary; +1 or -1 inside a clipped
   // fan, shared with the triangle of fanIndex + 1 or - 1 (the shared-edge rule gives its pixels

@@ -35,6 +35,22 @@ std::string format(const char* pattern, double value) {
 
 class Stability : public ::testing::Test {
  protected:
+  // Debug channels and every pixel's result set under gl45, at `viewport`.
+  static RenderSettings gl45Settings(Viewport viewport) {
+    RenderSettings settings;
+    settings.debugChannels = true;
+    settings.viewport = viewport;
+    applyModel(settings, gl45Model());
+    return settings;
+  }
+
+  // Whether pixel i's result set has an alternative that draws `triangle`.
+  static bool setHolds(const Frame& frame, size_t i, int32_t triangle) {
+    for (uint32_t k = frame.sets.offsets[i]; k < frame.sets.offsets[i + 1]; ++k)
+      if (frame.sets.alternatives[k].triangle == triangle) return true;
+    return false;
+  }
+
   // A dense texture of levels 0..L with P = 16 (finest side 16 * 2^L).
   const ResidentTexture& texture(uint32_t levels) {
     std::string name = "t";  // appended: GCC 12 warns falsely on "t" + std::string
@@ -352,10 +368,7 @@ TEST_F(Stability, HelperPixelsBeyondTheHorizon) {
   camera.position = {0, 1, 0};
   camera.target = {0, 1.0f - static_cast<float>(std::tan(3.14159265358979 / 6) / 32), -1};
   camera.farPlane = 1e7f;
-  RenderSettings settings;
-  settings.debugChannels = true;
-  settings.viewport = {64, 64};
-  applyModel(settings, gl45Model());
+  const RenderSettings settings = gl45Settings({64, 64});
   const Frame frame = renderFrame(toClipSpace(ground, camera, settings.viewport), t, settings);
   const Coverage coverage = expectDefined(frame, 4);
   EXPECT_GT(coverage.covered, 0u);
@@ -387,10 +400,7 @@ TEST_F(Stability, CoplanarFacesFirstDrawnWinsAndEitherMayUnderGl45) {
     for (const auto& [x, y] : std::vector<std::pair<float, float>>{{-1, -1}, {3, -1}, {-1, 3}})
       mesh.vertices.push_back({{x, y, 0.3f, 1}, {copy * 0.5f + 0.1f, 0.2f}});
   mesh.indices = {0, 1, 2, 3, 4, 5};
-  RenderSettings settings;
-  settings.debugChannels = true;
-  settings.viewport = {16, 16};
-  applyModel(settings, gl45Model());
+  const RenderSettings settings = gl45Settings({16, 16});
   const Frame frame = renderFrame(mesh, t, settings);
   size_t firstWins = 0, bothInSet = 0;
   for (size_t i = 0; i < frame.triangle.size(); ++i) {
@@ -459,14 +469,12 @@ TEST_F(Stability, AWallCutNearTheCameraKeepsWhatFloatClippingLoses) {
                    {{64606.5703125f, 148121.890625f, -101020.625f, -101020.53125f}, {1, 1}},
                    {{37279.71875f, 170329.203125f, 97456.296875f, 97456.390625f}, {1, 0}}};
   mesh.indices = {0, 1, 2};
-  RenderSettings settings;
-  settings.debugChannels = true;
-  settings.viewport = {160, 120};
-  applyModel(settings, gl45Model());
+  const RenderSettings settings = gl45Settings({160, 120});
   const Frame frame = renderFrame(mesh, t, settings);
   float largestClipError = 0;
   for (const SetupTriangle& piece : setupTriangles(mesh, settings.viewport, settings.arithmetic))
-    for (const float e : piece.clipError) largestClipError = std::max(largestClipError, e);
+    for (const WindowCorner& corner : piece.corners)
+      largestClipError = std::max(largestClipError, corner.clipError);
   const std::array<glm::vec4, 3> corners = {mesh.vertices[0].position, mesh.vertices[1].position,
                                             mesh.vertices[2].position};
   size_t lost = 0, admitted = 0;
@@ -475,9 +483,7 @@ TEST_F(Stability, AWallCutNearTheCameraKeepsWhatFloatClippingLoses) {
       const size_t i = size_t(py) * size_t(settings.viewport.width) + size_t(px);
       if (!coversExactly(corners, settings.viewport, px, py) || frame.triangle[i] == 0) continue;
       ++lost;
-      bool wall = false;
-      for (uint32_t k = frame.sets.offsets[i]; k < frame.sets.offsets[i + 1]; ++k)
-        wall = wall || frame.sets.alternatives[k].triangle == 0;
+      const bool wall = setHolds(frame, i, 0);
       EXPECT_TRUE(wall) << px << ", " << py;
       admitted += wall;
     }
@@ -511,10 +517,7 @@ TEST_F(Stability, AGroundPlaneCutNearTheCameraKeepsItsDepthUnderGl45) {
       {{97714.8828125f, 985.84375f, 13483.203125f, 13481.94921875f}, {1, 1}},
       {{9375.5078125f, -10287.404296875f, -140481.5f, -140467.34375f}, {1, 0}}};
   mesh.indices = {0, 1, 2, 3, 4, 5};
-  RenderSettings settings;
-  settings.debugChannels = true;
-  settings.viewport = {640, 400};
-  applyModel(settings, gl45Model());
+  const RenderSettings settings = gl45Settings({640, 400});
   const Frame frame = renderFrame(mesh, t, settings);
   const double margin = 4 * settings.model->depthUlps * 0x1p-23;
   size_t differ = 0, admitted = 0;
@@ -531,9 +534,7 @@ TEST_F(Stability, AGroundPlaneCutNearTheCameraKeepsItsDepthUnderGl45) {
       const int nearer = z[0] < z[1] ? 0 : 1;
       if (frame.triangle[i] == nearer) continue;
       ++differ;
-      bool found = false;
-      for (uint32_t k = frame.sets.offsets[i]; k < frame.sets.offsets[i + 1]; ++k)
-        found = found || frame.sets.alternatives[k].triangle == nearer;
+      const bool found = setHolds(frame, i, nearer);
       EXPECT_TRUE(found) << px << ", " << py;
       admitted += found;
     }
