@@ -30,10 +30,10 @@ PerturbedTriangle::PerturbedTriangle(const SetupTriangle& t, double radius) : ra
     gy += std::fabs(lambda_[i].ay);
   }
   g = gx + gy;
+  z_ = attribute({t.corners[0].z, t.corners[1].z, t.corners[2].z});
   if (!std::isfinite(g) || !(radius * g < 0.5)) return;
   shrink_ = 1 / (1 - radius * g);
   stepRadius_ = {radius * gx * shrink_, radius * gy * shrink_};
-  z_ = attribute({t.corners[0].z, t.corners[1].z, t.corners[2].z});
   oneOverW_ = attribute({t.corners[0].oow, t.corners[1].oow, t.corners[2].oow});
   bounded_ = std::isfinite(z_.a0) && std::isfinite(oneOverW_.a0);
 }
@@ -55,6 +55,11 @@ double PerturbedTriangle::terms(const AffinePlane& p, double cx, double cy) cons
                                     std::fabs(p.ax * (cx - cornerX_[i])) +
                                     std::fabs(p.ay * (cy - cornerY_[i])));
   return largest;
+}
+
+double PerturbedTriangle::depthTerms(double cx, double cy) const {
+  const double t = terms(z_, cx, cy);
+  return std::isfinite(t) ? t : std::numeric_limits<double>::infinity();
 }
 
 double PerturbedTriangle::ratioScale(const AffinePlane& numerator, double cx, double cy) const {

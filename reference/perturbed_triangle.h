@@ -93,6 +93,10 @@ class PerturbedTriangle {
   // float evaluation errs relative to this, not to the value, which cancellation makes small
   // (near a horizon, 1/w is a small difference of large terms).
   double ratioScale(const AffinePlane& numerator, double cx, double cy) const;
+  // The size of the terms an evaluation of window z sums at the centre, T(z) as above (infinite
+  // where the plane is not finite). Defined whenever the nominal triangle has an area, bounded()
+  // or not: the plane of the nominal corners, which differs from a moved one's by second order.
+  double depthTerms(double cx, double cy) const;
   std::array<double, 2> ratioScales(const AffinePlane& a, const AffinePlane& b, double cx,
                                     double cy) const;
 

@@ -285,10 +285,47 @@ class Builder {
       for (int y = by; y < by + kBlock; ++y)
         for (int x = bx; x < bx + kBlock; ++x)
           own = hull(own, Interval::point(windowDepth(t, x, y, model_.arithmetic)));
-      const Interval z = widen(s->perturbed.depth(box), 0, (model_.depthUlps + 1) * kFloatUlp);
+      double planeTerms = 0;
+      for (const double cx : {bx + 0.5, bx + kBlock - 0.5})
+        for (const double cy : {by + 0.5, by + kBlock - 0.5})
+          planeTerms = std::max(planeTerms, s->perturbed.depthTerms(cx, cy));
+      const Interval z =
+          widen(s->perturbed.depth(box), 0,
+                depthError(t, planeTerms, [&] { return s->perturbed.barycentrics(box); }));
       c.z = depthStored(hull(z, own), format);
     }
     return c;
+  }
+
+  // The depth error of candidate t beyond moved corners, in depth units, at a centre (or over a
+  // box) where the window plane's terms are at most `planeTerms` and `lambda()` gives the
+  // barycentric coordinates. The model's depthUlps and the oracle's own rounding each count 2^-23
+  // of the largest of: the depth range [0, 1]; the terms the window plane's evaluation sums
+  // (PerturbedTriangle::depthTerms); and the terms any computation of the corners' window z sums,
+  // interpolated (WindowCorner::depthTerms). A float evaluation errs relative to its terms, not
+  // to the value they sum to, and a corner clipped from a vertex behind the camera is a small
+  // difference of huge terms: an H100, which draws such a triangle as the exact polygon, showed a
+  // ground plane 2 x 10^5 wide in front of a triangle that is nearer by 3,900 units of 2^-23
+  // (data/gpus/nvidia-h100/README.md). Added: a corner the oracle's clipper made moves twice its
+  // own float clipping's depth error, by its weight. Infinite where nothing is bounded.
+  template <typename Barycentrics>
+  double depthError(const SetupTriangle& t, double planeTerms, Barycentrics lambda) const {
+    double scale = std::max(1.0, planeTerms);
+    double clipped = 0;
+    const std::array<WindowCorner, 3>& c = t.corners;
+    // A corner within the depth range has terms of at most 1, so its share never passes the range.
+    if (std::max({c[0].depthTerms, c[1].depthTerms, c[2].depthTerms}) > 1 ||
+        std::max({c[0].clipDepthError, c[1].clipDepthError, c[2].clipDepthError}) > 0) {
+      const std::array<Interval, 3> l = lambda();
+      double cornerTerms = 0;
+      for (size_t j = 0; j < 3; ++j) {
+        cornerTerms += c[j].depthTerms * l[j].magnitude();
+        clipped += 2.0 * c[j].clipDepthError * l[j].magnitude();
+      }
+      scale = std::max(scale, cornerTerms);
+    }
+    const double error = (model_.depthUlps + 1) * kFloatUlp * scale + clipped;
+    return std::isfinite(error) ? error : std::numeric_limits<double>::infinity();
   }
 
   // Coverage of candidate t at the centre of (px, py); `s` is needed unless coverage is pinned.
@@ -338,19 +375,10 @@ class Builder {
           perturbed.bounded() ? s->sourceAt(px + 0.5, py + 0.5) : WindowBox{};
       z = perturbed.bounded() ? perturbed.depth(source)
                           : interpolate(l, t.corners[0].z, t.corners[1].z, t.corners[2].z).value;
-      // depthUlps counts units of 2^-23 of the depth range [0, 1] (precision_model.h): the error
-      // of a plane evaluation scales with its terms, not with the value they sum to.
-      z = widen(z, 0, (model_.depthUlps + 1) * kFloatUlp);
-      // A corner the clipper made: twice its float clipping's depth error, by its weight here.
-      if (std::max({t.corners[0].clipDepthError, t.corners[1].clipDepthError,
-                    t.corners[2].clipDepthError}) > 0) {
-        const std::array<Interval, 3> lambda =
-            perturbed.bounded() ? perturbed.barycentrics(source) : l.atCentre;
-        double clipped = 0;
-        for (size_t j = 0; j < 3; ++j)
-          clipped += 2.0 * t.corners[j].clipDepthError * lambda[j].magnitude();
-        z = std::isfinite(clipped) ? widen(z, 0, clipped) : Interval::everything();
-      }
+      const double error = depthError(t, perturbed.depthTerms(px + 0.5, py + 0.5), [&] {
+        return perturbed.bounded() ? perturbed.barycentrics(source) : l.atCentre;
+      });
+      z = std::isfinite(error) ? widen(z, 0, error) : Interval::everything();
     }
     return depthStored(hull(z, Interval::point(own)), format);
   }

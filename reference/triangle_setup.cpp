@@ -13,12 +13,16 @@ namespace {
 
 // A clip-space vertex with its perspective attributes, as the clipper carries it. Vertices the
 // clipper makes get their window coordinates from llvmpipe's C clipper, without fma. `exact`: the
-// position clipped in double precision alongside, the same planes in the same order.
+// position clipped in double precision alongside, the same planes in the same order. `depthSum`:
+// sum_i beta_i (|z_i| + |w_i|) over the mesh triangle's vertices i, beta the clip-space
+// barycentric weights of the point (|z| + |w| at a vertex), linear in beta like the position, so
+// clipped alongside it in double.
 struct ClipPoint {
   glm::vec4 position;
   glm::vec2 uv;
   bool generated = false;
   glm::dvec4 exact{0.0};
+  double depthSum = 0;
 };
 
 // Frustum planes in outcode bit order (rule 5): x > w, x + w < 0, y > w, y + w < 0, z + w < 0,
@@ -57,6 +61,7 @@ ClipPoint intersect(const ClipPoint& inside, float dIn, const ClipPoint& outside
   const double eBase = glm::dot(base.exact, plane), eOther = glm::dot(other.exact, plane);
   const double te = eBase / (eBase - eOther);
   result.exact = base.exact + te * (other.exact - base.exact);
+  result.depthSum = base.depthSum + te * (other.depthSum - base.depthSum);
   for (int k = 0; k < 2; ++k) result.uv[k] = base.uv[k] + t * (other.uv[k] - base.uv[k]);
   result.generated = true;
   return result;
@@ -94,7 +99,7 @@ struct WindowVertex {
   float x, y, z, oow;  // window coordinates and 1/w
   int64_t xf, yf;      // snapped: round((X - 0.5) * 2^bits) as the coverage member says
   glm::vec2 uv;
-  float clipError = 0, clipDepthError = 0;  // WindowCorner's
+  float clipError = 0, clipDepthError = 0, depthTerms = 0;  // WindowCorner's
 };
 
 // (X - 0.5) * 2^bits in float (exact for a power of two unless it overflows), rounded.
@@ -113,6 +118,10 @@ int64_t snap(float x, const Coverage& coverage) {
   return static_cast<int64_t>(std::nearbyint(scaled));
 }
 
+// Corner depth terms at or beyond this make every depth possible (2^23 units of 2^-23: the
+// whole range per unit of error).
+constexpr double kDepthTermsCap = 0x1p23;
+
 WindowVertex toWindow(const ClipPoint& p, Viewport viewport, const Arithmetic& arithmetic) {
   WindowVertex v;
   v.oow = 1.0f / p.position.w;
@@ -129,6 +138,10 @@ WindowVertex toWindow(const ClipPoint& p, Viewport viewport, const Arithmetic& a
   v.xf = snap(v.x, arithmetic.coverage);
   v.yf = snap(v.y, arithmetic.coverage);
   v.uv = p.uv;
+  // WindowCorner::depthTerms: depthSum over 2 |w| (window z is half of z / w), capped where it
+  // says "anything" in depth units; NaN (an exact w of 0) too.
+  const double terms = p.depthSum / (2.0 * std::fabs(p.exact.w));
+  v.depthTerms = static_cast<float>(terms < kDepthTermsCap ? terms : kDepthTermsCap);
   if (p.generated) {
     const double xe = (p.exact.x / p.exact.w + 1.0) * halfWidth;
     const double ye = (p.exact.y / p.exact.w + 1.0) * halfHeight;
@@ -188,7 +201,8 @@ void firstVertexPlanes(const WindowVertex& v0, const WindowVertex& v1, const Win
 
 WindowCorner cornerOf(const WindowVertex& v) {
   return WindowCorner{
-      v.x, v.y, v.z, v.oow, v.uv.x * v.oow, v.uv.y * v.oow, v.clipError, v.clipDepthError};
+      v.x,         v.y, v.z, v.oow, v.uv.x * v.oow, v.uv.y * v.oow, v.clipError, v.clipDepthError,
+      v.depthTerms};
 }
 
 // The planes as `setup` says, from the triangle in draw order (v0, v1, v2) or oriented.
@@ -406,7 +420,9 @@ void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport,
     const unsigned code = outcode(v.position);
     any |= code;
     all &= code;
-    polygon.push_back({v.position, v.uv, false, glm::dvec4(v.position)});
+    const double depthSum =
+        std::fabs(static_cast<double>(v.position.z)) + std::fabs(static_cast<double>(v.position.w));
+    polygon.push_back({v.position, v.uv, false, glm::dvec4(v.position), depthSum});
   }
   if (!finite) {
     ++stats.nonFinite;

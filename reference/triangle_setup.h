@@ -74,6 +74,17 @@ struct WindowCorner {
   // visibility.cpp). clipDepthError: the same for its window z (depth units); the result sets'
   // depth widens by twice it, weighted by the corner's barycentric coordinate.
   float clipError = 0, clipDepthError = 0;
+  // The size of the terms any float computation of the corner's window z sums, in depth units:
+  // sum_i beta_i (|z_i| + |w_i|) / (2 |w|) for the corner = sum_i beta_i V_i of the mesh
+  // triangle's clip-space vertices V_i (beta >= 0, sum 1). At most 1 for a vertex inside the depth
+  // range. A corner the clipper made from a vertex behind the camera (w < 0) sums terms far larger
+  // than its value: clipping computes it as a difference of such terms, and a rasterizer that
+  // clips nothing (homogeneous barycentrics, the exact polygon) evaluates sum_i l_i V_i with
+  // l_i = beta_i / w, whose terms are these too. The quantity over |w| is affine in window
+  // space (as 1/w is), so at a pixel it is the corners' values interpolated by its barycentric
+  // coordinates; the result sets scale the depth error by it (result_set_builder.cpp). Capped at
+  // 2^23 (every depth).
+  float depthTerms = 0;
 };
 
 // softpipe's coverage of one half of a triangle (the rows below its middle vertex, or from it up):

@@ -59,12 +59,14 @@ PrecisionModel gl45Model() {
   // Depth is interpolated like any attribute (section 14.6.1, equation 14.10, without the
   // perspective division) and converted to fixed point by section 2.3.5.2.
   // The only number the specification gives is the general "about 1 part in 10^5" of section
-  // 2.3.4.1: 84 units of 2^-23, of the depth range [0, 1] the terms of z lie in.
+  // 2.3.4.1: 84 units of 2^-23, relative to the operands, so of the depth range [0, 1] where the
+  // terms of z lie in it and of the terms where they are larger (precision_model.h).
   m.depthUlps = 84;
   m.depthRoundsToNearest = false;
   m.sources["depth"] =
       "GL 4.5 core, section 14.6.1 (z linear in window space over the snapped vertices), section "
-      "2.3.4.1 (floating-point computation to about 1 part in 10^5: 84 units of 2^-23) and section "
+      "2.3.4.1 (floating-point computation to about 1 part in 10^5 of its operands: 84 units of "
+      "2^-23 of the depth range or of the terms z sums, the larger) and section "
       "2.3.5.2 (fixed-point depth: either of the two nearest values)";
   // The specification gives no precision for interpolation (attributes are evaluated at the pixel
   // centre, section 14.6.1). dEQP's interpolation verifier allows 3 ULP for each of the three

@@ -40,8 +40,12 @@ struct PrecisionModel {
   int subpixelBits = 8;
   bool fillRulePinned = true;  // false: a centre on an edge may belong to either triangle
   // Depth: error of the interpolated window z beyond vertex snapping, in units of 2^-23 of the
-  // depth range [0, 1] (a plane's rounding scales with its terms, which lie in [0, 1]);
-  // with depthRoundsToNearest false, Z24 may store either of the two nearest values.
+  // larger of the depth range [0, 1] and the terms its computation sums: those of the window
+  // plane's evaluation at the pixel, and those of the corners' window z interpolated to it (a
+  // corner clipped from a vertex behind the camera, or a rasterizer's homogeneous barycentrics
+  // there, sums terms far beyond the range; reference/triangle_setup.h, WindowCorner::depthTerms).
+  // For a triangle inside the depth range the terms lie in [0, 1] and the unit is the range's.
+  // With depthRoundsToNearest false, Z24 may store either of the two nearest values.
   double depthUlps = 0;
   bool depthRoundsToNearest = true;
 

@@ -13,6 +13,8 @@
 //    "color_conversion": "nearest" | "either", "denormals": "pinned" | "free",
 //    "sources": {"<parameter>": "<where its value comes from>", ...}}
 //
+// depth_ulps and attribute_ulps count units of 2^-23 relative to the terms their computation sums
+// (precision_model.h); a file written before depth_ulps became relative (2026-11) only reads wider.
 // Every field is required; a missing, misspelt or out-of-range one is refused with the file and
 // the field named, and so is a model that allows more than gl45 (precision_model.h, beyondGl45).
 // Version 1 files ("vt-precision-model-1": "arithmetic" names a point, "log2" and "filter" name
