@@ -20,7 +20,7 @@ status=0
 echo
 echo "| captures | model | pixels | identical | explained | unexplained | ambiguous | colour width (1/255) | levels | pages |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
-for set in captures compressed/captures-bc1 compressed/captures-bc3a q3dm6ish; do
+for set in captures compressed/captures-bc1 compressed/captures-bc3a q3dm6ish stress; do
   [[ -d $unpacked/$set ]] || continue
   texture=scene.vt
   [[ $set == compressed/* ]] && texture=scene_${set#compressed/captures-}.vt

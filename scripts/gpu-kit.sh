@@ -3,7 +3,8 @@
 # everything `vt` judges (vt-capture, the libraries it links that such a machine lacks, libglvnd's
 # EGL and GL loaders as Debian packages, the probe requests of `vt calibrate`, the demo's texture,
 # q3dm6ish's retextured geometry and tour, the texture's layout as BC1 pages and as BC3 pages with
-# noise as alpha) and gpu-run.sh, the one command to run there.
+# noise as alpha, the hostile scene of scripts/stress-scene.py) and gpu-run.sh, the one command to
+# run there.
 #   scripts/gpu-kit.sh [--no-map] [--no-loaders] [--texture FILE] [--layout LAYOUT] [KIT]
 #                                                                   (default KIT: .gpu-kit)
 # --no-map leaves out q3dm6ish (no OpenArena fetch); --no-loaders the Debian packages (for a run on
@@ -95,6 +96,8 @@ if [[ -n $layout ]]; then
   done <"$noisy/images"
   "$vt" build "$noisy/layout.json" --format bc3 -o "$staging/data/scene_bc3a.vt" >/dev/null
 fi
+# The hostile scene (huge, tiny and sliver triangles, vertices behind the camera), generated.
+python3 scripts/stress-scene.py "$staging/data" >/dev/null
 if ((map)); then
   packages=$(bash scripts/fetch-openarena.sh)
   "$vt" retexture q3dm6ish --packages "$packages" -o "$work/q3" --no-coherence >/dev/null

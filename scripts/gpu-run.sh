@@ -4,11 +4,11 @@
 # Unpacks libglvnd's loaders (root; unless VT_KIT_SYSTEM_GL=1 says the machine has its own),
 # selects the NVIDIA EGL vendor where its file is found, then draws the calibration's probes, the
 # named scenes (of the kit's texture and, where the kit has them, of its BC1 and BC3 versions) and
-# the q3dm6ish flythrough (captures) and times them at 1280 x 720 and 1920 x 1080
-# (VT_KIT_TIMING_SIZES overrides the sizes).
+# the q3dm6ish flythrough and every 10th frame of the hostile scene's (captures) and times them at
+# 1280 x 720 and 1920 x 1080 (VT_KIT_TIMING_SIZES overrides the sizes).
 # OUT receives at most 8 files: log.txt, probes.tar.gz, captures.tar.gz, compressed.tar.gz,
-# q3dm6ish.tar.gz, timings.json, timings-q3dm6ish.json. A step that fails is logged and the others
-# still run; the exit status is that of the first failure.
+# q3dm6ish.tar.gz, stress.tar.gz, timings.json, timings-q3dm6ish.json. A step that fails is logged
+# and the others still run; the exit status is that of the first failure.
 set -uo pipefail
 kit=$(cd "$(dirname "$0")" && pwd)
 out=${1:?usage: gpu-run.sh OUT}
@@ -72,7 +72,11 @@ if [[ -f $kit/data/q3dm6ish.obj ]]; then
   step timings-q3dm6ish "$capture" timings "$texture" "${map[@]}" --sizes "$sizes" \
     -o "$out/timings-q3dm6ish.json"
 fi
-for folder in probes captures compressed q3dm6ish; do
+if [[ -f $kit/data/stress.obj ]]; then
+  step stress "$capture" scenes "$texture" --mesh "$kit/data/stress.obj" \
+    --path "$kit/data/stress.path.json" --every 10 --texture-name scene.vt -o "$work/stress"
+fi
+for folder in probes captures compressed q3dm6ish stress; do
   [[ -d $work/$folder ]] && tar -C "$work" -czf "$out/$folder.tar.gz" "$folder"
 done
 echo "== status $status" >>"$log"

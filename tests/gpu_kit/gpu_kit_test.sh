@@ -3,8 +3,8 @@
 # (without the map and the loader packages, which this machine has), its vt-capture resolving its
 # libraries from the kit alone (ldd: nothing outside it but the C library's own), run by
 # gpu-run.sh in an emptied environment, judged by scripts/gpu-judge.sh: the model fitted from the
-# kit's probes is the one `vt calibrate` measures here, and the captures (of its texture and of
-# the BC1 and BC3 versions of the texture's layout) are bit for bit.
+# kit's probes is the one `vt calibrate` measures here, and the captures (of its texture, of
+# the BC1 and BC3 versions of the texture's layout and of the hostile scene) are bit for bit.
 #   gpu_kit_test.sh SOURCE BUILD WORK
 set -euo pipefail
 source=$1 build=$2 work=$3
@@ -39,4 +39,8 @@ for set in captures captures-bc1 captures-bc3a; do
     exit 1
   }
 done
+grep -q "^| stress | model | 1408000 | 1408000 | 0 | 0 | 0.0000 |" "$work/table.md" || {
+  echo "FAIL: the kit's hostile scene is not bit for bit under the model fitted from its probes"
+  exit 1
+}
 echo "gpu kit: model and captures as here"
