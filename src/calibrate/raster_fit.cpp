@@ -15,6 +15,7 @@
 #include "reference/renderer.h"
 #include "render/precision_model.h"
 #include "scene/camera.h"
+#include "scene/captured_triangles.h"
 #include "scene/mesh.h"
 
 namespace vt::calibrate {
@@ -286,22 +287,6 @@ struct Combination {
 };
 
 }  // namespace
-
-ClipSpaceMesh groundUnderATriangleBehindTheCamera() {
-  ClipSpaceMesh mesh;
-  mesh.vertices = {
-      {{43.0224494934082f, -35.95295333862305f, 52.92001724243164f, 53.01472091674805f},
-       {0.5717132091522217f, 0.24229001998901367f}},
-      {{-268.4937438964844f, 141.68603515625f, 8.332351684570312f, 8.431526184082031f},
-       {0.27315253019332886f, 0.7474932670593262f}},
-      {{-15.711488723754883f, 19.00309181213379f, -56.87036895751953f, -56.764678955078125f},
-       {0.7368249297142029f, 0.19827687740325928f}},
-      {{-166867.34375f, -25620.671875f, -36394.921875f, -36391.18359375f}, {0, 1}},
-      {{-47427.60546875f, 90134.8125f, 128059.921875f, 128047.203125f}, {1, 1}},
-      {{166859.953125f, 25614.94140625f, 36395.96875f, 36392.42578125f}, {1, 0}}};
-  mesh.indices = {0, 1, 2, 3, 4, 5};
-  return mesh;
-}
 
 RasterFits fitRasterization(const Arithmetic& base) {
   RasterFits result;

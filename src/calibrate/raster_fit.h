@@ -69,10 +69,4 @@ void setCoverageBounds(PrecisionModel& model, bool coveragePinned, int gridBits)
 // denormals, ...), which the oracle draws with.
 RasterFits fitRasterization(const Arithmetic& base);
 
-// One of its probes: the two triangles of the stress scene's frame 56 (scripts/stress-scene.py),
-// each with a vertex behind the camera, where an H100 showed the ground in front of a triangle
-// nearer by 3,900 units of 2^-23, as clip-space vertices (a viewport only changes which pixel
-// centres sample them; the stability tests draw them at the capture's 640 x 400).
-ClipSpaceMesh groundUnderATriangleBehindTheCamera();
-
 }  // namespace vt::calibrate

@@ -11,12 +11,12 @@
 #include <limits>
 
 #include "build/synthetic_texture.h"
-#include "calibrate/raster_fit.h"
 #include "reference/renderer.h"
 #include "reference/triangle_setup.h"
 #include "render/arithmetic_points.h"
 #include "render/frame_images.h"
 #include "scene/camera.h"
+#include "scene/captured_triangles.h"
 #include "test_support.h"
 
 namespace vt::reference {
@@ -582,7 +582,7 @@ TEST_F(Stability, ATriangleBehindTheCameraKeepsTheDepthAHomogeneousRasterizerGiv
   // triangle a float evaluation of homogeneous barycentrics puts in front, and the ground where
   // the H100 showed it.
   const ResidentTexture& t = texture(5);
-  const ClipSpaceMesh mesh = calibrate::groundUnderATriangleBehindTheCamera();
+  const ClipSpaceMesh mesh = groundUnderATriangleBehindTheCamera();
   const RenderSettings settings = gl45Settings({640, 400});
   const Frame frame = renderFrame(mesh, t, settings);
   const auto at = [&](int px, int py) {
