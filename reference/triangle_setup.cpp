@@ -138,10 +138,15 @@ WindowVertex toWindow(const ClipPoint& p, Viewport viewport, const Arithmetic& a
   v.xf = snap(v.x, arithmetic.coverage);
   v.yf = snap(v.y, arithmetic.coverage);
   v.uv = p.uv;
-  // WindowCorner::depthTerms: depthSum over 2 |w| (window z is half of z / w), capped where it
-  // says "anything" in depth units; NaN (an exact w of 0) too.
-  const double terms = p.depthSum / (2.0 * std::fabs(p.exact.w));
-  v.depthTerms = static_cast<float>(terms < kDepthTermsCap ? terms : kDepthTermsCap);
+  if (p.depthSum > 0) {
+    // WindowCorner::depthTerms, for the corners of a clipped polygon (the clipper's and the mesh
+    // vertices it keeps): depthSum over 2 |w| (window z is half of z / w), capped where it says
+    // "anything" in depth units; NaN (an exact w of 0) too. An unclipped triangle's vertices lie
+    // inside the depth range by the clip test, their terms at most 1 up to its float rounding,
+    // which the result sets' least unit covers: left 0.
+    const double terms = p.depthSum / (2.0 * std::fabs(p.exact.w));
+    v.depthTerms = static_cast<float>(terms < kDepthTermsCap ? terms : kDepthTermsCap);
+  }
   if (p.generated) {
     const double xe = (p.exact.x / p.exact.w + 1.0) * halfWidth;
     const double ye = (p.exact.y / p.exact.w + 1.0) * halfHeight;
@@ -420,9 +425,7 @@ void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport,
     const unsigned code = outcode(v.position);
     any |= code;
     all &= code;
-    const double depthSum =
-        std::fabs(static_cast<double>(v.position.z)) + std::fabs(static_cast<double>(v.position.w));
-    polygon.push_back({v.position, v.uv, false, glm::dvec4(v.position), depthSum});
+    polygon.push_back({v.position, v.uv, false, glm::dvec4(v.position)});
   }
   if (!finite) {
     ++stats.nonFinite;
@@ -434,6 +437,8 @@ void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport,
   }
   if (any != 0) {
     ++stats.clipped;
+    for (ClipPoint& p : polygon)
+      p.depthSum = std::fabs(p.exact.z) + std::fabs(p.exact.w);  // ClipPoint's, for the clipper
     if (!clipPolygon(polygon, any)) {
       if (polygon.size() >= 3) ++stats.nonFinite;
       return;

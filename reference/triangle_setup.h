@@ -76,8 +76,9 @@ struct WindowCorner {
   float clipError = 0, clipDepthError = 0;
   // The size of the terms any float computation of the corner's window z sums, in depth units:
   // sum_i beta_i (|z_i| + |w_i|) / (2 |w|) for the corner = sum_i beta_i V_i of the mesh
-  // triangle's clip-space vertices V_i (beta >= 0, sum 1). At most 1 for a vertex inside the depth
-  // range. A corner the clipper made from a vertex behind the camera (w < 0) sums terms far larger
+  // triangle's clip-space vertices V_i (beta >= 0, sum 1); 0 for the corners of an unclipped
+  // triangle, which lie inside the depth range where the terms are at most 1, the result sets'
+  // least unit. A corner the clipper made from a vertex behind the camera (w < 0) sums terms far larger
   // than its value: clipping computes it as a difference of such terms, and a rasterizer that
   // clips nothing (homogeneous barycentrics, the exact polygon) evaluates sum_i l_i V_i with
   // l_i = beta_i / w, whose terms are these too. The quantity over |w| is affine in window
