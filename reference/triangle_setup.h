@@ -78,9 +78,9 @@ struct WindowCorner {
   // sum_i beta_i (|z_i| + |w_i|) / (2 |w|) for the corner = sum_i beta_i V_i of the mesh
   // triangle's clip-space vertices V_i (beta >= 0, sum 1); 0 for the corners of an unclipped
   // triangle, which lie inside the depth range where the terms are at most 1, the result sets'
-  // least unit. A corner the clipper made from a vertex behind the camera (w < 0) sums terms far larger
-  // than its value: clipping computes it as a difference of such terms, and a rasterizer that
-  // clips nothing (homogeneous barycentrics, the exact polygon) evaluates sum_i l_i V_i with
+  // least unit. A corner the clipper made from a vertex behind the camera (w < 0) sums terms far
+  // larger than its value: clipping computes it as a difference of such terms, and a rasterizer
+  // that clips nothing (homogeneous barycentrics, the exact polygon) evaluates sum_i l_i V_i with
   // l_i = beta_i / w, whose terms are these too. The quantity over |w| is affine in window
   // space (as 1/w is), so at a pixel it is the corners' values interpolated by its barycentric
   // coordinates; the result sets scale the depth error by it (result_set_builder.cpp). Capped at
