@@ -64,8 +64,7 @@ CornerBoxes cornerBoxes(const SetupTriangle& t, double radius, Viewport viewport
 // The largest radius of the boxes: what PerturbedTriangle lets every corner move by.
 double largestRadius(const CornerBoxes& b) {
   double r = 0;
-  for (size_t i = 0; i < 3; ++i)
-    r = std::max({r, b.x[i].width() / 2, b.y[i].width() / 2});
+  for (size_t i = 0; i < 3; ++i) r = std::max({r, b.x[i].width() / 2, b.y[i].width() / 2});
   return r;
 }
 
@@ -269,13 +268,15 @@ class Builder {
     if (model_.coveragePinned()) return c;
     Snapped* s = snapped(t, index);
     if (!s->perturbed.bounded()) return c;
-    const WindowBox box = s->perturbed.sourceBoxOver(bx + 0.5, by + 0.5, bx + kBlock - 0.5,
-                                                     by + kBlock - 0.5);
+    const WindowBox box =
+        s->perturbed.sourceBoxOver(bx + 0.5, by + 0.5, bx + kBlock - 0.5, by + kBlock - 0.5);
     c.cover = 2;
     for (size_t i = 0; i < 3 && c.cover != 0; ++i) {
       const Interval lambda = s->perturbed.barycentric(i, box);
-      if (lambda.hi < 0) c.cover = 0;
-      else if (!(lambda.lo > 0)) c.cover = -1;
+      if (lambda.hi < 0)
+        c.cover = 0;
+      else if (!(lambda.lo > 0))
+        c.cover = -1;
     }
     if (c.cover != 0) {
       // What depth() bounds at each centre: its steps over the block's box instead of a centre's
@@ -308,8 +309,8 @@ class Builder {
   // ground plane 2 x 10^5 wide in front of a triangle that is nearer by 3,900 units of 2^-23
   // (data/gpus/nvidia-h100/README.md). Added: a corner the oracle's clipper made moves twice its
   // own float clipping's depth error, by its weight. Infinite where nothing is bounded.
-  template <typename Barycentrics>
-  double depthError(const SetupTriangle& t, double planeTerms, Barycentrics lambda) const {
+  template <typename BarycentricsOf>
+  double depthError(const SetupTriangle& t, double planeTerms, BarycentricsOf lambda) const {
     double scale = std::max(1.0, planeTerms);
     double clipped = 0;
     const std::array<WindowCorner, 3>& c = t.corners;
@@ -362,8 +363,7 @@ class Builder {
   }
 
   // Window depth of candidate t at (px, py) as the depth test compares it.
-  Interval depth(const SetupTriangle& t, Snapped* s, int px, int py,
-                 DepthFormat format) const {
+  Interval depth(const SetupTriangle& t, Snapped* s, int px, int py, DepthFormat format) const {
     const double own = windowDepth(t, px, py, model_.arithmetic);
     if (depthPinned()) return Interval::point(own);
     const PerturbedTriangle& perturbed = s->perturbed;
@@ -371,10 +371,10 @@ class Builder {
         perturbed.bounded() ? Barycentrics{} : barycentrics(s->boxes, px + 0.5, py + 0.5);
     Interval z = Interval::everything();
     if (perturbed.bounded() || !l.degenerate) {
-      const WindowBox source =
-          perturbed.bounded() ? s->sourceAt(px + 0.5, py + 0.5) : WindowBox{};
-      z = perturbed.bounded() ? perturbed.depth(source)
-                          : interpolate(l, t.corners[0].z, t.corners[1].z, t.corners[2].z).value;
+      const WindowBox source = perturbed.bounded() ? s->sourceAt(px + 0.5, py + 0.5) : WindowBox{};
+      z = perturbed.bounded()
+              ? perturbed.depth(source)
+              : interpolate(l, t.corners[0].z, t.corners[1].z, t.corners[2].z).value;
       const double error = depthError(t, perturbed.depthTerms(px + 0.5, py + 0.5), [&] {
         return perturbed.bounded() ? perturbed.barycentrics(source) : l.atCentre;
       });
@@ -404,9 +404,8 @@ class Builder {
       if (!std::isfinite(here.x) || !std::isfinite(here.y)) f.everything = true;
     } else {
       const PerturbedTriangle& perturbed = snapped->perturbed;
-      const Barycentrics l = perturbed.bounded()
-                                 ? Barycentrics{}
-                                 : barycentrics(snapped->boxes, px + 0.5, py + 0.5);
+      const Barycentrics l =
+          perturbed.bounded() ? Barycentrics{} : barycentrics(snapped->boxes, px + 0.5, py + 0.5);
       const double relative = model_.attributeUlps * kFloatUlp;
       if (perturbed.bounded()) {
         const AffinePlane& s = snapped->s;
@@ -427,8 +426,8 @@ class Builder {
         dtdx = floatStep(alongX.t, std::max(tScale, tHere.magnitude()), relative);
         dsdy = floatStep(alongY.s, std::max(sScale, sHere.magnitude()), relative);
         dtdy = floatStep(alongY.t, std::max(tScale, tHere.magnitude()), relative);
-        if (!f.s.finite() || !f.t.finite() || !dsdx.finite() || !dtdx.finite() ||
-            !dsdy.finite() || !dtdy.finite())
+        if (!f.s.finite() || !f.t.finite() || !dsdx.finite() || !dtdx.finite() || !dsdy.finite() ||
+            !dtdy.finite())
           f.everything = true;
       } else if (l.degenerate) {
         f.everything = true;
@@ -488,9 +487,9 @@ class Builder {
       // The filter's and the conversion's share alone: from the oracle's (s, t) and LOD.
       // (s, t) as the shader samples them: clamped to [0, 1] like f.s and f.t above (the
       // oracle's own are the interpolated values, past 1 on a quad whose coordinates run past).
-      const Colour narrow = shade(clamp(Interval::point(oracle.uv.x), 0, 1),
-                                  clamp(Interval::point(oracle.uv.y), 0, 1),
-                                  Interval::point(oracle.lod));
+      const Colour narrow =
+          shade(clamp(Interval::point(oracle.uv.x), 0, 1),
+                clamp(Interval::point(oracle.uv.y), 0, 1), Interval::point(oracle.lod));
       store(narrow, a.filterLo, a.filterHi);
       // The oracle's own value is in both (its arithmetic is one the model allows).
       a.filterLo = glm::min(a.filterLo, oracle.color);
@@ -632,8 +631,7 @@ class Builder {
       } else if (model_.arithmetic.filter.weights == FilterWeights::kFixedPoint8) {
         positionError += kFixedPointSubTexelStep;
         // Three lerps, each rounded to nearest: 0.5 + 0.5; each floored: under 1 + 1.
-        valueError =
-            model_.arithmetic.filter.lerpRounding == LerpRounding::kNearest ? 1.0 : 2.0;
+        valueError = model_.arithmetic.filter.lerpRounding == LerpRounding::kNearest ? 1.0 : 2.0;
       }
     } else {
       valueError += model_.arithmeticUlps * kFloatUlp * 255 * 4;
@@ -652,8 +650,7 @@ class Builder {
     // Beyond 16 texels a wide box is bounded by the whole range (below); one this wide has more
     // stops than fit, so it is wide whatever the other axis.
     constexpr double kSurelyWide = kMaxPoints + 2;
-    if (x.width() >= kSurelyWide || y.width() >= kSurelyWide)
-      return everyValue();
+    if (x.width() >= kSurelyWide || y.width() >= kSurelyWide) return everyValue();
     struct Stops {
       std::array<double, kMaxPoints + 2> at;
       size_t count = 0;
@@ -921,8 +918,8 @@ struct ResultSetBuilder::Impl {
   Builder builder;
   const std::vector<SetupTriangle>& triangles;
   DepthFormat depthFormat;
-  std::vector<BlockClass> classes;     // of the current pixel's candidates
-  std::vector<PixelCandidate> list;    // those that may cover it
+  std::vector<BlockClass> classes;   // of the current pixel's candidates
+  std::vector<PixelCandidate> list;  // those that may cover it
 };
 
 ResultSetBuilder::ResultSetBuilder(const PrecisionModel& model, const SetShading& shading,
@@ -950,8 +947,8 @@ void ResultSetBuilder::append(const Visibility::BlockCandidates& candidates, int
     if (!(candidates.pixels[i] & bit)) continue;
     const int32_t index = candidates.triangles[i];
     if (known[i].cover == -2)
-      known[i] = builder.blockClass(triangles[static_cast<size_t>(index)], index, bx, by,
-                                    depthFormat);
+      known[i] =
+          builder.blockClass(triangles[static_cast<size_t>(index)], index, bx, by, depthFormat);
     const BlockClass& c = known[i];
     if (c.cover == 0) continue;
     classes.push_back(c);
@@ -966,7 +963,8 @@ void ResultSetBuilder::append(const Visibility::BlockCandidates& candidates, int
     // everywhere in it: at this pixel too it surely beats this one, and beats whatever this one
     // beats, so leaving it out changes nothing; unless it is the oracle's own, or a piece of a
     // clipped fan (the fan's union reads its pieces).
-    const bool fanPiece = t.fanNeighbour[0] != 0 || t.fanNeighbour[1] != 0 || t.fanNeighbour[2] != 0;
+    const bool fanPiece =
+        t.fanNeighbour[0] != 0 || t.fanNeighbour[1] != 0 || t.fanNeighbour[2] != 0;
     if (front < c.z.lo && index != oracle.index && !fanPiece) continue;
     Snapped* s = builder.snapped(t, index);
     const PieceCoverage piece = c.cover == 2 ? PieceCoverage{2} : builder.coverage(t, s, px, py);
@@ -995,8 +993,7 @@ void ResultSetBuilder::append(const Visibility::BlockCandidates& candidates, int
       if (&d != &c && surelyBeats(d, c)) possible = false;
     if (!possible && c.index != oracle.index) continue;
     const SetupTriangle& t = triangles[static_cast<size_t>(c.index)];
-    Alternative a =
-        builder.alternative(t, c.index, builder.fragment(t, c.snapped, px, py), oracle);
+    Alternative a = builder.alternative(t, c.index, builder.fragment(t, c.snapped, px, py), oracle);
     if (c.index != oracle.index)
       a.reasons = (c.cover == 2 && own && own->cover == 2) ? kReasonDepth : kReasonCoverage;
     out.push_back(a);

@@ -24,7 +24,11 @@ struct BlockQuery {
   // A query of the rays from (x0, y0), for the set-up `triangles`, which it keeps by pointer.
   BlockQuery(const std::vector<SetupTriangle>& triangles, int x0, int y0, DepthFormat format,
              const Arithmetic& arithmetic, int margin)
-      : triangles(&triangles), x0(x0), y0(y0), format(format), arithmetic(&arithmetic),
+      : triangles(&triangles),
+        x0(x0),
+        y0(y0),
+        format(format),
+        arithmetic(&arithmetic),
         margin(margin) {
     rtcInitIntersectContext(&context);
   }
@@ -249,8 +253,8 @@ Visibility::~Visibility() {
 void Visibility::tile(int x0, int y0, std::span<PixelHit, kTile * kTile> hits) const {
   std::fill(hits.begin(), hits.end(), PixelHit{});
   std::array<uint32_t, kTile * kTile> keys{};
-  const size_t bin =
-      static_cast<size_t>(y0 / kTile) * static_cast<size_t>(tilesX_) + static_cast<size_t>(x0 / kTile);
+  const size_t bin = static_cast<size_t>(y0 / kTile) * static_cast<size_t>(tilesX_) +
+                     static_cast<size_t>(x0 / kTile);
   const int xEnd = std::min(x0 + kTile, viewport_.width) - 1,
             yEnd = std::min(y0 + kTile, viewport_.height) - 1;
   for (uint32_t i = binStart_[bin]; i < binStart_[bin + 1]; ++i) {

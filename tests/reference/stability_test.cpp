@@ -431,27 +431,34 @@ TEST_F(Stability, CoplanarFacesFirstDrawnWinsAndEitherMayUnderGl45) {
 }
 
 // The window depth of triangle (a, b, c) cut by the near and far planes at the centre of pixel
-// (px, py), in double precision from the clip-space corners themselves (homogeneous
-// barycentrics: no clipped vertex is computed, as a GPU that rasterizes in 2D homogeneous
-// coordinates does it); NaN where it does not cover the centre.
-double depthExactly(const std::array<glm::vec4, 3>& corner, Viewport viewport, int px, int py) {
-  const double x = (px + 0.5) / viewport.width * 2 - 1, y = (py + 0.5) / viewport.height * 2 - 1;
-  std::array<double, 3> u{}, v{};
+// (px, py), computed in `Real` from the clip-space corners themselves (homogeneous barycentrics:
+// no clipped vertex is computed, as a GPU that rasterizes in 2D homogeneous coordinates does it,
+// the exact polygon, a vertex behind the camera included); NaN where it does not cover the
+// centre. In double it is the exact reference; in float what such a rasterizer computes.
+template <typename Real>
+Real depthHomogeneous(const std::array<glm::vec4, 3>& corner, Viewport viewport, int px, int py) {
+  const Real x = (Real(px) + Real(0.5)) / Real(viewport.width) * 2 - 1;
+  const Real y = (Real(py) + Real(0.5)) / Real(viewport.height) * 2 - 1;
+  std::array<Real, 3> u{}, v{};
   for (size_t i = 0; i < 3; ++i) {
-    u[i] = double(corner[i].x) - x * double(corner[i].w);
-    v[i] = double(corner[i].y) - y * double(corner[i].w);
+    u[i] = Real(corner[i].x) - x * Real(corner[i].w);
+    v[i] = Real(corner[i].y) - y * Real(corner[i].w);
   }
   // b solves sum b_i (u_i, v_i) = 0: the cross product of u and v.
-  std::array<double, 3> b = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                             u[0] * v[1] - u[1] * v[0]};
-  double w = 0, z = 0;
-  for (size_t i = 0; i < 3; ++i) w += b[i] * double(corner[i].w);
+  std::array<Real, 3> b = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                           u[0] * v[1] - u[1] * v[0]};
+  Real w = 0, z = 0;
+  for (size_t i = 0; i < 3; ++i) w += b[i] * Real(corner[i].w);
   if (w < 0)
-    for (double& bi : b) bi = -bi;
+    for (Real& bi : b) bi = -bi;
   w = std::fabs(w);
-  for (size_t i = 0; i < 3; ++i) z += b[i] * double(corner[i].z);
+  for (size_t i = 0; i < 3; ++i) z += b[i] * Real(corner[i].z);
   const bool covers = b[0] >= 0 && b[1] >= 0 && b[2] >= 0 && w > 0 && -w <= z && z <= w;
-  return covers ? (z / w + 1) / 2 : std::nan("");
+  return covers ? (z / w + 1) / 2 : std::numeric_limits<Real>::quiet_NaN();
+}
+
+double depthExactly(const std::array<glm::vec4, 3>& corner, Viewport viewport, int px, int py) {
+  return depthHomogeneous<double>(corner, viewport, px, py);
 }
 
 bool coversExactly(const std::array<glm::vec4, 3>& corner, Viewport viewport, int px, int py) {
@@ -548,31 +555,6 @@ TEST_F(Stability, AGroundPlaneCutNearTheCameraKeepsItsDepthUnderGl45) {
          "gl45: clipped corners' depth moves twice its clip error");
 }
 
-// Window z of the triangle at the centre of (px, py) as a rasterizer that clips nothing computes
-// it in float: homogeneous barycentrics from the clip-space corners (the exact polygon, a vertex
-// behind the camera included), z = sum b_i z_i / sum b_i w_i mapped to [0, 1]; NaN where the
-// centre is not covered.
-float depthHomogeneousInFloat(const std::array<glm::vec4, 3>& corner, Viewport viewport, int px,
-                              int py) {
-  const float x = (float(px) + 0.5f) / float(viewport.width) * 2 - 1;
-  const float y = (float(py) + 0.5f) / float(viewport.height) * 2 - 1;
-  std::array<float, 3> u{}, v{};
-  for (size_t i = 0; i < 3; ++i) {
-    u[i] = corner[i].x - x * corner[i].w;
-    v[i] = corner[i].y - y * corner[i].w;
-  }
-  std::array<float, 3> b = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                            u[0] * v[1] - u[1] * v[0]};
-  float w = b[0] * corner[0].w + b[1] * corner[1].w + b[2] * corner[2].w;
-  if (w < 0) {
-    for (float& bi : b) bi = -bi;
-    w = -w;
-  }
-  const float z = b[0] * corner[0].z + b[1] * corner[1].z + b[2] * corner[2].z;
-  const bool covers = b[0] >= 0 && b[1] >= 0 && b[2] >= 0 && w > 0 && -w <= z && z <= w;
-  return covers ? (z / w + 1) / 2 : std::nanf("");
-}
-
 TEST_F(Stability, ATriangleBehindTheCameraKeepsTheDepthAHomogeneousRasterizerGives) {
   // Two triangles of an H100 capture (the stress scene's frame 56 at 640 x 400), each with a
   // vertex behind the camera: a small one drawn first and a ground plane 2 x 10^5 wide. At (310,
@@ -596,7 +578,7 @@ TEST_F(Stability, ATriangleBehindTheCameraKeepsTheDepthAHomogeneousRasterizerGiv
     for (int px = 0; px < settings.viewport.width; ++px) {
       std::array<float, 2> z{};
       for (size_t k = 0; k < 2; ++k)
-        z[k] = depthHomogeneousInFloat(
+        z[k] = depthHomogeneous<float>(
             {mesh.vertices[3 * k].position, mesh.vertices[3 * k + 1].position,
              mesh.vertices[3 * k + 2].position},
             settings.viewport, px, py);
