@@ -77,6 +77,50 @@ std::array<double, 2> PerturbedTriangle::ratioScales(const AffinePlane& a, const
   return {scale(a), scale(b)};
 }
 
+PerturbedTriangle::RatioOver PerturbedTriangle::ratioOver(const AffinePlane& n,
+                                                          const WindowBox& box, double x0,
+                                                          double y0, double x1, double y1) const {
+  RatioOver r;
+  const AffinePlane& w = oneOverW_;
+  const Interval wRange = affineOver(w, box);
+  if (wRange.containsZero() || !wRange.finite()) return r;
+  // Every bound below is a handful of double operations on magnitudes: 2^-40 of each covers their
+  // rounding many times over.
+  constexpr double kUp = 1 + kDoubleSlack;
+  const double wMin = std::min(std::fabs(wRange.lo), std::fabs(wRange.hi)) / kUp;
+  const double inverse = 1 / wMin, inverse2 = inverse * inverse, inverse3 = inverse2 * inverse;
+  const double cross = n.ax * w.ay - n.ay * w.ax;
+  const double nx = (Interval::point(n.ax * w.a0 - n.a0 * w.ax) + box.y * cross).magnitude() +
+                    kDoubleSlack * (std::fabs(n.ax * w.a0) + std::fabs(n.a0 * w.ax) +
+                                    std::fabs(cross) * box.y.magnitude());
+  const double ny = (Interval::point(n.ay * w.a0 - n.a0 * w.ay) - box.x * cross).magnitude() +
+                    kDoubleSlack * (std::fabs(n.ay * w.a0) + std::fabs(n.a0 * w.ay) +
+                                    std::fabs(cross) * box.x.magnitude());
+  // A ratio of affine functions is monotonic along every line where 1/w keeps its sign: |f| is
+  // largest at a corner of the box.
+  for (double x : {box.x.lo, box.x.hi})
+    for (double y : {box.y.lo, box.y.hi})
+      r.magnitude = std::max(r.magnitude, std::fabs(n.at(x, y) / w.at(x, y)));
+  r.magnitude = r.magnitude * kUp + (slack(n, box) + r.magnitude * slack(w, box)) * inverse;
+  r.inverseW2 = inverse2 * kUp;
+  r.gradient = {nx * inverse2 * kUp, ny * inverse2 * kUp};
+  r.hessian = {2 * std::fabs(w.ax) * nx * inverse3 * kUp,
+               (std::fabs(cross) * inverse2 + 2 * std::fabs(w.ay) * nx * inverse3) * kUp,
+               (std::fabs(cross) * inverse2 + 2 * std::fabs(w.ax) * ny * inverse3) * kUp,
+               2 * std::fabs(w.ay) * ny * inverse3 * kUp};
+  double nTerms = 0, wTerms = 0;
+  for (double cx : {x0, x1})
+    for (double cy : {y0, y1}) {
+      nTerms = std::max(nTerms, terms(n, cx, cy));
+      wTerms = std::max(wTerms, terms(w, cx, cy));
+    }
+  r.scale = (nTerms + r.magnitude * wTerms) * inverse * kUp;
+  r.finite = std::isfinite(r.scale) && std::isfinite(r.hessian[0]) && std::isfinite(r.hessian[1]) &&
+             std::isfinite(r.hessian[2]) && std::isfinite(r.hessian[3]) &&
+             std::isfinite(r.gradient[0]) && std::isfinite(r.gradient[1]);
+  return r;
+}
+
 WindowBox PerturbedTriangle::sourceBoxOver(double x0, double y0, double x1, double y1) const {
   double inner = 0, roundings = 0;
   for (double cx : {x0, x1})

@@ -228,7 +228,8 @@ class TileShader {
           out.lod[lane], out.residentLevel[lane]);
       if (job_.model)
         addSet(px, py,
-               OracleFragment{hit.triangle, color, pixel.uv, out.neededLevel[lane], out.lod[lane]});
+               OracleFragment{hit.triangle, color, pixel.uv, out.neededLevel[lane], out.lod[lane],
+                              pixel.dUVdx, pixel.dUVdy});
     }
   }
 
@@ -316,9 +317,12 @@ class TileShader {
     writePixel(px, py, hit, pixel, color, f.need, f.lod, f.residentLevel);
     if (job_.model && job_.denormalsOnly)
       addDenormalSet(px, py, k, hit,
-                     OracleFragment{hit.triangle, color, pixel.uv, f.neededLevel, f.lod});
+                     OracleFragment{hit.triangle, color, pixel.uv, f.neededLevel, f.lod,
+                                    pixel.dUVdx, pixel.dUVdy});
     else if (job_.model)
-      addSet(px, py, OracleFragment{hit.triangle, color, pixel.uv, f.neededLevel, f.lod});
+      addSet(px, py,
+             OracleFragment{hit.triangle, color, pixel.uv, f.neededLevel, f.lod, pixel.dUVdx,
+                            pixel.dUVdy});
   }
 
   // A shaded pixel's values into the frame.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "format/page_address.h"
 #include "reference/interval.h"
 #include "reference/perturbed_triangle.h"
 #include "shader/shader_cpp.h"
@@ -23,6 +24,8 @@ constexpr double kGlslLog2AbsoluteError = 0x1p-21;
 constexpr double kGlslLog2Ulps = 3;
 // GL_LINEAR with 8-bit weights: texel positions on a grid of 2^-8 texel (DESIGN section 7).
 constexpr double kFixedPointSubTexelStep = 0x1p-8;
+// The trilinear blend's float lerps in the shader, precise: units of 1/255.
+constexpr double kBlendRounding = 16 * kFloatUlp * 255;
 
 // Per channel the least and greatest value, in units of 1/255 (channel by channel the operations
 // of an Interval, four at a time).
@@ -39,6 +42,19 @@ Colour hull(const Colour& a, const Colour& b) {
   return {glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)};
 }
 Colour widen(const Colour& a, double absolute) { return {a.lo - absolute, a.hi + absolute}; }
+// The trilinear blend c0 + (c1 - c0) w of two levels' colours over weights w: multilinear in
+// (c0, c1, w), so its bounds lie at the corners.
+Colour blend(const Colour& c0, const Colour& c1, Interval w) {
+  Colour c = nothing();
+  for (const glm::dvec4& a : {c0.lo, c0.hi})
+    for (const glm::dvec4& b : {c1.lo, c1.hi})
+      for (double x : {w.lo, w.hi}) {
+        const glm::dvec4 v = a + (b - a) * x;
+        c.lo = glm::min(c.lo, v);
+        c.hi = glm::max(c.hi, v);
+      }
+  return c;
+}
 
 // The corners of a triangle as boxes: each within `radius` pixels (the model's snapping) plus the
 // float error of its window transform (x / w * W / 2 + W / 2: a few roundings of values up to the
@@ -201,6 +217,62 @@ struct FragmentRange {
   bool everything = false;  // a w near zero: any (s, t) and any level
 };
 
+// The oracle's own triangle over one 4 x 4 block: bounds of what a set admits at any centre of the
+// block as widths around values computed at each pixel, made once per block and triangle
+// (Builder::ownAlternative). With B the box that holds every centre's source box
+// (PerturbedTriangle::sourceBoxOver), rho its margin around the centres, e the step radius, and,
+// for f = s or t, bounds over B grown by e of |f|, of its gradient (g_x, g_y) and of its second
+// derivatives (PerturbedTriangle::ratioOver):
+//   - f at a centre p: the moved triangle's value is the nominal one at a point of p's source box,
+//     within (g_x + g_y) rho of the nominal f(p); plus the model's float error relative to the
+//     scale, as fragment() counts it;
+//   - a fine derivative along x, from the left centre l of the quad's row: the nominal f_x
+//     somewhere in the step's box (l - rho - e to l + 1 + rho + e along x, rho + e either side
+//     along y) plus at most (g_x + g_y) e, plus the float error of a difference (floatStep): within
+//     h_xx (1/2 + rho + e) + h_xy (rho + e) + (g_x + g_y) e of f_x at the step's middle, plus that
+//     error; alike along y;
+//   - the colour: per level, the texels the block's (s, t) reach there, inside one page
+//     (LevelBounds), bound how far the filter moves from its exact value at the oracle's (s, t)
+//     and LOD.
+
+// Level m of the cache as an OwnBlock's (s, t) reach it: the texels a bilinear sample anywhere in
+// reach reads, kept for the block's pixels (Builder::localFilter).
+struct LevelBounds {
+  int8_t state = 0;          // 0: not made yet; 1: bounded; -1: two pages or too many texels
+  double texelsPerUnit = 0;  // cache texels per unit of s (2^i pageSize, resident level i)
+  glm::dvec2 at0{0};         // the cache texel position of (s, t) = (0, 0) through this page
+  double positionError = 0;  // the sampler's (Builder::samplerErrors)
+  glm::ivec2 origin{0};      // the first texel kept
+  int width = 0, height = 0;
+  size_t offset = 0;  // of its texels in OwnBlock::texels, row by row
+};
+
+// The bilinear filter over a box of texel positions on one level: per channel the largest
+// difference of neighbouring texels along x and along y among those it reads (its Lipschitz
+// constants there, in units of 1/255 per texel: on each cell the filter's slope is a convex
+// combination of its two rows' or columns' differences) and their least and greatest values (its
+// range there).
+struct LocalFilter {
+  glm::dvec4 lipschitzX{0}, lipschitzY{0};
+  Colour range;  // the filter's least and greatest value over the box
+};
+
+struct OwnBlock {
+  int32_t index = -1;
+  bool bounded = false;
+  AffinePlane w;  // 1/w; per attribute (s, t) its numerator plane and f_x = (ax + cx y) / w^2,
+                  // f_y = (ay - cx x) / w^2
+  std::array<AffinePlane, 2> n;
+  std::array<double, 2> ax{}, ay{}, cross{};
+  std::array<double, 2> value{};             // a set's s (t) within this of the nominal value
+  std::array<double, 2> alongX{}, alongY{};  // its fine derivatives within these of f_x, f_y
+                                             // at the step's middle
+  Interval sReach, tReach;          // every (s, t) of a set in the block, clamped to [0, 1]
+  double valueError = 0;            // a bilinear sample's (Builder::samplerErrors)
+  std::vector<LevelBounds> levels;  // by level, each made when a pixel first needs it
+  std::vector<glm::u8vec4> texels;  // the levels' texels
+};
+
 // 2^m for a level m (0 to 31), exact.
 double powerOfTwo(int m) { return static_cast<double>(uint64_t{1} << m); }
 
@@ -254,8 +326,107 @@ class Builder {
       slot.x = bx;
       slot.y = by;
       slot.classes.assign(count, BlockClass{});
+      slot.ownCount = 0;
     }
     return slot.classes;
+  }
+
+  // The OwnBlock of candidate `index` over the block from (bx, by), made by the first pixel that
+  // asks (blockClasses has set the block's slot).
+  OwnBlock& ownBlock(int32_t index, const Snapped& snapped, int bx, int by) {
+    constexpr int kBlock = Visibility::kBlock;
+    BlockSlot& slot = blocks_[static_cast<size_t>((bx / kBlock) % kBlockSlots)];
+    for (size_t k = 0; k < slot.ownCount; ++k)
+      if (slot.own[k].index == index) return slot.own[k];
+    if (slot.ownCount == slot.own.size()) slot.own.emplace_back();
+    OwnBlock& b = slot.own[slot.ownCount++];
+    makeOwnBlock(index, snapped, bx, by, b);
+    return b;
+  }
+
+  // The oracle's own alternative at (px, py), candidate `index` (the oracle's triangle there), from
+  // its block's widths (OwnBlock): false where the block has none.
+  bool ownAlternative(const SetupTriangle& t, int32_t index, const Snapped& snapped, int px, int py,
+                      const OracleFragment& oracle, Alternative& a) {
+    constexpr int kBlock = Visibility::kBlock;
+    OwnBlock& b = ownBlock(index, snapped, px - px % kBlock, py - py % kBlock);
+    if (!b.bounded) return false;
+    // Where the oracle sampled: inside what the block's level bounds were made over.
+    const double so = std::clamp<double>(oracle.uv.x, 0, 1);
+    const double to = std::clamp<double>(oracle.uv.y, 0, 1);
+    if (!b.sReach.contains(so) || !b.tReach.contains(to)) return false;
+    const double cx = px + 0.5, cy = py + 0.5;
+    const double w = b.w.at(cx, cy);
+    const double sNominal = b.n[0].at(cx, cy) / w, tNominal = b.n[1].at(cx, cy) / w;
+    // The steps' middles: the quad's row's from its left centre, its column's from its lower.
+    const double mx = (px & ~1) + 1.0, my = (py & ~1) + 1.0;
+    const double wx = b.w.at(mx, cy), wy = b.w.at(cx, my);
+    const double wx2 = wx * wx, wy2 = wy * wy;
+    std::array<Interval, 4> d;  // ds/dx, dt/dx, ds/dy, dt/dy
+    for (size_t k = 0; k < 2; ++k) {
+      d[k] = Interval::around((b.ax[k] + b.cross[k] * cy) / wx2, b.alongX[k]);
+      d[k + 2] = Interval::around((b.ay[k] - b.cross[k] * cx) / wy2, b.alongY[k]);
+    }
+    const Interval lod = hull(lodRange(d[0], d[1], d[2], d[3]), Interval::point(oracle.lod));
+    const int L = shading_.finestLevel;
+    // The blends from level `first` to `top` (trilinear: each with the next finer level).
+    const int first = std::clamp(static_cast<int>(std::floor(lod.lo)), 0, L);
+    const int top = std::clamp(static_cast<int>(std::floor(lod.hi)), first, L);
+    const int last = std::min(top + 1, L);
+    // How far a set's (s, t) lie from the oracle's, per axis.
+    const double ds = b.value[0] + std::fabs(sNominal - so);
+    const double dt = b.value[1] + std::fabs(tNominal - to);
+    // Per level the LOD reaches, the filter over every texel position a set admits (those of its
+    // (s, t) box, within the sampler's position error), around the oracle's; and over the
+    // oracle's position alone, as the Lipschitz bound of the sampler's position error.
+    std::array<Colour, kMaxLevel + 1> range;  // (finestLevel <= kMaxLevel: format/page_address.h)
+    glm::dvec4 own(0);
+    for (int m = first; m <= last; ++m) {
+      const LevelBounds& l = levelBounds(b, m);
+      if (l.state < 0) return false;
+      const glm::dvec2 at = l.at0 + glm::dvec2(so, to) * l.texelsPerUnit;
+      const glm::dvec2 radius = glm::dvec2(ds, dt) * l.texelsPerUnit + glm::dvec2(l.positionError);
+      LocalFilter here;
+      if (!localFilter(b, l, at.x, at.y, radius.x, radius.y, here)) return false;
+      range[static_cast<size_t>(m)] = widen(here.range, b.valueError);
+      own = glm::max(own, (here.lipschitzX + here.lipschitzY) * l.positionError);
+    }
+    // The trilinear blend of neighbouring levels over the LOD's weights, as shade() blends.
+    Colour colour = nothing();
+    for (int coarse = first; coarse <= top; ++coarse) {
+      const Colour& c0 = range[static_cast<size_t>(coarse)];
+      if (coarse == L) {
+        colour = hull(colour, c0);
+        continue;
+      }
+      const Colour& c1 = range[static_cast<size_t>(coarse) + 1];
+      colour = hull(colour, blend(c0, c1, clamp(Interval{lod.lo - coarse, lod.hi - coarse}, 0, 1)));
+    }
+    colour = widen(colour, kBlendRounding);
+    // The filter alone: the exact filter at the oracle's (s, t) and LOD, within the sampler's
+    // position error's change, its value error and the blend's rounding.
+    glm::dvec4 centre;
+    if (!exactFilterAt(b, so, to, std::clamp<double>(oracle.lod, 0, L), centre)) return false;
+    const glm::dvec4 filter = own + b.valueError + kBlendRounding;
+    a.triangle = static_cast<int32_t>(t.primitive);
+    a.levelLo = static_cast<uint8_t>(
+        std::min(std::clamp(static_cast<int>(std::ceil(lod.lo)), 0, L), oracle.neededLevel));
+    a.levelHi = static_cast<uint8_t>(
+        std::max(std::clamp(static_cast<int>(std::ceil(lod.hi)), 0, L), oracle.neededLevel));
+    const Interval s =
+        clamp(hull(Interval::around(sNominal, b.value[0]), Interval::point(oracle.uv.x)), 0, 1);
+    const Interval tt =
+        clamp(hull(Interval::around(tNominal, b.value[1]), Interval::point(oracle.uv.y)), 0, 1);
+    setUv(s, tt, a);
+    a.uvLo = glm::min(a.uvLo, oracle.uv);
+    a.uvHi = glm::max(a.uvHi, oracle.uv);
+    store(colour, a.colorLo, a.colorHi);
+    store({centre - filter, centre + filter}, a.filterLo, a.filterHi);
+    a.filterLo = glm::min(a.filterLo, oracle.color);
+    a.filterHi = glm::max(a.filterHi, oracle.color);
+    a.colorLo = glm::min(a.colorLo, a.filterLo);
+    a.colorHi = glm::max(a.colorHi, a.filterHi);
+    return true;
   }
 
   // Candidate `index`'s class over the block from (bx, by); its pixels decide alone (cover -1, any
@@ -476,11 +647,7 @@ class Builder {
     const int L = shading_.finestLevel;
     a.levelLo = static_cast<uint8_t>(std::clamp(static_cast<int>(std::ceil(f.lod.lo)), 0, L));
     a.levelHi = static_cast<uint8_t>(std::clamp(static_cast<int>(std::ceil(f.lod.hi)), 0, L));
-    a.uvLo = glm::vec2(static_cast<float>(f.s.lo), static_cast<float>(f.t.lo));
-    a.uvHi = glm::vec2(static_cast<float>(f.s.hi), static_cast<float>(f.t.hi));
-    // Rounded outwards to floats, so the bounds still hold.
-    a.uvLo = glm::vec2(std::nextafter(a.uvLo.x, -1.0f), std::nextafter(a.uvLo.y, -1.0f));
-    a.uvHi = glm::vec2(std::nextafter(a.uvHi.x, 2.0f), std::nextafter(a.uvHi.y, 2.0f));
+    setUv(f.s, f.t, a);
     const Colour colour = shade(f.s, f.t, f.lod);
     store(colour, a.colorLo, a.colorHi);
     if (index == oracle.index) {
@@ -508,6 +675,197 @@ class Builder {
   }
 
  private:
+  // (s, t) bounds into an alternative, rounded outwards to floats so that they still hold.
+  static void setUv(Interval s, Interval t, Alternative& a) {
+    a.uvLo = glm::vec2(static_cast<float>(s.lo), static_cast<float>(t.lo));
+    a.uvHi = glm::vec2(static_cast<float>(s.hi), static_cast<float>(t.hi));
+    a.uvLo = glm::vec2(std::nextafter(a.uvLo.x, -1.0f), std::nextafter(a.uvLo.y, -1.0f));
+    a.uvHi = glm::vec2(std::nextafter(a.uvHi.x, 2.0f), std::nextafter(a.uvHi.y, 2.0f));
+  }
+
+  // OwnBlock's widths for candidate `index` over the block from (bx, by); not bounded where the
+  // triangle is too small for first-order bounds, 1/w may vanish near the block, the texture is
+  // sampled without trilinear blending (the level's choice jumps) or the decoding is free.
+  void makeOwnBlock(int32_t index, const Snapped& snapped, int bx, int by, OwnBlock& b) const {
+    constexpr int kBlock = Visibility::kBlock;
+    b.index = index;
+    b.bounded = false;
+    b.levels.assign(static_cast<size_t>(shading_.finestLevel) + 1, LevelBounds{});
+    b.texels.clear();
+    const PerturbedTriangle& p = snapped.perturbed;
+    if (!p.bounded() || !shading_.trilinear ||
+        (shading_.blockCompressed && !model_.decodingPinned) ||
+        shading_.finestLevel > static_cast<int>(kMaxLevel))
+      return;
+    const double x0 = bx + 0.5, y0 = by + 0.5, x1 = bx + kBlock - 0.5, y1 = by + kBlock - 0.5;
+    const WindowBox box = p.sourceBoxOver(x0, y0, x1, y1);
+    const double rho = std::max({x0 - box.x.lo, box.x.hi - x1, y0 - box.y.lo, box.y.hi - y1});
+    const std::array<double, 2> e = {p.stepRadius(0), p.stepRadius(1)};
+    const WindowBox around = perturbed_detail::grown(box, std::max(e[0], e[1]));
+    const double relative = model_.attributeUlps * kFloatUlp;
+    const std::array<Interval, 2> reach = p.ratios(snapped.s, snapped.t, box);
+    b.w = p.oneOverW();
+    b.n = {snapped.s, snapped.t};
+    const AffinePlane& w = b.w;
+    for (size_t k = 0; k < 2; ++k) {
+      const AffinePlane& n = b.n[k];
+      const PerturbedTriangle::RatioOver r = p.ratioOver(n, around, x0, y0, x1, y1);
+      if (!r.finite || !reach[k].finite()) return;
+      const double scale = std::max(r.scale, r.magnitude);
+      const double g = r.gradient[0] + r.gradient[1];
+      // fragment()'s float error of the value, and the rounding of the nominal value in double.
+      b.value[k] = g * rho + relative * scale + kFloatUlp + 0x1p-40 * scale;
+      b.ax[k] = n.ax * w.a0 - n.a0 * w.ax;
+      b.ay[k] = n.ay * w.a0 - n.a0 * w.ay;
+      b.cross[k] = n.ax * w.ay - n.ay * w.ax;
+      // The derivative at a step's middle in double: a few roundings of its terms, over (1/w)^2;
+      // 2^-40 of the terms covers them.
+      const double terms = std::fabs(n.ax * w.a0) + std::fabs(n.a0 * w.ax) +
+                           std::fabs(n.ay * w.a0) + std::fabs(n.a0 * w.ay) +
+                           std::fabs(b.cross[k]) * (around.x.magnitude() + around.y.magnitude());
+      const double rounding = 0x1p-40 * terms * r.inverseW2;
+      const auto step = [&](double slope, double along, double across, double radius) {
+        const double v = slope + g * radius;
+        const double size = 2 * (scale + v) + v;
+        return along * (0.5 + rho + radius) + across * (rho + radius) + g * radius +
+               (relative + kFloatUlp) * size + rounding;
+      };
+      b.alongX[k] = step(r.gradient[0], r.hessian[0], r.hessian[1], e[0]);
+      b.alongY[k] = step(r.gradient[1], r.hessian[3], r.hessian[2], e[1]);
+    }
+    b.sReach = clamp(widen(reach[0], 0, b.value[0]), 0, 1);
+    b.tReach = clamp(widen(reach[1], 0, b.value[1]), 0, 1);
+    b.valueError = samplerErrors(0).value;
+    double sum = 0;
+    for (size_t k = 0; k < 2; ++k) sum += b.value[k] + b.alongX[k] + b.alongY[k];
+    b.bounded = std::isfinite(sum);
+  }
+
+  // The exact trilinear filter at (s, t) and level `lod` (in [0, L]) from an OwnBlock's levels;
+  // false where (s, t) falls outside the texels kept (never, for a point in reach).
+  bool exactFilterAt(OwnBlock& b, double s, double t, double lod, glm::dvec4& value) {
+    const int L = shading_.finestLevel;
+    const int coarse = std::min(static_cast<int>(std::floor(lod)), L);
+    glm::dvec4 v[2];
+    for (int k = 0; k < (coarse == L ? 1 : 2); ++k) {
+      const LevelBounds& l = levelBounds(b, coarse + k);
+      if (l.state < 0) return false;
+      const double x = l.at0.x + s * l.texelsPerUnit, y = l.at0.y + t * l.texelsPerUnit;
+      const int ix = static_cast<int>(std::floor(x - 0.5)) - l.origin.x;
+      const int iy = static_cast<int>(std::floor(y - 0.5)) - l.origin.y;
+      if (ix < 0 || iy < 0 || ix + 1 >= l.width || iy + 1 >= l.height) return false;
+      v[k] = keptBilinear(b, l, x, y);
+    }
+    value = coarse == L ? v[0] : v[0] + (v[1] - v[0]) * (lod - coarse);
+    return true;
+  }
+
+  // Level m's bounds over an OwnBlock's reach, made on first use.
+  const LevelBounds& levelBounds(OwnBlock& b, int m) {
+    LevelBounds& l = b.levels[static_cast<size_t>(m)];
+    if (l.state != 0) return l;
+    l.state = -1;
+    const int last = (1 << m) - 1;
+    const double scale = powerOfTwo(m);
+    const glm::ivec2 page(floorToInt(b.sReach.lo * scale, last),
+                          floorToInt(b.tReach.lo * scale, last));
+    if (page.x != floorToInt(b.sReach.hi * scale, last) ||
+        page.y != floorToInt(b.tReach.hi * scale, last))
+      return l;
+    const glm::uvec4 e = source_.entry(page, m);
+    const int i = static_cast<int>(e.z);
+    const glm::ivec2 resident(page.x >> (m - i), page.y >> (m - i));
+    const int stored = shading_.pageSize + 2 * shading_.border;
+    const double residentScale = powerOfTwo(i);
+    const double ox = static_cast<double>(e.x) * stored + shading_.border;
+    const double oy = static_cast<double>(e.y) * stored + shading_.border;
+    Interval x{ox + (b.sReach.lo * residentScale - resident.x) * shading_.pageSize,
+               ox + (b.sReach.hi * residentScale - resident.x) * shading_.pageSize};
+    Interval y{oy + (b.tReach.lo * residentScale - resident.y) * shading_.pageSize,
+               oy + (b.tReach.hi * residentScale - resident.y) * shading_.pageSize};
+    const SamplerErrors errors = samplerErrors(std::max(x.magnitude(), y.magnitude()));
+    x = widen(x, 0, errors.position);
+    y = widen(y, 0, errors.position);
+    // The texels a bilinear sample at a position in the box reads.
+    const glm::ivec2 origin(static_cast<int>(std::floor(x.lo - 0.5)),
+                            static_cast<int>(std::floor(y.lo - 0.5)));
+    const int width = static_cast<int>(std::floor(x.hi - 0.5)) + 2 - origin.x;
+    const int height = static_cast<int>(std::floor(y.hi - 0.5)) + 2 - origin.y;
+    constexpr int kMaxSide = 24;
+    if (width > kMaxSide || height > kMaxSide) return l;
+    const size_t offset = b.texels.size();
+    b.texels.resize(offset + static_cast<size_t>(width * height));
+    for (int ty = 0; ty < height; ++ty)
+      for (int tx = 0; tx < width; ++tx)
+        b.texels[offset + static_cast<size_t>(ty * width + tx)] =
+            source_.texel(origin + glm::ivec2(tx, ty));
+    l = {1,
+         residentScale * shading_.pageSize,
+         {ox - resident.x * static_cast<double>(shading_.pageSize),
+          oy - resident.y * static_cast<double>(shading_.pageSize)},
+         errors.position,
+         origin,
+         width,
+         height,
+         offset};
+    return l;
+  }
+
+  // The bilinear filter at texel position (x, y) (texel centres at + 0.5) from a level's kept
+  // texels, which hold the cell of (x, y).
+  static glm::dvec4 keptBilinear(const OwnBlock& b, const LevelBounds& l, double x, double y) {
+    const double fx0 = std::floor(x - 0.5), fy0 = std::floor(y - 0.5);
+    const int ix = static_cast<int>(fx0) - l.origin.x, iy = static_cast<int>(fy0) - l.origin.y;
+    const auto texel = [&](int dx, int dy) {
+      return glm::dvec4(b.texels[l.offset + static_cast<size_t>((iy + dy) * l.width + ix + dx)]);
+    };
+    const double fx = x - 0.5 - fx0, fy = y - 0.5 - fy0;
+    const glm::dvec4 row0 = texel(0, 0) + (texel(1, 0) - texel(0, 0)) * fx;
+    const glm::dvec4 row1 = texel(0, 1) + (texel(1, 1) - texel(0, 1)) * fx;
+    return row0 + (row1 - row0) * fy;
+  }
+
+  // The filter over the box (x, y) +- (rx, ry) of texel positions on a level kept by an OwnBlock;
+  // false where the box reads texels not kept. Its range: inside one cell between texel centres
+  // the filter is bilinear, its bounds at the box's corners; across cells, its value at (x, y)
+  // within the Lipschitz bound, and within the texels' hull.
+  static bool localFilter(const OwnBlock& b, const LevelBounds& l, double x, double y, double rx,
+                          double ry, LocalFilter& f) {
+    const int x0 = static_cast<int>(std::floor(x - rx - 0.5)) - l.origin.x;
+    const int y0 = static_cast<int>(std::floor(y - ry - 0.5)) - l.origin.y;
+    const int x1 = static_cast<int>(std::floor(x + rx - 0.5)) + 1 - l.origin.x;
+    const int y1 = static_cast<int>(std::floor(y + ry - 0.5)) + 1 - l.origin.y;
+    if (!(x0 >= 0 && y0 >= 0 && x1 < l.width && y1 < l.height)) return false;
+    const auto texel = [&](int tx, int ty) {
+      return glm::ivec4(b.texels[l.offset + static_cast<size_t>(ty * l.width + tx)]);
+    };
+    glm::ivec4 lo(255), hi(0), dx(0), dy(0);
+    for (int ty = y0; ty <= y1; ++ty)
+      for (int tx = x0; tx <= x1; ++tx) {
+        const glm::ivec4 v = texel(tx, ty);
+        lo = glm::min(lo, v);
+        hi = glm::max(hi, v);
+        if (tx > x0) dx = glm::max(dx, glm::abs(v - texel(tx - 1, ty)));
+        if (ty > y0) dy = glm::max(dy, glm::abs(v - texel(tx, ty - 1)));
+      }
+    f.lipschitzX = glm::dvec4(dx);
+    f.lipschitzY = glm::dvec4(dy);
+    const auto bilinear = [&](double px, double py) { return keptBilinear(b, l, px, py); };
+    if (x1 == x0 + 1 && y1 == y0 + 1) {
+      f.range = nothing();
+      for (double px : {x - rx, x + rx})
+        for (double py : {y - ry, y + ry}) {
+          const glm::dvec4 v = bilinear(px, py);
+          f.range.lo = glm::min(f.range.lo, v);
+          f.range.hi = glm::max(f.range.hi, v);
+        }
+      return true;
+    }
+    const glm::dvec4 at = bilinear(x, y), change = f.lipschitzX * rx + f.lipschitzY * ry;
+    f.range = {glm::max(glm::dvec4(lo), at - change), glm::min(glm::dvec4(hi), at + change)};
+    return true;
+  }
+
   bool depthPinned() const {
     return model_.coveragePinned() && model_.depthUlps == 0 && model_.depthRoundsToNearest;
   }
@@ -544,7 +902,7 @@ class Builder {
   // The colour of every (s, t) in the box and LOD in the interval, in units of 1/255.
   Colour shade(Interval s, Interval t, Interval lod) {
     const int L = shading_.finestLevel;
-    const double tiny = 16 * kFloatUlp * 255;  // float lerps in the shader, precise
+    const double tiny = kBlendRounding;
     if (!shading_.trilinear) {
       Colour c = nothing();
       for (int m = std::clamp(static_cast<int>(std::ceil(lod.lo)), 0, L);
@@ -564,17 +922,7 @@ class Builder {
         continue;
       }
       const Colour c1 = atCoarse = sampleLevel(s, t, coarse + 1);
-      const Interval w = clamp(Interval{lod.lo - coarse, lod.hi - coarse}, 0, 1);
-      // c0 + (c1 - c0) w is multilinear in (c0, c1, w): its bounds lie at the corners.
-      Colour blend = nothing();
-      for (const glm::dvec4& a : {c0.lo, c0.hi})
-        for (const glm::dvec4& b : {c1.lo, c1.hi})
-          for (double x : {w.lo, w.hi}) {
-            const glm::dvec4 v = a + (b - a) * x;
-            blend.lo = glm::min(blend.lo, v);
-            blend.hi = glm::max(blend.hi, v);
-          }
-      c = hull(c, blend);
+      c = hull(c, blend(c0, c1, clamp(Interval{lod.lo - coarse, lod.hi - coarse}, 0, 1)));
     }
     return widen(c, tiny);
   }
@@ -617,28 +965,37 @@ class Builder {
                ox + (s.hi * scale - resident.x) * shading_.pageSize};
     Interval y{oy + (t.lo * scale - resident.y) * shading_.pageSize,
                oy + (t.hi * scale - resident.y) * shading_.pageSize};
+    const SamplerErrors errors = samplerErrors(std::max(x.magnitude(), y.magnitude()));
+    x = widen(x, 0, errors.position);
+    y = widen(y, 0, errors.position);
+    return widen(bilinearRange(x, y), errors.value);
+  }
+
+  // How far a bilinear sample's texel position (in cache texels, at most `magnitude`) and its
+  // value (units of 1/255) may lie from the exact filter's at the exact position, under the model.
+  struct SamplerErrors {
+    double position, value;
+  };
+  SamplerErrors samplerErrors(double magnitude) const {
     // The shader's float arithmetic for the texel position: a product and two sums of values up
     // to the cache's size.
-    double positionError = 4 * kFloatUlp * std::max(x.magnitude(), y.magnitude());
-    double valueError = 16 * kFloatUlp * 255;
+    SamplerErrors e{4 * kFloatUlp * magnitude, 16 * kFloatUlp * 255};
     if (!shading_.exactFilter) {
       // The sampler: the position is divided by the cache size and multiplied back (two more
       // roundings), then quantised to its sub-texel grid; the lerps round as the model says.
-      positionError *= 2;
+      e.position *= 2;
       if (!model_.filterPinned) {
-        positionError += subTexelStep_;
-        valueError = model_.filterErrorUnits;
+        e.position += subTexelStep_;
+        e.value = model_.filterErrorUnits;
       } else if (model_.arithmetic.filter.weights == FilterWeights::kFixedPoint8) {
-        positionError += kFixedPointSubTexelStep;
+        e.position += kFixedPointSubTexelStep;
         // Three lerps, each rounded to nearest: 0.5 + 0.5; each floored: under 1 + 1.
-        valueError = model_.arithmetic.filter.lerpRounding == LerpRounding::kNearest ? 1.0 : 2.0;
+        e.value = model_.arithmetic.filter.lerpRounding == LerpRounding::kNearest ? 1.0 : 2.0;
       }
     } else {
-      valueError += model_.arithmeticUlps * kFloatUlp * 255 * 4;
+      e.value += model_.arithmeticUlps * kFloatUlp * 255 * 4;
     }
-    x = widen(x, 0, positionError);
-    y = widen(y, 0, positionError);
-    return widen(bilinearRange(x, y), valueError);
+    return e;
   }
 
   // Bounds of the bilinear filter (texel centres at +0.5, clamped fetches) over a box of texel
@@ -834,6 +1191,8 @@ class Builder {
   struct BlockSlot {
     int x = -1, y = -1;
     std::vector<BlockClass> classes;
+    std::vector<OwnBlock> own;  // the first ownCount are this block's (kept for their storage)
+    size_t ownCount = 0;
   };
   static constexpr int kBlockSlots = Visibility::kTile / Visibility::kBlock;
   std::array<BlockSlot, kBlockSlots> blocks_;
@@ -993,7 +1352,10 @@ void ResultSetBuilder::append(const Visibility::BlockCandidates& candidates, int
       if (&d != &c && surelyBeats(d, c)) possible = false;
     if (!possible && c.index != oracle.index) continue;
     const SetupTriangle& t = triangles[static_cast<size_t>(c.index)];
-    Alternative a = builder.alternative(t, c.index, builder.fragment(t, c.snapped, px, py), oracle);
+    Alternative a;
+    if (c.index != oracle.index || !c.snapped ||
+        !builder.ownAlternative(t, c.index, *c.snapped, px, py, oracle, a))
+      a = builder.alternative(t, c.index, builder.fragment(t, c.snapped, px, py), oracle);
     if (c.index != oracle.index)
       a.reasons = (c.cover == 2 && own && own->cover == 2) ? kReasonDepth : kReasonCoverage;
     out.push_back(a);

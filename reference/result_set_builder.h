@@ -57,13 +57,14 @@ struct SetShading {
 };
 
 // What the oracle itself drew at the pixel: the index (set-up list) of the triangle it shows, -1
-// for none, and that fragment's values.
+// for none, and that fragment's values, its fine derivatives of (s, t) included.
 struct OracleFragment {
   int32_t index = -1;
   glm::u8vec4 color{0};
   glm::vec2 uv{0.0f};
   int neededLevel = 0;
   float lod = 0;
+  glm::vec2 dUVdx{0.0f}, dUVdy{0.0f};
 };
 
 // Builds pixels' result sets, one pixel at a time, for one frame's set-up triangles. What a

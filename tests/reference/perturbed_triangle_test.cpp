@@ -164,6 +164,95 @@ TEST(PerturbedTriangle, ABlocksSourceBoxHoldsEachCentresBoxAndBounds) {
   EXPECT_GT(checked, 50000);
 }
 
+// What ResultSetBuilder's OwnBlock derives from ratioOver over a block's source box grown by the
+// step radius: at every centre p of the block, a moved triangle's s lies within (g_x + g_y) rho
+// of the nominal s(p), and its fine steps within h_xx (1/2 + rho + e) + h_xy (rho + e) +
+// (g_x + g_y) e of the nominal s_x at the step's middle (alike along y), rho the box's margin
+// around the centres and e the step radius. Exact arithmetic (long double): the float errors
+// are added apart.
+TEST(PerturbedTriangle, ABlocksRatioBoundsHoldEveryMovedValueAndStep) {
+  std::mt19937 rng(11);
+  constexpr double kRadius = 1.0 / 16;
+  std::uniform_real_distribution<double> move(-kRadius, kRadius);
+  std::uniform_int_distribution<int> pixel(-8, 8);
+  int checked = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const SetupTriangle t = randomTriangle(rng, trial % 3 == 0 ? 10.0 : 150.0);
+    const PerturbedTriangle bounds(t, kRadius);
+    if (!bounds.bounded()) continue;
+    const AffinePlane s = bounds.attribute({t.corners[0].sw, t.corners[1].sw, t.corners[2].sw});
+    const AffinePlane& w = bounds.oneOverW();
+    const int bx = (static_cast<int>(t.corners[0].x) + pixel(rng)) & ~3;
+    const int by = (static_cast<int>(t.corners[0].y) + pixel(rng)) & ~3;
+    const double x0 = bx + 0.5, y0 = by + 0.5, x1 = bx + 3.5, y1 = by + 3.5;
+    const WindowBox box = bounds.sourceBoxOver(x0, y0, x1, y1);
+    const double rho = std::max({x0 - box.x.lo, box.x.hi - x1, y0 - box.y.lo, box.y.hi - y1});
+    const double ex = bounds.stepRadius(0), ey = bounds.stepRadius(1);
+    const double e = std::max(ex, ey);
+    const WindowBox around{{box.x.lo - e, box.x.hi + e}, {box.y.lo - e, box.y.hi + e}};
+    const PerturbedTriangle::RatioOver r = bounds.ratioOver(s, around, x0, y0, x1, y1);
+    if (!r.finite) continue;
+    const double g = r.gradient[0] + r.gradient[1];
+    const auto nominal = [&](long double x, long double y) {
+      return (s.a0 + s.ax * x + s.ay * y) / (w.a0 + w.ax * x + w.ay * y);
+    };
+    // f_x and f_y of the nominal ratio in closed form.
+    const auto slope = [&](long double x, long double y, int axis) {
+      const long double d = w.a0 + w.ax * x + w.ay * y;
+      const long double n = s.a0 + s.ax * x + s.ay * y;
+      return axis == 0 ? (s.ax * d - n * w.ax) / (d * d) : (s.ay * d - n * w.ay) / (d * d);
+    };
+    // The bounds themselves, at the box's corners and points inside: |f|, its gradient and its
+    // second derivatives in closed form (perturbed_triangle.h).
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int q = 0; q < 20; ++q) {
+      const long double x =
+          q < 4 ? (q & 1 ? around.x.hi : around.x.lo) : around.x.lo + u(rng) * around.x.width();
+      const long double y =
+          q < 4 ? (q & 2 ? around.y.hi : around.y.lo) : around.y.lo + u(rng) * around.y.width();
+      const long double d = w.a0 + w.ax * x + w.ay * y, c = s.ax * w.ay - s.ay * w.ax;
+      const long double nx = (s.ax * w.a0 - s.a0 * w.ax) + c * y;
+      const long double ny = (s.ay * w.a0 - s.a0 * w.ay) - c * x;
+      const long double second[4] = {
+          -2 * w.ax * nx / (d * d * d), c / (d * d) - 2 * w.ay * nx / (d * d * d),
+          -c / (d * d) - 2 * w.ax * ny / (d * d * d), -2 * w.ay * ny / (d * d * d)};
+      const long double tolerance = 1e-12L;
+      ASSERT_LE(std::fabs(nominal(x, y)), r.magnitude * (1 + tolerance));
+      ASSERT_LE(std::fabs(slope(x, y, 0)), r.gradient[0] * (1 + tolerance));
+      ASSERT_LE(std::fabs(slope(x, y, 1)), r.gradient[1] * (1 + tolerance));
+      for (size_t k = 0; k < 4; ++k)
+        ASSERT_LE(std::fabs(second[k]), r.hessian[k] * (1 + tolerance)) << trial << " " << k;
+    }
+    for (int m = 0; m < 24; ++m) {
+      Moved moved;
+      for (size_t i = 0; i < 3; ++i) {
+        moved.x[i] = t.corners[i].x + static_cast<long double>(move(rng));
+        moved.y[i] = t.corners[i].y + static_cast<long double>(move(rng));
+      }
+      for (int y = by; y < by + 4; ++y)
+        for (int x = bx; x < bx + 4; ++x) {
+          const double cx = x + 0.5, cy = y + 0.5;
+          // Within the scale of the values' magnitude: the long double reference's own rounding.
+          const long double tolerance = 1e-12L * (1 + r.magnitude);
+          const long double here = ratioAt(moved, t, cx, cy);
+          ASSERT_LE(std::fabs(here - nominal(cx, cy)), g * rho + tolerance) << trial;
+          const double lx = (x & ~1) + 0.5, ly = (y & ~1) + 0.5;
+          const long double stepX = ratioAt(moved, t, lx + 1, cy) - ratioAt(moved, t, lx, cy);
+          const long double stepY = ratioAt(moved, t, cx, ly + 1) - ratioAt(moved, t, cx, ly);
+          const double alongX =
+              r.hessian[0] * (0.5 + rho + ex) + r.hessian[1] * (rho + ex) + g * ex;
+          const double alongY =
+              r.hessian[3] * (0.5 + rho + ey) + r.hessian[2] * (rho + ey) + g * ey;
+          ASSERT_LE(std::fabs(stepX - slope(lx + 0.5, cy, 0)), alongX + tolerance) << trial;
+          ASSERT_LE(std::fabs(stepY - slope(cx, ly + 0.5, 1)), alongY + tolerance) << trial;
+          ASSERT_LE(std::fabs(here), r.magnitude + tolerance);
+          ++checked;
+        }
+    }
+  }
+  EXPECT_GT(checked, 40000);
+}
+
 // Triangles too small for first-order bounds, and degenerate ones, say so.
 TEST(PerturbedTriangle, SmallAndDegenerateTrianglesAreNotBounded) {
   SetupTriangle small;
