@@ -1313,22 +1313,30 @@ void ResultSetBuilder::append(const Visibility::BlockCandidates& candidates, int
     classes.push_back(c);
     if (c.cover == 2 && c.z.hi < 1.0) front = std::min(front, c.z.hi);
   }
+  // Behind a candidate that surely covers every centre of the block and is surely nearer
+  // everywhere in it: at this pixel too it surely beats this one, and beats whatever this one
+  // beats, so leaving it out changes nothing; unless it is the oracle's own, or a piece of a
+  // clipped fan (the fan's union reads its pieces).
+  const auto hidden = [&](const BlockClass& c) {
+    const SetupTriangle& t = triangles[static_cast<size_t>(c.index)];
+    const bool fanPiece =
+        t.fanNeighbour[0] != 0 || t.fanNeighbour[1] != 0 || t.fanNeighbour[2] != 0;
+    return front < c.z.lo && c.index != oracle.index && !fanPiece;
+  };
+  // A lone candidate is compared with the cleared depth alone: where it surely covers the block,
+  // the block's depth bounds (which hold the pixel's) decide as well.
+  const size_t shown = static_cast<size_t>(std::count_if(
+      classes.begin(), classes.end(), [&](const BlockClass& c) { return !hidden(c); }));
   std::vector<PixelCandidate>& list = impl_->list;
   list.clear();
   for (const BlockClass& c : classes) {
+    if (hidden(c)) continue;
     const int32_t index = c.index;
     const SetupTriangle& t = triangles[static_cast<size_t>(index)];
-    // Behind a candidate that surely covers every centre of the block and is surely nearer
-    // everywhere in it: at this pixel too it surely beats this one, and beats whatever this one
-    // beats, so leaving it out changes nothing; unless it is the oracle's own, or a piece of a
-    // clipped fan (the fan's union reads its pieces).
-    const bool fanPiece =
-        t.fanNeighbour[0] != 0 || t.fanNeighbour[1] != 0 || t.fanNeighbour[2] != 0;
-    if (front < c.z.lo && index != oracle.index && !fanPiece) continue;
     Snapped* s = builder.snapped(t, index);
     const PieceCoverage piece = c.cover == 2 ? PieceCoverage{2} : builder.coverage(t, s, px, py);
     if (piece.cover == 0) continue;
-    const Interval z = builder.depth(t, s, px, py, depthFormat);
+    const Interval z = shown == 1 && c.cover == 2 ? c.z : builder.depth(t, s, px, py, depthFormat);
     if (!(z.lo < 1.0)) continue;  // never passes GL_LESS against the cleared 1.0
     list.push_back({index, s, piece, z, piece.cover});
   }
