@@ -254,7 +254,8 @@ struct LevelBounds {
 // range there).
 struct LocalFilter {
   glm::dvec4 lipschitzX{0}, lipschitzY{0};
-  Colour range;  // the filter's least and greatest value over the box
+  Colour range;      // the filter's least and greatest value over the box
+  glm::dvec4 at{0};  // its value at the box's centre
 };
 
 struct OwnBlock {
@@ -380,6 +381,10 @@ class Builder {
     // (s, t) box, within the sampler's position error), around the oracle's; and over the
     // oracle's position alone, as the Lipschitz bound of the sampler's position error.
     std::array<Colour, kMaxLevel + 1> range;  // (finestLevel <= kMaxLevel: format/page_address.h)
+    // The exact filter at the oracle's (s, t) on the two levels its LOD blends.
+    const double oracleLod = std::clamp<double>(oracle.lod, 0, L);
+    const int oracleCoarse = std::min(static_cast<int>(std::floor(oracleLod)), L);
+    std::array<glm::dvec4, 2> atOracle{};
     glm::dvec4 own(0);
     for (int m = first; m <= last; ++m) {
       const LevelBounds& l = levelBounds(b, m);
@@ -389,6 +394,8 @@ class Builder {
       LocalFilter here;
       if (!localFilter(b, l, at.x, at.y, radius.x, radius.y, here)) return false;
       range[static_cast<size_t>(m)] = widen(here.range, b.valueError);
+      if (m == oracleCoarse || m == oracleCoarse + 1)
+        atOracle[static_cast<size_t>(m - oracleCoarse)] = here.at;
       own = glm::max(own, (here.lipschitzX + here.lipschitzY) * l.positionError);
     }
     // The trilinear blend of neighbouring levels over the LOD's weights, as shade() blends.
@@ -405,8 +412,9 @@ class Builder {
     colour = widen(colour, kBlendRounding);
     // The filter alone: the exact filter at the oracle's (s, t) and LOD, within the sampler's
     // position error's change, its value error and the blend's rounding.
-    glm::dvec4 centre;
-    if (!exactFilterAt(b, so, to, std::clamp<double>(oracle.lod, 0, L), centre)) return false;
+    const glm::dvec4 centre =
+        oracleCoarse == L ? atOracle[0]
+                          : atOracle[0] + (atOracle[1] - atOracle[0]) * (oracleLod - oracleCoarse);
     const glm::dvec4 filter = own + b.valueError + kBlendRounding;
     a.triangle = static_cast<int32_t>(t.primitive);
     a.levelLo = static_cast<uint8_t>(
@@ -741,25 +749,6 @@ class Builder {
     b.bounded = std::isfinite(sum);
   }
 
-  // The exact trilinear filter at (s, t) and level `lod` (in [0, L]) from an OwnBlock's levels;
-  // false where (s, t) falls outside the texels kept (never, for a point in reach).
-  bool exactFilterAt(OwnBlock& b, double s, double t, double lod, glm::dvec4& value) {
-    const int L = shading_.finestLevel;
-    const int coarse = std::min(static_cast<int>(std::floor(lod)), L);
-    glm::dvec4 v[2];
-    for (int k = 0; k < (coarse == L ? 1 : 2); ++k) {
-      const LevelBounds& l = levelBounds(b, coarse + k);
-      if (l.state < 0) return false;
-      const double x = l.at0.x + s * l.texelsPerUnit, y = l.at0.y + t * l.texelsPerUnit;
-      const int ix = static_cast<int>(std::floor(x - 0.5)) - l.origin.x;
-      const int iy = static_cast<int>(std::floor(y - 0.5)) - l.origin.y;
-      if (ix < 0 || iy < 0 || ix + 1 >= l.width || iy + 1 >= l.height) return false;
-      v[k] = keptBilinear(b, l, x, y);
-    }
-    value = coarse == L ? v[0] : v[0] + (v[1] - v[0]) * (lod - coarse);
-    return true;
-  }
-
   // Level m's bounds over an OwnBlock's reach, made on first use.
   const LevelBounds& levelBounds(OwnBlock& b, int m) {
     LevelBounds& l = b.levels[static_cast<size_t>(m)];
@@ -850,19 +839,33 @@ class Builder {
       }
     f.lipschitzX = glm::dvec4(dx);
     f.lipschitzY = glm::dvec4(dy);
-    const auto bilinear = [&](double px, double py) { return keptBilinear(b, l, px, py); };
     if (x1 == x0 + 1 && y1 == y0 + 1) {
+      // One cell: its four texels, the rows' values at the box's ends and at (x, y), then the
+      // columns'.
+      const glm::dvec4 c00(texel(x0, y0)), c10(texel(x1, y0)), c01(texel(x0, y1)),
+          c11(texel(x1, y1));
+      const glm::dvec4 d0 = c10 - c00, d1 = c11 - c01;
+      const double cx = l.origin.x + x0 + 0.5, cy = l.origin.y + y0 + 0.5;  // the cell's corner
+      const double fx[3] = {x - rx - cx, x + rx - cx, x - cx};
+      const double fy[3] = {y - ry - cy, y + ry - cy, y - cy};
       f.range = nothing();
-      for (double px : {x - rx, x + rx})
-        for (double py : {y - ry, y + ry}) {
-          const glm::dvec4 v = bilinear(px, py);
+      for (size_t i = 0; i < 3; ++i) {
+        const glm::dvec4 row0 = c00 + d0 * fx[i], row1 = c01 + d1 * fx[i];
+        if (i == 2) {
+          f.at = row0 + (row1 - row0) * fy[2];
+          break;
+        }
+        for (size_t j = 0; j < 2; ++j) {
+          const glm::dvec4 v = row0 + (row1 - row0) * fy[j];
           f.range.lo = glm::min(f.range.lo, v);
           f.range.hi = glm::max(f.range.hi, v);
         }
+      }
       return true;
     }
-    const glm::dvec4 at = bilinear(x, y), change = f.lipschitzX * rx + f.lipschitzY * ry;
-    f.range = {glm::max(glm::dvec4(lo), at - change), glm::min(glm::dvec4(hi), at + change)};
+    f.at = keptBilinear(b, l, x, y);
+    const glm::dvec4 change = f.lipschitzX * rx + f.lipschitzY * ry;
+    f.range = {glm::max(glm::dvec4(lo), f.at - change), glm::min(glm::dvec4(hi), f.at + change)};
     return true;
   }
 
