@@ -42,18 +42,14 @@ Colour hull(const Colour& a, const Colour& b) {
   return {glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)};
 }
 Colour widen(const Colour& a, double absolute) { return {a.lo - absolute, a.hi + absolute}; }
-// The trilinear blend c0 + (c1 - c0) w of two levels' colours over weights w: multilinear in
-// (c0, c1, w), so its bounds lie at the corners.
+// The trilinear blend c0 + (c1 - c0) w = (1 - w) c0 + w c1 of two levels' colours over weights w
+// in [0, 1]: it grows with c0 and with c1 (neither weight is negative) and is linear in w, so its
+// least value is the least colours' at an end of w and its greatest the greatest colours' (exact
+// arithmetic; the callers widen by the blend's rounding).
 Colour blend(const Colour& c0, const Colour& c1, Interval w) {
-  Colour c = nothing();
-  for (const glm::dvec4& a : {c0.lo, c0.hi})
-    for (const glm::dvec4& b : {c1.lo, c1.hi})
-      for (double x : {w.lo, w.hi}) {
-        const glm::dvec4 v = a + (b - a) * x;
-        c.lo = glm::min(c.lo, v);
-        c.hi = glm::max(c.hi, v);
-      }
-  return c;
+  const glm::dvec4 lo0 = c0.lo + (c1.lo - c0.lo) * w.lo, lo1 = c0.lo + (c1.lo - c0.lo) * w.hi;
+  const glm::dvec4 hi0 = c0.hi + (c1.hi - c0.hi) * w.lo, hi1 = c0.hi + (c1.hi - c0.hi) * w.hi;
+  return {glm::min(lo0, lo1), glm::max(hi0, hi1)};
 }
 
 // The corners of a triangle as boxes: each within `radius` pixels (the model's snapping) plus the
@@ -173,6 +169,7 @@ struct BlockClass {
   // 0: surely covers no centre; 2: surely every centre; -1: pixel by pixel; -2: not classed yet.
   int8_t cover = -2;
   Interval z = Interval::everything();  // what depth() bounds at every centre
+  Snapped* snapped = nullptr;           // Builder::snapped's, where the class was made from it
 };
 
 // An interpolated plane: value at a pixel and change per pixel in x and y.
@@ -445,7 +442,7 @@ class Builder {
     c.index = index;
     c.cover = -1;
     if (model_.coveragePinned()) return c;
-    Snapped* s = snapped(t, index);
+    Snapped* s = c.snapped = snapped(t, index);
     if (!s->perturbed.bounded()) return c;
     const WindowBox box =
         s->perturbed.sourceBoxOver(bx + 0.5, by + 0.5, bx + kBlock - 0.5, by + kBlock - 0.5);
@@ -1336,7 +1333,7 @@ void ResultSetBuilder::append(const Visibility::BlockCandidates& candidates, int
     if (hidden(c)) continue;
     const int32_t index = c.index;
     const SetupTriangle& t = triangles[static_cast<size_t>(index)];
-    Snapped* s = builder.snapped(t, index);
+    Snapped* s = c.snapped ? c.snapped : builder.snapped(t, index);
     const PieceCoverage piece = c.cover == 2 ? PieceCoverage{2} : builder.coverage(t, s, px, py);
     if (piece.cover == 0) continue;
     const Interval z = shown == 1 && c.cover == 2 ? c.z : builder.depth(t, s, px, py, depthFormat);
