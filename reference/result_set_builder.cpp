@@ -263,6 +263,11 @@ struct OwnBlock {
   std::array<AffinePlane, 2> n;
   std::array<double, 2> ax{}, ay{}, cross{};
   std::array<double, 2> value{};             // a set's s (t) within this of the nominal value
+  // The same at a pixel from its own slopes: a set's s within (|f_x| + |f_y|) rho of the nominal
+  // value, |f_x| over the pixel's source box within nearX of its value at the x step's middle
+  // (plus the middle's rounding), alike for y; plus floatError.
+  double rho = 0;
+  std::array<double, 2> nearX{}, nearY{}, rounding{}, floatError{};
   std::array<double, 2> alongX{}, alongY{};  // its fine derivatives within these of f_x, f_y
                                              // at the step's middle
   Interval sReach, tReach;          // every (s, t) of a set in the block, clamped to [0, 1]
@@ -361,9 +366,15 @@ class Builder {
     const double wx = b.w.at(mx, cy), wy = b.w.at(cx, my);
     const double wx2 = wx * wx, wy2 = wy * wy;
     std::array<Interval, 4> d;  // ds/dx, dt/dx, ds/dy, dt/dy
+    std::array<double, 2> value;  // how far a set's s and t lie from the nominal values
     for (size_t k = 0; k < 2; ++k) {
-      d[k] = Interval::around((b.ax[k] + b.cross[k] * cy) / wx2, b.alongX[k]);
-      d[k + 2] = Interval::around((b.ay[k] - b.cross[k] * cx) / wy2, b.alongY[k]);
+      const double slopeX = (b.ax[k] + b.cross[k] * cy) / wx2;
+      const double slopeY = (b.ay[k] - b.cross[k] * cx) / wy2;
+      d[k] = Interval::around(slopeX, b.alongX[k]);
+      d[k + 2] = Interval::around(slopeY, b.alongY[k]);
+      const double slopes =
+          std::fabs(slopeX) + b.nearX[k] + std::fabs(slopeY) + b.nearY[k] + 2 * b.rounding[k];
+      value[k] = std::min(b.value[k], slopes * b.rho + b.floatError[k]);
     }
     const Interval lod = hull(lodRange(d[0], d[1], d[2], d[3]), Interval::point(oracle.lod));
     const int L = shading_.finestLevel;
@@ -371,12 +382,14 @@ class Builder {
     const int first = std::clamp(static_cast<int>(std::floor(lod.lo)), 0, L);
     const int top = std::clamp(static_cast<int>(std::floor(lod.hi)), first, L);
     const int last = std::min(top + 1, L);
-    // How far a set's (s, t) lie from the oracle's, per axis.
-    const double ds = b.value[0] + std::fabs(sNominal - so);
-    const double dt = b.value[1] + std::fabs(tNominal - to);
+    // The set's (s, t), as the shader samples them: clamped to [0, 1].
+    const Interval s =
+        clamp(hull(Interval::around(sNominal, value[0]), Interval::point(oracle.uv.x)), 0, 1);
+    const Interval tt =
+        clamp(hull(Interval::around(tNominal, value[1]), Interval::point(oracle.uv.y)), 0, 1);
     // Per level the LOD reaches, the filter over every texel position a set admits (those of its
-    // (s, t) box, within the sampler's position error), around the oracle's; and over the
-    // oracle's position alone, as the Lipschitz bound of the sampler's position error.
+    // (s, t) box, within the sampler's position error); and over the oracle's position alone, as
+    // the Lipschitz bound of the sampler's position error.
     std::array<Colour, kMaxLevel + 1> range;  // (finestLevel <= kMaxLevel: format/page_address.h)
     // The exact filter at the oracle's (s, t) on the two levels its LOD blends.
     const double oracleLod = std::clamp<double>(oracle.lod, 0, L);
@@ -387,9 +400,13 @@ class Builder {
       const LevelBounds& l = levelBounds(b, m);
       if (l.state < 0) return false;
       const glm::dvec2 at = l.at0 + glm::dvec2(so, to) * l.texelsPerUnit;
-      const glm::dvec2 radius = glm::dvec2(ds, dt) * l.texelsPerUnit + glm::dvec2(l.positionError);
+      const WindowBox box{
+          widen(Interval{l.at0.x + s.lo * l.texelsPerUnit, l.at0.x + s.hi * l.texelsPerUnit}, 0,
+                l.positionError),
+          widen(Interval{l.at0.y + tt.lo * l.texelsPerUnit, l.at0.y + tt.hi * l.texelsPerUnit}, 0,
+                l.positionError)};
       LocalFilter here;
-      if (!localFilter(b, l, at.x, at.y, radius.x, radius.y, here)) return false;
+      if (!localFilter(b, l, box, at, here)) return false;
       range[static_cast<size_t>(m)] = widen(here.range, b.valueError);
       if (m == oracleCoarse || m == oracleCoarse + 1)
         atOracle[static_cast<size_t>(m - oracleCoarse)] = here.at;
@@ -418,10 +435,6 @@ class Builder {
         std::min(std::clamp(static_cast<int>(std::ceil(lod.lo)), 0, L), oracle.neededLevel));
     a.levelHi = static_cast<uint8_t>(
         std::max(std::clamp(static_cast<int>(std::ceil(lod.hi)), 0, L), oracle.neededLevel));
-    const Interval s =
-        clamp(hull(Interval::around(sNominal, b.value[0]), Interval::point(oracle.uv.x)), 0, 1);
-    const Interval tt =
-        clamp(hull(Interval::around(tNominal, b.value[1]), Interval::point(oracle.uv.y)), 0, 1);
     setUv(s, tt, a);
     a.uvLo = glm::min(a.uvLo, oracle.uv);
     a.uvHi = glm::max(a.uvHi, oracle.uv);
@@ -719,7 +732,10 @@ class Builder {
       const double scale = std::max(r.scale, r.magnitude);
       const double g = r.gradient[0] + r.gradient[1];
       // fragment()'s float error of the value, and the rounding of the nominal value in double.
-      b.value[k] = g * rho + relative * scale + kFloatUlp + 0x1p-40 * scale;
+      b.floatError[k] = relative * scale + kFloatUlp + 0x1p-40 * scale;
+      b.value[k] = g * rho + b.floatError[k];
+      b.nearX[k] = r.hessian[0] * (0.5 + rho) + r.hessian[1] * rho;
+      b.nearY[k] = r.hessian[3] * (0.5 + rho) + r.hessian[2] * rho;
       b.ax[k] = n.ax * w.a0 - n.a0 * w.ax;
       b.ay[k] = n.ay * w.a0 - n.a0 * w.ay;
       b.cross[k] = n.ax * w.ay - n.ay * w.ax;
@@ -728,7 +744,7 @@ class Builder {
       const double terms = std::fabs(n.ax * w.a0) + std::fabs(n.a0 * w.ax) +
                            std::fabs(n.ay * w.a0) + std::fabs(n.a0 * w.ay) +
                            std::fabs(b.cross[k]) * (around.x.magnitude() + around.y.magnitude());
-      const double rounding = 0x1p-40 * terms * r.inverseW2;
+      const double rounding = b.rounding[k] = 0x1p-40 * terms * r.inverseW2;
       const auto step = [&](double slope, double along, double across, double radius) {
         const double v = slope + g * radius;
         const double size = 2 * (scale + v) + v;
@@ -741,6 +757,7 @@ class Builder {
     b.sReach = clamp(widen(reach[0], 0, b.value[0]), 0, 1);
     b.tReach = clamp(widen(reach[1], 0, b.value[1]), 0, 1);
     b.valueError = samplerErrors(0).value;
+    b.rho = rho;
     double sum = 0;
     for (size_t k = 0; k < 2; ++k) sum += b.value[k] + b.alongX[k] + b.alongY[k];
     b.bounded = std::isfinite(sum);
@@ -811,16 +828,16 @@ class Builder {
     return row0 + (row1 - row0) * fy;
   }
 
-  // The filter over the box (x, y) +- (rx, ry) of texel positions on a level kept by an OwnBlock;
-  // false where the box reads texels not kept. Its range: inside one cell between texel centres
-  // the filter is bilinear, its bounds at the box's corners; across cells, its value at (x, y)
-  // within the Lipschitz bound, and within the texels' hull.
-  static bool localFilter(const OwnBlock& b, const LevelBounds& l, double x, double y, double rx,
-                          double ry, LocalFilter& f) {
-    const int x0 = static_cast<int>(std::floor(x - rx - 0.5)) - l.origin.x;
-    const int y0 = static_cast<int>(std::floor(y - ry - 0.5)) - l.origin.y;
-    const int x1 = static_cast<int>(std::floor(x + rx - 0.5)) + 1 - l.origin.x;
-    const int y1 = static_cast<int>(std::floor(y + ry - 0.5)) + 1 - l.origin.y;
+  // The filter over a box of texel positions on a level kept by an OwnBlock, and at a point
+  // `at` inside it; false where the box reads texels not kept. Its range: inside one cell between
+  // texel centres the filter is bilinear, its bounds at the box's corners; across cells, its value
+  // at the point within the Lipschitz bound, and within the texels' hull.
+  static bool localFilter(const OwnBlock& b, const LevelBounds& l, const WindowBox& box,
+                          glm::dvec2 at, LocalFilter& f) {
+    const int x0 = static_cast<int>(std::floor(box.x.lo - 0.5)) - l.origin.x;
+    const int y0 = static_cast<int>(std::floor(box.y.lo - 0.5)) - l.origin.y;
+    const int x1 = static_cast<int>(std::floor(box.x.hi - 0.5)) + 1 - l.origin.x;
+    const int y1 = static_cast<int>(std::floor(box.y.hi - 0.5)) + 1 - l.origin.y;
     if (!(x0 >= 0 && y0 >= 0 && x1 < l.width && y1 < l.height)) return false;
     const auto texel = [&](int tx, int ty) {
       return glm::ivec4(b.texels[l.offset + static_cast<size_t>(ty * l.width + tx)]);
@@ -837,14 +854,14 @@ class Builder {
     f.lipschitzX = glm::dvec4(dx);
     f.lipschitzY = glm::dvec4(dy);
     if (x1 == x0 + 1 && y1 == y0 + 1) {
-      // One cell: its four texels, the rows' values at the box's ends and at (x, y), then the
+      // One cell: its four texels, the rows' values at the box's ends and at the point, then the
       // columns'.
       const glm::dvec4 c00(texel(x0, y0)), c10(texel(x1, y0)), c01(texel(x0, y1)),
           c11(texel(x1, y1));
       const glm::dvec4 d0 = c10 - c00, d1 = c11 - c01;
       const double cx = l.origin.x + x0 + 0.5, cy = l.origin.y + y0 + 0.5;  // the cell's corner
-      const double fx[3] = {x - rx - cx, x + rx - cx, x - cx};
-      const double fy[3] = {y - ry - cy, y + ry - cy, y - cy};
+      const double fx[3] = {box.x.lo - cx, box.x.hi - cx, at.x - cx};
+      const double fy[3] = {box.y.lo - cy, box.y.hi - cy, at.y - cy};
       f.range = nothing();
       for (size_t i = 0; i < 3; ++i) {
         const glm::dvec4 row0 = c00 + d0 * fx[i], row1 = c01 + d1 * fx[i];
@@ -860,8 +877,51 @@ class Builder {
       }
       return true;
     }
-    f.at = keptBilinear(b, l, x, y);
-    const glm::dvec4 change = f.lipschitzX * rx + f.lipschitzY * ry;
+    f.at = keptBilinear(b, l, at.x, at.y);
+    // A few cells: on each the filter is bilinear, so its bounds lie at the box's corners and
+    // where the box meets the lines through texel centres (stops, per axis); bilinearRange alike.
+    constexpr int kMaxStops = 4;
+    std::array<double, kMaxStops> xs, ys;
+    const auto stops = [&](Interval v, int first, int last, std::array<double, kMaxStops>& out) {
+      int count = 0;
+      out[static_cast<size_t>(count++)] = v.lo;
+      for (int k = first + 1; k <= last - 1; ++k) {
+        const double centre = k + 0.5;
+        if (!(centre > v.lo && centre < v.hi)) continue;
+        if (count == kMaxStops - 1) return 0;
+        out[static_cast<size_t>(count++)] = centre;
+      }
+      out[static_cast<size_t>(count++)] = v.hi;
+      return count;
+    };
+    const int nx = stops(box.x, l.origin.x + x0, l.origin.x + x1, xs);
+    const int ny = stops(box.y, l.origin.y + y0, l.origin.y + y1, ys);
+    if (nx > 0 && ny > 0) {
+      // Per x stop each texel row's value along x, then per y stop the lerp between two rows.
+      f.range = nothing();
+      std::array<glm::dvec4, kMaxStops + 1> rows;
+      for (int i = 0; i < nx; ++i) {
+        const double tx = xs[static_cast<size_t>(i)] - 0.5;
+        const int cx = std::min(static_cast<int>(std::floor(tx)) - l.origin.x, x1 - 1);
+        const double fx = tx - (cx + l.origin.x);
+        for (int r = y0; r <= y1; ++r) {
+          const glm::dvec4 t0(texel(cx, r));
+          rows[static_cast<size_t>(r - y0)] = t0 + (glm::dvec4(texel(cx + 1, r)) - t0) * fx;
+        }
+        for (int j = 0; j < ny; ++j) {
+          const double ty = ys[static_cast<size_t>(j)] - 0.5;
+          const int cy = std::min(static_cast<int>(std::floor(ty)) - l.origin.y, y1 - 1);
+          const double fy = ty - (cy + l.origin.y);
+          const glm::dvec4& r0 = rows[static_cast<size_t>(cy - y0)];
+          const glm::dvec4 v = r0 + (rows[static_cast<size_t>(cy - y0 + 1)] - r0) * fy;
+          f.range.lo = glm::min(f.range.lo, v);
+          f.range.hi = glm::max(f.range.hi, v);
+        }
+      }
+      return true;
+    }
+    const glm::dvec4 change = f.lipschitzX * std::max(at.x - box.x.lo, box.x.hi - at.x) +
+                              f.lipschitzY * std::max(at.y - box.y.lo, box.y.hi - at.y);
     f.range = {glm::max(glm::dvec4(lo), f.at - change), glm::min(glm::dvec4(hi), f.at + change)};
     return true;
   }
