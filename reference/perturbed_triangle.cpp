@@ -121,6 +121,49 @@ PerturbedTriangle::RatioOver PerturbedTriangle::ratioOver(const AffinePlane& n,
   return r;
 }
 
+std::array<double, 6> PerturbedTriangle::derivativesNear(const AffinePlane& n, double mx, double my,
+                                                         double hx, double hy) const {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  constexpr double kUp = 1 + kDoubleSlack;
+  const AffinePlane& w = oneOverW_;
+  const double wMin =
+      (std::fabs(w.at(mx, my)) - (std::fabs(w.ax) * hx + std::fabs(w.ay) * hy)) / kUp;
+  if (!(wMin > 0)) return {kInf, kInf, kInf, kInf, kInf, kInf};
+  const double cross = n.ax * w.ay - n.ay * w.ax, c = std::fabs(cross);
+  // N_x = (nx w0 - n0 wx) + C y and N_y = (ny w0 - n0 wy) - C x, with their rounding.
+  const double nx =
+      (std::fabs(n.ax * w.a0 - n.a0 * w.ax + cross * my) + c * hy) * kUp +
+      kDoubleSlack * (std::fabs(n.ax * w.a0) + std::fabs(n.a0 * w.ax) + c * (std::fabs(my) + hy));
+  const double ny =
+      (std::fabs(n.ay * w.a0 - n.a0 * w.ay - cross * mx) + c * hx) * kUp +
+      kDoubleSlack * (std::fabs(n.ay * w.a0) + std::fabs(n.a0 * w.ay) + c * (std::fabs(mx) + hx));
+  const double i2 = kUp / (wMin * wMin), i3 = i2 * kUp / wMin;
+  return {nx * i2 * kUp,
+          ny * i2 * kUp,
+          2 * std::fabs(w.ax) * nx * i3 * kUp,
+          (c * i2 + 2 * std::fabs(w.ay) * nx * i3) * kUp,
+          (c * i2 + 2 * std::fabs(w.ax) * ny * i3) * kUp,
+          2 * std::fabs(w.ay) * ny * i3 * kUp};
+}
+
+double PerturbedTriangle::ratioReach(const AffinePlane& n, double cx, double cy, double rho) const {
+  const std::array<double, 6> d = derivativesNear(n, cx, cy, rho, rho);
+  return (d[0] + d[1]) * rho * (1 + kDoubleSlack);
+}
+
+PerturbedTriangle::StepReach PerturbedTriangle::ratioStepReach(const AffinePlane& n, int axis,
+                                                               double cx, double cy,
+                                                               double rho) const {
+  const double e = stepRadius_[static_cast<size_t>(axis)];
+  const double along = 0.5 + rho + e, across = rho + e;
+  const std::array<double, 6> d = axis == 0 ? derivativesNear(n, cx + 0.5, cy, along, across)
+                                            : derivativesNear(n, cx, cy + 0.5, across, along);
+  const double g = d[0] + d[1];
+  const double width =
+      axis == 0 ? d[2] * along + d[3] * across + g * e : d[5] * along + d[4] * across + g * e;
+  return {width * (1 + kDoubleSlack), (d[static_cast<size_t>(axis)] + g * e) * (1 + kDoubleSlack)};
+}
+
 WindowBox PerturbedTriangle::sourceBoxOver(double x0, double y0, double x1, double y1) const {
   double inner = 0, roundings = 0;
   for (double cx : {x0, x1})

@@ -104,6 +104,25 @@ class PerturbedTriangle {
   };
   RatioOver ratioOver(const AffinePlane& numerator, const WindowBox& box, double x0, double y0,
                       double x1, double y1) const;
+  // Bounds of f = numerator / (1/w) near one centre (cx, cy), from the planes' slopes over a small
+  // box (|N_x|, |N_y| and |1/w| move by at most their planes' slopes times the box's half sizes;
+  // then as ratioOver), for the bounds of one pixel:
+  //   - ratioReach: how far f moves over the box of half size rho around the centre (its source
+  //     box): at most (sup |f_x| + sup |f_y|) rho there;
+  //   - ratioStepReach: how far a moved fine step along `axis` from the centre, whose source box
+  //     reaches rho, lies from the nominal f_x (f_y) at the step's middle: the step is the nominal
+  //     derivative somewhere in the box from the first centre's source box to the far end moved
+  //     by e (1 + 2 rho + 2 e along the axis, 2 rho + 2 e across, e = stepRadius), plus at most
+  //     (sup |f_x| + sup |f_y|) e (the header): within f_xx (1/2 + rho + e) + f_xy (rho + e) +
+  //     (|f_x| + |f_y|) e of the middle's; `slope` bounds the step's magnitude.
+  // Infinite where 1/w may vanish in the box.
+  double ratioReach(const AffinePlane& numerator, double cx, double cy, double rho) const;
+  struct StepReach {
+    double width, slope;
+  };
+  StepReach ratioStepReach(const AffinePlane& numerator, int axis, double cx, double cy,
+                           double rho) const;
+
   // The plane of 1/w through the corners (the denominator of every ratio).
   const AffinePlane& oneOverW() const { return oneOverW_; }
   // rho1 of the header along an axis: how far a fine step's far end may move beyond one pixel.
@@ -130,6 +149,10 @@ class PerturbedTriangle {
                                         Interval inverseW2) const;
 
   double terms(const AffinePlane& plane, double cx, double cy) const;
+  // Upper bounds of |f_x|, |f_y|, |f_xx|, |f_xy|, |f_yx|, |f_yy| over the box (mx, my) +- (hx, hy)
+  // (ratioReach); infinite where 1/w may vanish there.
+  std::array<double, 6> derivativesNear(const AffinePlane& numerator, double mx, double my,
+                                        double hx, double hy) const;
   // What the source box at centre (cx, cy) grows by, before radius and shrink: sum_j
   // |lambda_j| and the rounding of its evaluation (sourceBox, sourceBoxOver).
   struct Growth {

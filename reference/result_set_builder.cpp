@@ -263,12 +263,12 @@ struct OwnBlock {
   std::array<AffinePlane, 2> n;
   std::array<double, 2> ax{}, ay{}, cross{};
   std::array<double, 2> value{};             // a set's s (t) within this of the nominal value
-  // The same at a pixel from its own slopes: a set's s within (|f_x| + |f_y|) rho of the nominal
-  // value, |f_x| over the pixel's source box within nearX of its value at the x step's middle
-  // (plus the middle's rounding), alike for y; plus floatError.
+  // A pixel's own are tighter (PerturbedTriangle::ratioReach and ratioStepReach, from its source
+  // box's reach, at most rho) plus the model's float error (floatError for a value; for a step
+  // the float error of a difference, relative to scale) and the rounding of the middle's
+  // derivative in double.
   double rho = 0, relative = 0;
-  std::array<double, 2> stepRadius{}, scale{};  // e per axis; the scale of f's float error
-  std::array<double, 2> nearX{}, nearY{}, rounding{}, floatError{};
+  std::array<double, 2> scale{}, rounding{}, floatError{};
   std::array<double, 2> alongX{}, alongY{};  // its fine derivatives within these of f_x, f_y
                                              // at the step's middle
   Interval sReach, tReach;          // every (s, t) of a set in the block, clamped to [0, 1]
@@ -378,15 +378,11 @@ class Builder {
     for (size_t k = 0; k < 2; ++k) {
       const double slopeX = (b.ax[k] + b.cross[k] * cy) / wx2;
       const double slopeY = (b.ay[k] - b.cross[k] * cx) / wy2;
-      d[k] =
-          Interval::around(slopeX, std::min(b.alongX[k], stepWidth(b, k, 0, rhoLeft, mx, cy, wx)));
-      d[k + 2] =
-          Interval::around(slopeY, std::min(b.alongY[k], stepWidth(b, k, 1, rhoLower, cx, my, wy)));
-      // The slopes at the centre itself, then over its source box.
-      const double slopes =
-          (std::fabs(b.ax[k] + b.cross[k] * cy) + std::fabs(b.ay[k] - b.cross[k] * cx)) / (w * w) +
-          b.nearX[k] + b.nearY[k] + 2 * b.rounding[k];
-      value[k] = std::min(b.value[k], slopes * rho + b.floatError[k]);
+      d[k] = Interval::around(
+          slopeX, std::min(b.alongX[k], stepWidth(b, moves, k, 0, mx - 0.5, cy, rhoLeft)));
+      d[k + 2] = Interval::around(
+          slopeY, std::min(b.alongY[k], stepWidth(b, moves, k, 1, cx, my - 0.5, rhoLower)));
+      value[k] = std::min(b.value[k], moves.ratioReach(b.n[k], cx, cy, rho) + b.floatError[k]);
     }
     const Interval lod = hull(lodRange(d[0], d[1], d[2], d[3]), Interval::point(oracle.lod));
     const int L = shading_.finestLevel;
@@ -713,33 +709,14 @@ class Builder {
     a.uvHi = glm::vec2(std::nextafter(a.uvHi.x, 2.0f), std::nextafter(a.uvHi.y, 2.0f));
   }
 
-  // OwnBlock's derivative width for attribute k along `axis` at one step, from the step's own box
-  // instead of the block's: the box runs from the step's first centre to its second (1 + 2 rho +
-  // 2 e along the axis, 2 rho + 2 e across, around the middle (mx, my) where 1/w is wm); over it
-  // |N| and |1/w| move by at most their planes' slopes times the box's half sizes, which bound
-  // the second derivatives and the gradient there as ratioOver does. The block's width where 1/w
-  // may vanish in the box.
-  static double stepWidth(const OwnBlock& b, size_t k, int axis, double rho, double mx, double my,
-                          double wm) {
-    const double e = b.stepRadius[static_cast<size_t>(axis)];
-    const double along = 0.5 + rho + e, across = rho + e;
-    const double hx = axis == 0 ? along : across, hy = axis == 0 ? across : along;
-    const AffinePlane& w = b.w;
-    const double wMin = std::fabs(wm) - (std::fabs(w.ax) * hx + std::fabs(w.ay) * hy);
-    if (!(wMin > 0)) return std::numeric_limits<double>::infinity();
-    const double c = std::fabs(b.cross[k]);
-    const double nx = std::fabs(b.ax[k] + b.cross[k] * my) + c * hy;
-    const double ny = std::fabs(b.ay[k] - b.cross[k] * mx) + c * hx;
-    const double i2 = 1 / (wMin * wMin), i3 = i2 / wMin;
-    const double gx = nx * i2, gy = ny * i2, g = gx + gy;
-    // f_xx, f_xy (along x) or f_yy, f_yx (along y).
-    const double second = axis == 0 ? 2 * std::fabs(w.ax) * nx * i3 : 2 * std::fabs(w.ay) * ny * i3;
-    const double mixed =
-        c * i2 + (axis == 0 ? 2 * std::fabs(w.ay) * nx : 2 * std::fabs(w.ax) * ny) * i3;
-    const double v = (axis == 0 ? gx : gy) + g * e;
-    const double size = 2 * (b.scale[k] + v) + v;
-    return (second * along + mixed * across + g * e) * (1 + 0x1p-40) +
-           (b.relative + kFloatUlp) * size + b.rounding[k];
+  // A fine derivative's width at one step of attribute k along `axis` from its first centre
+  // (cx, cy), whose source box reaches rho: PerturbedTriangle::ratioStepReach plus the float
+  // error of a difference (floatStep) and the rounding of the middle's derivative in double.
+  static double stepWidth(const OwnBlock& b, const PerturbedTriangle& moves, size_t k, int axis,
+                          double cx, double cy, double rho) {
+    const PerturbedTriangle::StepReach r = moves.ratioStepReach(b.n[k], axis, cx, cy, rho);
+    const double size = 2 * (b.scale[k] + r.slope) + r.slope;
+    return r.width + (b.relative + kFloatUlp) * size + b.rounding[k];
   }
 
   // OwnBlock's widths for candidate `index` over the block from (bx, by); not bounded where the
@@ -775,8 +752,6 @@ class Builder {
       // fragment()'s float error of the value, and the rounding of the nominal value in double.
       b.floatError[k] = relative * scale + kFloatUlp + 0x1p-40 * scale;
       b.value[k] = g * rho + b.floatError[k];
-      b.nearX[k] = (r.hessian[0] + r.hessian[1]) * rho;
-      b.nearY[k] = (r.hessian[3] + r.hessian[2]) * rho;
       b.ax[k] = n.ax * w.a0 - n.a0 * w.ax;
       b.ay[k] = n.ay * w.a0 - n.a0 * w.ay;
       b.cross[k] = n.ax * w.ay - n.ay * w.ax;
@@ -800,7 +775,6 @@ class Builder {
     b.tReach = clamp(widen(reach[1], 0, b.value[1]), 0, 1);
     b.valueError = samplerErrors(0).value;
     b.rho = rho;
-    b.stepRadius = e;
     b.relative = relative;
     double sum = 0;
     for (size_t k = 0; k < 2; ++k) sum += b.value[k] + b.alongX[k] + b.alongY[k];

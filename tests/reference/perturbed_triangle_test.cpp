@@ -168,8 +168,9 @@ TEST(PerturbedTriangle, ABlocksSourceBoxHoldsEachCentresBoxAndBounds) {
 // step radius: at every centre p of the block, a moved triangle's s lies within (g_x + g_y) rho
 // of the nominal s(p), and its fine steps within h_xx (1/2 + rho + e) + h_xy (rho + e) +
 // (g_x + g_y) e of the nominal s_x at the step's middle (alike along y), rho the box's margin
-// around the centres and e the step radius. Exact arithmetic (long double): the float errors
-// are added apart.
+// around the centres and e the step radius; and within a pixel's own bounds (ratioReach,
+// ratioStepReach) from its source box. Exact arithmetic (long double): the float errors are added
+// apart.
 TEST(PerturbedTriangle, ABlocksRatioBoundsHoldEveryMovedValueAndStep) {
   std::mt19937 rng(11);
   constexpr double kRadius = 1.0 / 16;
@@ -246,6 +247,18 @@ TEST(PerturbedTriangle, ABlocksRatioBoundsHoldEveryMovedValueAndStep) {
           ASSERT_LE(std::fabs(stepX - slope(lx + 0.5, cy, 0)), alongX + tolerance) << trial;
           ASSERT_LE(std::fabs(stepY - slope(cx, ly + 0.5, 1)), alongY + tolerance) << trial;
           ASSERT_LE(std::fabs(here), r.magnitude + tolerance);
+          // A pixel's own bounds, from its and its steps' first centres' source boxes.
+          const auto reach = [&](double x, double y) { return bounds.sourceBox(x, y).x.hi - x; };
+          ASSERT_LE(std::fabs(here - nominal(cx, cy)),
+                    bounds.ratioReach(s, cx, cy, reach(cx, cy)) + tolerance);
+          const PerturbedTriangle::StepReach sx =
+              bounds.ratioStepReach(s, 0, lx, cy, reach(lx, cy));
+          const PerturbedTriangle::StepReach sy =
+              bounds.ratioStepReach(s, 1, cx, ly, reach(cx, ly));
+          ASSERT_LE(std::fabs(stepX - slope(lx + 0.5, cy, 0)), sx.width + tolerance) << trial;
+          ASSERT_LE(std::fabs(stepY - slope(cx, ly + 0.5, 1)), sy.width + tolerance) << trial;
+          ASSERT_LE(std::fabs(stepX), sx.slope + tolerance);
+          ASSERT_LE(std::fabs(stepY), sy.slope + tolerance);
           ++checked;
         }
     }
