@@ -214,12 +214,11 @@ struct FragmentRange {
   bool everything = false;  // a w near zero: any (s, t) and any level
 };
 
-// The oracle's own triangle over one 4 x 4 block: bounds of what a set admits at any centre of the
-// block as widths around values computed at each pixel, made once per block and triangle
-// (Builder::ownAlternative). With B the box that holds every centre's source box
-// (PerturbedTriangle::sourceBoxOver), rho its margin around the centres, e the step radius, and,
-// for f = s or t, bounds over B grown by e of |f|, of its gradient (g_x, g_y) and of its second
-// derivatives (PerturbedTriangle::ratioOver):
+// The oracle's own triangle over one 4 x 4 block: what its pixels' alternatives share, made once
+// per block and triangle (Builder::ownAlternative). With B the box that holds every centre's
+// source box (PerturbedTriangle::sourceBoxOver), rho its margin around the centres, e the step
+// radius, and, for f = s or t, bounds over B grown by e of |f|, of its gradient (g_x, g_y) and of
+// its second derivatives (PerturbedTriangle::ratioOver):
 //   - f at a centre p: the moved triangle's value is the nominal one at a point of p's source box,
 //     within (g_x + g_y) rho of the nominal f(p); plus the model's float error relative to the
 //     scale, as fragment() counts it;
@@ -228,9 +227,10 @@ struct FragmentRange {
 //     along y) plus at most (g_x + g_y) e, plus the float error of a difference (floatStep): within
 //     h_xx (1/2 + rho + e) + h_xy (rho + e) + (g_x + g_y) e of f_x at the step's middle, plus that
 //     error; alike along y;
-//   - the colour: per level, the texels the block's (s, t) reach there, inside one page
-//     (LevelBounds), bound how far the filter moves from its exact value at the oracle's (s, t)
-//     and LOD.
+//   - per level, the texels the block's (s, t) reach there, inside one page (LevelBounds).
+// A pixel takes the smaller of these widths and its own (PerturbedTriangle::ratioReach and
+// ratioStepReach, from its own source box), and per level the filter's range over its own texel
+// box from the kept texels (Builder::localFilter).
 
 // Level m of the cache as an OwnBlock's (s, t) reach it: the texels a bilinear sample anywhere in
 // reach reads, kept for the block's pixels (Builder::localFilter).
@@ -258,8 +258,8 @@ struct LocalFilter {
 struct OwnBlock {
   int32_t index = -1;
   bool bounded = false;
-  AffinePlane w;  // 1/w; per attribute (s, t) its numerator plane and f_x = (ax + cx y) / w^2,
-                  // f_y = (ay - cx x) / w^2
+  AffinePlane w;  // 1/w; per attribute (s, t) its numerator plane and f_x = (ax + cross y) / w^2,
+                  // f_y = (ay - cross x) / w^2
   std::array<AffinePlane, 2> n;
   std::array<double, 2> ax{}, ay{}, cross{};
   std::array<double, 2> value{};             // a set's s (t) within this of the nominal value
@@ -812,6 +812,9 @@ class Builder {
                             static_cast<int>(std::floor(y.lo - 0.5)));
     const int width = static_cast<int>(std::floor(x.hi - 0.5)) + 2 - origin.x;
     const int height = static_cast<int>(std::floor(y.hi - 0.5)) + 2 - origin.y;
+    // A block's reach is a few texels a side on the levels its LOD blends (about a texel per pixel
+    // on the finer one); wider, at a level the LOD range reaches on a horizon, the pixel-by-pixel
+    // bounds read fewer texels than the block would keep.
     constexpr int kMaxSide = 24;
     if (width > kMaxSide || height > kMaxSide) return l;
     const size_t offset = b.texels.size();

@@ -17,13 +17,41 @@ bool ObjFace::finite() const {
   return true;
 }
 
+namespace {
+
+// The text without tinyobjloader's skin-weight statements (`vw`, an extension of its own that no
+// scene here uses), each left as an empty line so that line numbers stay: it converts their joint
+// ids from float to int unchecked, undefined behaviour past INT_MAX (found by fuzzing).
+std::string withoutSkinWeights(std::string_view text) {
+  std::string kept;
+  kept.reserve(text.size());
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    end = end == std::string_view::npos ? text.size() : end + 1;
+    const std::string_view line = text.substr(start, end - start);
+    const size_t first = line.find_first_not_of(" \t");
+    const bool weights = first != std::string_view::npos && line.size() > first + 2 &&
+                         line.compare(first, 2, "vw") == 0 &&
+                         (line[first + 2] == ' ' || line[first + 2] == '\t');
+    if (weights)
+      kept += '\n';
+    else
+      kept += line;
+    start = end;
+  }
+  return kept;
+}
+
+}  // namespace
+
 ObjFaces readObjFaces(std::string_view text, const std::filesystem::path& path,
                       tinyobj::MaterialReader* materials) {
   tinyobj::attrib_t attributes;
   std::vector<tinyobj::shape_t> shapes;
   ObjFaces result;
   std::string warning, error;
-  std::istringstream stream{std::string(text)};
+  std::istringstream stream{withoutSkinWeights(text)};
   if (!tinyobj::LoadObj(&attributes, &shapes, &result.materials, &warning, &error, &stream,
                         materials, /*triangulate=*/false, /*default_vcols_fallback=*/true))
     throw InputError(path, "cannot read OBJ: " + error);

@@ -132,6 +132,19 @@ TEST_F(ObjScene, IndexOutOfRangeIsAnError) {
   EXPECT_THAT(loadError("fart.obj"), AllOf(HasSubstr("fart.obj"), HasSubstr("index out of range")));
 }
 
+// tinyobjloader's skin weights (`vw`, its own extension) are not read: a joint id past INT_MAX,
+// which it converts to int unchecked (found by fuzzing), leaves the faces as they are.
+TEST_F(ObjScene, SkinWeightsAreNotRead) {
+  writeText("plain.obj", std::string(kSquareVertices) + "f 1/1 2/2 3/3\n");
+  writeText("weights.obj", std::string(kSquareVertices) +
+                               "vw 0 099803543091 6.44\n  vw\t1 5e30 1\nf 1/1 2/2 3/3\n");
+  const TexturedScene plain = load("plain.obj"), weighted = load("weights.obj");
+  EXPECT_EQ(weighted.positions, plain.positions);
+  EXPECT_EQ(weighted.uvs, plain.uvs);
+  EXPECT_EQ(weighted.indices, plain.indices);
+  EXPECT_EQ(weighted.indices.size(), 3u);
+}
+
 // A map whose header claims 65535 x 65535 texels and whose file holds no pixel is believed only
 // as far as it decodes: the checker, not a texture area for four billion texels.
 TEST_F(ObjScene, AMapWhoseHeaderLiesAboutItsSizeIsDrawnAsTheChecker) {
