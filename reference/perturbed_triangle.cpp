@@ -88,26 +88,21 @@ PerturbedTriangle::RatioOver PerturbedTriangle::ratioOver(const AffinePlane& n,
   // rounding many times over.
   constexpr double kUp = 1 + kDoubleSlack;
   const double wMin = std::min(std::fabs(wRange.lo), std::fabs(wRange.hi)) / kUp;
-  const double inverse = 1 / wMin, inverse2 = inverse * inverse, inverse3 = inverse2 * inverse;
-  const double cross = n.ax * w.ay - n.ay * w.ax;
-  const double nx = (Interval::point(n.ax * w.a0 - n.a0 * w.ax) + box.y * cross).magnitude() +
-                    kDoubleSlack * (std::fabs(n.ax * w.a0) + std::fabs(n.a0 * w.ax) +
-                                    std::fabs(cross) * box.y.magnitude());
-  const double ny = (Interval::point(n.ay * w.a0 - n.a0 * w.ay) - box.x * cross).magnitude() +
-                    kDoubleSlack * (std::fabs(n.ay * w.a0) + std::fabs(n.a0 * w.ay) +
-                                    std::fabs(cross) * box.x.magnitude());
+  const double inverse = 1 / wMin;
   // A ratio of affine functions is monotonic along every line where 1/w keeps its sign: |f| is
   // largest at a corner of the box.
   for (double x : {box.x.lo, box.x.hi})
     for (double y : {box.y.lo, box.y.hi})
       r.magnitude = std::max(r.magnitude, std::fabs(n.at(x, y) / w.at(x, y)));
   r.magnitude = r.magnitude * kUp + (slack(n, box) + r.magnitude * slack(w, box)) * inverse;
-  r.inverseW2 = inverse2 * kUp;
-  r.gradient = {nx * inverse2 * kUp, ny * inverse2 * kUp};
-  r.hessian = {2 * std::fabs(w.ax) * nx * inverse3 * kUp,
-               (std::fabs(cross) * inverse2 + 2 * std::fabs(w.ay) * nx * inverse3) * kUp,
-               (std::fabs(cross) * inverse2 + 2 * std::fabs(w.ax) * ny * inverse3) * kUp,
-               2 * std::fabs(w.ay) * ny * inverse3 * kUp};
+  r.inverseW2 = inverse * inverse * kUp;
+  // The gradient over the box as around its middle (derivativesNear), the half sizes grown past
+  // the rounding of the middle and of the halves (an ulp of the coordinates each).
+  const double hx = box.x.width() / 2 + 0x1p-50 * box.x.magnitude();
+  const double hy = box.y.width() / 2 + 0x1p-50 * box.y.magnitude();
+  const std::array<double, 6> d =
+      derivativesNear(n, (box.x.lo + box.x.hi) / 2, (box.y.lo + box.y.hi) / 2, hx, hy);
+  r.gradient = {d[0], d[1]};
   double nTerms = 0, wTerms = 0;
   for (double cx : {x0, x1})
     for (double cy : {y0, y1}) {
@@ -115,9 +110,7 @@ PerturbedTriangle::RatioOver PerturbedTriangle::ratioOver(const AffinePlane& n,
       wTerms = std::max(wTerms, terms(w, cx, cy));
     }
   r.scale = (nTerms + r.magnitude * wTerms) * inverse * kUp;
-  r.finite = std::isfinite(r.scale) && std::isfinite(r.hessian[0]) && std::isfinite(r.hessian[1]) &&
-             std::isfinite(r.hessian[2]) && std::isfinite(r.hessian[3]) &&
-             std::isfinite(r.gradient[0]) && std::isfinite(r.gradient[1]);
+  r.finite = std::isfinite(r.scale) && std::isfinite(r.gradient[0]) && std::isfinite(r.gradient[1]);
   return r;
 }
 

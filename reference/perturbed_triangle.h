@@ -88,18 +88,16 @@ class PerturbedTriangle {
   AffinePlane attribute(const std::array<float, 3>& values) const;
 
   // How a perspective-correct attribute f = numerator / (1/w) of the nominal triangle varies over
-  // a box of window positions: upper bounds of |f|, of its gradient's components and of its
-  // second derivatives, with f_x = N_x / w^2, N_x = (nx w0 - n0 wx) + C y, C = nx wy - ny wx,
-  //   f_xx = -2 wx N_x / w^3,   f_xy = C / w^2 - 2 wy N_x / w^3,
-  // and alike for y (f_y = N_y / w^2, N_y = (ny w0 - n0 wy) - C x). `scale` bounds ratioScale at
-  // every centre of [x0, x1] x [y0, y1] (inside the box): the terms T are convex, largest at a
-  // corner, and |f| and 1 / |1/w| are at most their bounds over the box. Not finite where 1/w may
-  // vanish over the box.
+  // a box of window positions: upper bounds of |f|, of its gradient's components (f_x = N_x / w^2,
+  // N_x = (nx w0 - n0 wx) + C y, C = nx wy - ny wx; f_y = N_y / w^2, N_y = (ny w0 - n0 wy) - C x;
+  // as derivativesNear bounds them) and of 1 / (1/w)^2. `scale` bounds ratioScale at every centre
+  // of [x0, x1] x [y0, y1] (inside the box): the terms T are convex, largest at a corner, and |f|
+  // and 1 / |1/w| are at most their bounds over the box. Not finite where 1/w may vanish over the
+  // box.
   struct RatioOver {
     double magnitude = 0, scale = 0;
     double inverseW2 = 0;              // sup 1 / (1/w)^2
     std::array<double, 2> gradient{};  // sup |f_x|, sup |f_y|
-    std::array<double, 4> hessian{};   // sup |f_xx|, |f_xy|, |f_yx|, |f_yy|
     bool finite = false;
   };
   RatioOver ratioOver(const AffinePlane& numerator, const WindowBox& box, double x0, double y0,

@@ -216,21 +216,18 @@ struct FragmentRange {
 
 // The oracle's own triangle over one 4 x 4 block: what its pixels' alternatives share, made once
 // per block and triangle (Builder::ownAlternative). With B the box that holds every centre's
-// source box (PerturbedTriangle::sourceBoxOver), rho its margin around the centres, e the step
-// radius, and, for f = s or t, bounds over B grown by e of |f|, of its gradient (g_x, g_y) and of
-// its second derivatives (PerturbedTriangle::ratioOver):
+// source box (PerturbedTriangle::sourceBoxOver), rho its margin around the centres, and, for
+// f = s or t, bounds over B grown by the step radius of |f| and of its gradient (g_x, g_y)
+// (PerturbedTriangle::ratioOver):
 //   - f at a centre p: the moved triangle's value is the nominal one at a point of p's source box,
 //     within (g_x + g_y) rho of the nominal f(p); plus the model's float error relative to the
-//     scale, as fragment() counts it;
-//   - a fine derivative along x, from the left centre l of the quad's row: the nominal f_x
-//     somewhere in the step's box (l - rho - e to l + 1 + rho + e along x, rho + e either side
-//     along y) plus at most (g_x + g_y) e, plus the float error of a difference (floatStep): within
-//     h_xx (1/2 + rho + e) + h_xy (rho + e) + (g_x + g_y) e of f_x at the step's middle, plus that
-//     error; alike along y;
+//     scale, as fragment() counts it. This bounds every pixel's (s, t) in the block, hence what
+//     the block reads on each level;
 //   - per level, the texels the block's (s, t) reach there, inside one page (LevelBounds).
-// A pixel takes the smaller of these widths and its own (PerturbedTriangle::ratioReach and
-// ratioStepReach, from its own source box), and per level the filter's range over its own texel
-// box from the kept texels (Builder::localFilter).
+// A pixel takes its own, tighter widths (PerturbedTriangle::ratioReach and ratioStepReach, from
+// its own and its steps' source boxes; the value's at most the block's, so that it stays in
+// reach), and per level the filter's range over its own texel box from the kept texels
+// (Builder::localFilter).
 
 // Level m of the cache as an OwnBlock's (s, t) reach it: the texels a bilinear sample anywhere in
 // reach reads, kept for the block's pixels (Builder::localFilter).
@@ -262,15 +259,12 @@ struct OwnBlock {
                   // f_y = (ay - cross x) / w^2
   std::array<AffinePlane, 2> n;
   std::array<double, 2> ax{}, ay{}, cross{};
-  std::array<double, 2> value{};             // a set's s (t) within this of the nominal value
-  // A pixel's own are tighter (PerturbedTriangle::ratioReach and ratioStepReach, from its source
-  // box's reach, at most rho) plus the model's float error (floatError for a value; for a step
-  // the float error of a difference, relative to scale) and the rounding of the middle's
-  // derivative in double.
+  std::array<double, 2> value{};  // a set's s (t) within this of the nominal value at any centre
+  // What a pixel adds to its own widths (ratioReach, ratioStepReach from a source box reaching
+  // at most rho): the model's float error of a value (floatError) and of a difference (relative
+  // to scale), and the rounding of a step's middle derivative in double.
   double rho = 0, relative = 0;
   std::array<double, 2> scale{}, rounding{}, floatError{};
-  std::array<double, 2> alongX{}, alongY{};  // its fine derivatives within these of f_x, f_y
-                                             // at the step's middle
   Interval sReach, tReach;          // every (s, t) of a set in the block, clamped to [0, 1]
   double valueError = 0;            // a bilinear sample's (Builder::samplerErrors)
   std::vector<LevelBounds> levels;  // by level, each made when a pixel first needs it
@@ -378,10 +372,8 @@ class Builder {
     for (size_t k = 0; k < 2; ++k) {
       const double slopeX = (b.ax[k] + b.cross[k] * cy) / wx2;
       const double slopeY = (b.ay[k] - b.cross[k] * cx) / wy2;
-      d[k] = Interval::around(
-          slopeX, std::min(b.alongX[k], stepWidth(b, moves, k, 0, mx - 0.5, cy, rhoLeft)));
-      d[k + 2] = Interval::around(
-          slopeY, std::min(b.alongY[k], stepWidth(b, moves, k, 1, cx, my - 0.5, rhoLower)));
+      d[k] = Interval::around(slopeX, stepWidth(b, moves, k, 0, mx - 0.5, cy, rhoLeft));
+      d[k + 2] = Interval::around(slopeY, stepWidth(b, moves, k, 1, cx, my - 0.5, rhoLower));
       value[k] = std::min(b.value[k], moves.ratioReach(b.n[k], cx, cy, rho) + b.floatError[k]);
     }
     const Interval lod = hull(lodRange(d[0], d[1], d[2], d[3]), Interval::point(oracle.lod));
@@ -760,16 +752,8 @@ class Builder {
       const double terms = std::fabs(n.ax * w.a0) + std::fabs(n.a0 * w.ax) +
                            std::fabs(n.ay * w.a0) + std::fabs(n.a0 * w.ay) +
                            std::fabs(b.cross[k]) * (around.x.magnitude() + around.y.magnitude());
-      const double rounding = b.rounding[k] = 0x1p-40 * terms * r.inverseW2;
-      const auto step = [&](double slope, double along, double across, double radius) {
-        const double v = slope + g * radius;
-        const double size = 2 * (scale + v) + v;
-        return along * (0.5 + rho + radius) + across * (rho + radius) + g * radius +
-               (relative + kFloatUlp) * size + rounding;
-      };
+      b.rounding[k] = 0x1p-40 * terms * r.inverseW2;
       b.scale[k] = scale;
-      b.alongX[k] = step(r.gradient[0], r.hessian[0], r.hessian[1], e[0]);
-      b.alongY[k] = step(r.gradient[1], r.hessian[3], r.hessian[2], e[1]);
     }
     b.sReach = clamp(widen(reach[0], 0, b.value[0]), 0, 1);
     b.tReach = clamp(widen(reach[1], 0, b.value[1]), 0, 1);
@@ -777,7 +761,7 @@ class Builder {
     b.rho = rho;
     b.relative = relative;
     double sum = 0;
-    for (size_t k = 0; k < 2; ++k) sum += b.value[k] + b.alongX[k] + b.alongY[k];
+    for (size_t k = 0; k < 2; ++k) sum += b.value[k] + b.rounding[k];
     b.bounded = std::isfinite(sum);
   }
 
