@@ -229,12 +229,26 @@ struct FragmentRange {
 // reach), and per level the filter's range over its own texel box from the kept texels
 // (Builder::localFilter).
 
+// How a page of level m maps (s, t) to cache texel positions through its indirection entry (the
+// page itself or its resident ancestor, level i, at `origin` in the cache):
+//   x = origin.x + (s 2^i - resident.x) pageSize, alike for y.
+struct PageMap {
+  glm::dvec2 origin{0};
+  glm::ivec2 resident{0};
+  double scale = 1;  // 2^i
+  int pageSize = 0;
+  Interval x(Interval s) const { return along(s, origin.x, resident.x); }
+  Interval y(Interval t) const { return along(t, origin.y, resident.y); }
+  Interval along(Interval v, double o, int r) const {
+    return {o + (v.lo * scale - r) * pageSize, o + (v.hi * scale - r) * pageSize};
+  }
+};
+
 // Level m of the cache as an OwnBlock's (s, t) reach it: the texels a bilinear sample anywhere in
 // reach reads, kept for the block's pixels (Builder::localFilter).
 struct LevelBounds {
   int8_t state = 0;          // 0: not made yet; 1: bounded; -1: two pages or too many texels
-  double texelsPerUnit = 0;  // cache texels per unit of s (2^i pageSize, resident level i)
-  glm::dvec2 at0{0};         // the cache texel position of (s, t) = (0, 0) through this page
+  PageMap map;               // of the page the reach lies on
   double positionError = 0;  // the sampler's (Builder::samplerErrors)
   glm::ivec2 origin{0};      // the first texel kept
   int width = 0, height = 0;
@@ -399,12 +413,9 @@ class Builder {
     for (int m = first; m <= last; ++m) {
       const LevelBounds& l = levelBounds(b, m);
       if (l.state < 0) return false;
-      const glm::dvec2 at = l.at0 + glm::dvec2(so, to) * l.texelsPerUnit;
-      const WindowBox box{
-          widen(Interval{l.at0.x + s.lo * l.texelsPerUnit, l.at0.x + s.hi * l.texelsPerUnit}, 0,
-                l.positionError),
-          widen(Interval{l.at0.y + tt.lo * l.texelsPerUnit, l.at0.y + tt.hi * l.texelsPerUnit}, 0,
-                l.positionError)};
+      const glm::dvec2 at(l.map.x(Interval::point(so)).lo, l.map.y(Interval::point(to)).lo);
+      const WindowBox box{widen(l.map.x(s), 0, l.positionError),
+                          widen(l.map.y(tt), 0, l.positionError)};
       LocalFilter here;
       if (!localFilter(b, l, box, at, here)) return false;
       range[static_cast<size_t>(m)] = widen(here.range, b.valueError);
@@ -777,17 +788,8 @@ class Builder {
     if (page.x != floorToInt(b.sReach.hi * scale, last) ||
         page.y != floorToInt(b.tReach.hi * scale, last))
       return l;
-    const glm::uvec4 e = source_.entry(page, m);
-    const int i = static_cast<int>(e.z);
-    const glm::ivec2 resident(page.x >> (m - i), page.y >> (m - i));
-    const int stored = shading_.pageSize + 2 * shading_.border;
-    const double residentScale = powerOfTwo(i);
-    const double ox = static_cast<double>(e.x) * stored + shading_.border;
-    const double oy = static_cast<double>(e.y) * stored + shading_.border;
-    Interval x{ox + (b.sReach.lo * residentScale - resident.x) * shading_.pageSize,
-               ox + (b.sReach.hi * residentScale - resident.x) * shading_.pageSize};
-    Interval y{oy + (b.tReach.lo * residentScale - resident.y) * shading_.pageSize,
-               oy + (b.tReach.hi * residentScale - resident.y) * shading_.pageSize};
+    const PageMap map = pageMap(page, m);
+    Interval x = map.x(b.sReach), y = map.y(b.tReach);
     const SamplerErrors errors = samplerErrors(std::max(x.magnitude(), y.magnitude()));
     x = widen(x, 0, errors.position);
     y = widen(y, 0, errors.position);
@@ -807,15 +809,7 @@ class Builder {
       for (int tx = 0; tx < width; ++tx)
         b.texels[offset + static_cast<size_t>(ty * width + tx)] =
             source_.texel(origin + glm::ivec2(tx, ty));
-    l = {1,
-         residentScale * shading_.pageSize,
-         {ox - resident.x * static_cast<double>(shading_.pageSize),
-          oy - resident.y * static_cast<double>(shading_.pageSize)},
-         errors.position,
-         origin,
-         width,
-         height,
-         offset};
+    l = {1, map, errors.position, origin, width, height, offset};
     return l;
   }
 
@@ -1019,21 +1013,24 @@ class Builder {
   }
 
   Colour samplePage(Interval s, Interval t, glm::ivec2 page, int m) {
-    const glm::uvec4 e = source_.entry(page, m);
-    const int i = static_cast<int>(e.z);
-    const glm::ivec2 resident(page.x >> (m - i), page.y >> (m - i));
-    const int stored = shading_.pageSize + 2 * shading_.border;
-    const double scale = powerOfTwo(i);
-    const double ox = static_cast<double>(e.x) * stored + shading_.border;
-    const double oy = static_cast<double>(e.y) * stored + shading_.border;
-    Interval x{ox + (s.lo * scale - resident.x) * shading_.pageSize,
-               ox + (s.hi * scale - resident.x) * shading_.pageSize};
-    Interval y{oy + (t.lo * scale - resident.y) * shading_.pageSize,
-               oy + (t.hi * scale - resident.y) * shading_.pageSize};
+    const PageMap map = pageMap(page, m);
+    Interval x = map.x(s), y = map.y(t);
     const SamplerErrors errors = samplerErrors(std::max(x.magnitude(), y.magnitude()));
     x = widen(x, 0, errors.position);
     y = widen(y, 0, errors.position);
     return widen(bilinearRange(x, y), errors.value);
+  }
+
+  // Page `page` of level m's PageMap, from its indirection entry.
+  PageMap pageMap(glm::ivec2 page, int m) {
+    const glm::uvec4 e = source_.entry(page, m);
+    const int i = static_cast<int>(e.z);
+    const int stored = shading_.pageSize + 2 * shading_.border;
+    return {{static_cast<double>(e.x) * stored + shading_.border,
+             static_cast<double>(e.y) * stored + shading_.border},
+            {page.x >> (m - i), page.y >> (m - i)},
+            powerOfTwo(i),
+            shading_.pageSize};
   }
 
   // How far a bilinear sample's texel position (in cache texels, at most `magnitude`) and its
