@@ -18,6 +18,7 @@
 #include "random_triangles.h"
 #include "reference/renderer.h"
 #include "render/arithmetic_points.h"
+#include "resident_pages.h"
 #include "test_support.h"
 
 namespace vt {
@@ -54,10 +55,7 @@ TEST_P(LlvmpipeShading, OracleMatchesColourAndNeedbufferBitForBit) {
       dir / "t.vt", {{.pageSize = 16, .border = 2, .levelCount = 5, .channels = 4}, std::nullopt});
   const VirtualTextureReader reader(dir / "t.vt");
   // Levels 0..2 resident, every other page of level 3, a few of level 4: the rest falls back.
-  std::vector<uint64_t> resident;
-  for (uint64_t p = 0; p < pageCount(2); ++p) resident.push_back(p);
-  for (uint64_t p = firstPageOfLevel(3); p < firstPageOfLevel(4); p += 2) resident.push_back(p);
-  for (uint64_t p = firstPageOfLevel(4); p < pageCount(4); p += 7) resident.push_back(p);
+  const std::vector<uint64_t> resident = test::pagesFallingBack(2, {2, 7});
   const CacheState cache = makeCacheState(reader, resident, 12, 8);
 
   RenderSettings settings;

@@ -20,9 +20,10 @@
 #include "gl/headless_context.h"
 #include "gl/virtual_texture_program.h"
 #include "random_triangles.h"
-#include "render/frame_comparison.h"
 #include "reference/renderer.h"
 #include "render/arithmetic_points.h"
+#include "render/frame_comparison.h"
+#include "resident_pages.h"
 #include "test_support.h"
 
 namespace vt {
@@ -142,10 +143,7 @@ class PlantedBugs : public ::testing::Test {
     reader_ = std::make_unique<VirtualTextureReader>(dir_ / "t.vt");
     // Levels 0..2 resident, every other page of level 3, a few of level 4: the rest falls back
     // to ancestors, so a lookup at the wrong level shows.
-    std::vector<uint64_t> resident;
-    for (uint64_t p = 0; p < pageCount(2); ++p) resident.push_back(p);
-    for (uint64_t p = firstPageOfLevel(3); p < firstPageOfLevel(4); p += 2) resident.push_back(p);
-    for (uint64_t p = firstPageOfLevel(4); p < pageCount(4); p += 7) resident.push_back(p);
+    const std::vector<uint64_t> resident = test::pagesFallingBack(2, {2, 7});
     cache_ = std::make_unique<CacheState>(makeCacheState(*reader_, resident, 12, 8));
   }
 

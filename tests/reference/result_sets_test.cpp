@@ -15,6 +15,7 @@
 #include "reference/renderer.h"
 #include "render/arithmetic_points.h"
 #include "render/frame_comparison.h"
+#include "resident_pages.h"
 #include "test_support.h"
 
 namespace vt::reference {
@@ -73,10 +74,7 @@ class ResultSets : public ::testing::Test {
     reader_ = std::make_unique<VirtualTextureReader>(dir_ / "t.vt");
     // Levels 0..3 resident, every third page of level 4 and every fifth of level 5: the rest
     // falls back to ancestors.
-    std::vector<uint64_t> resident;
-    for (uint64_t p = 0; p < pageCount(3); ++p) resident.push_back(p);
-    for (uint64_t p = firstPageOfLevel(4); p < firstPageOfLevel(5); p += 3) resident.push_back(p);
-    for (uint64_t p = firstPageOfLevel(5); p < pageCount(5); p += 5) resident.push_back(p);
+    const std::vector<uint64_t> resident = test::pagesFallingBack(3, {3, 5});
     cache_ = std::make_unique<CacheState>(makeCacheState(*reader_, resident, 24, 24));
   }
 
