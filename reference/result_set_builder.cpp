@@ -52,6 +52,26 @@ Colour blend(const Colour& c0, const Colour& c1, Interval w) {
   return {glm::min(lo0, lo1), glm::max(hi0, hi1)};
 }
 
+// Along one axis of a box of texel positions, where the bilinear filter's bounds over it may lie:
+// the box's ends and the texel centres (at + 0.5) strictly inside, where the cells between centres
+// meet (on each cell the filter is bilinear). At most N of them.
+template <size_t N>
+struct Stops {
+  std::array<double, N> at;
+  size_t count = 0;
+  // False when there are more than fit.
+  bool of(Interval v) {
+    at[count++] = v.lo;
+    for (double k = std::ceil(v.lo - 0.5) + 0.5; k < v.hi; k += 1)
+      if (k > v.lo) {
+        if (count == N - 1) return false;
+        at[count++] = k;
+      }
+    at[count++] = v.hi;
+    return true;
+  }
+};
+
 // The corners of a triangle as boxes: each within `radius` pixels (the model's snapping) plus the
 // float error of its window transform (x / w * W / 2 + W / 2: a few roundings of values up to the
 // viewport's size) of its float window position, plus, for a corner the clipper made, twice what
@@ -879,36 +899,22 @@ class Builder {
     f.at = keptBilinear(b, l, at.x, at.y);
     // A few cells: on each the filter is bilinear, so its bounds lie at the box's corners and
     // where the box meets the lines through texel centres (stops, per axis); bilinearRange alike.
-    constexpr int kMaxStops = 4;
-    std::array<double, kMaxStops> xs, ys;
-    const auto stops = [&](Interval v, int first, int last, std::array<double, kMaxStops>& out) {
-      int count = 0;
-      out[static_cast<size_t>(count++)] = v.lo;
-      for (int k = first + 1; k <= last - 1; ++k) {
-        const double centre = k + 0.5;
-        if (!(centre > v.lo && centre < v.hi)) continue;
-        if (count == kMaxStops - 1) return 0;
-        out[static_cast<size_t>(count++)] = centre;
-      }
-      out[static_cast<size_t>(count++)] = v.hi;
-      return count;
-    };
-    const int nx = stops(box.x, l.origin.x + x0, l.origin.x + x1, xs);
-    const int ny = stops(box.y, l.origin.y + y0, l.origin.y + y1, ys);
-    if (nx > 0 && ny > 0) {
+    constexpr size_t kMaxStops = 4;
+    Stops<kMaxStops> xs, ys;
+    if (xs.of(box.x) && ys.of(box.y)) {
       // Per x stop each texel row's value along x, then per y stop the lerp between two rows.
       f.range = nothing();
       std::array<glm::dvec4, kMaxStops + 1> rows;
-      for (int i = 0; i < nx; ++i) {
-        const double tx = xs[static_cast<size_t>(i)] - 0.5;
+      for (size_t i = 0; i < xs.count; ++i) {
+        const double tx = xs.at[i] - 0.5;
         const int cx = std::min(static_cast<int>(std::floor(tx)) - l.origin.x, x1 - 1);
         const double fx = tx - (cx + l.origin.x);
         for (int r = y0; r <= y1; ++r) {
           const glm::dvec4 t0(texel(cx, r));
           rows[static_cast<size_t>(r - y0)] = t0 + (glm::dvec4(texel(cx + 1, r)) - t0) * fx;
         }
-        for (int j = 0; j < ny; ++j) {
-          const double ty = ys[static_cast<size_t>(j)] - 0.5;
+        for (size_t j = 0; j < ys.count; ++j) {
+          const double ty = ys.at[j] - 0.5;
           const int cy = std::min(static_cast<int>(std::floor(ty)) - l.origin.y, y1 - 1);
           const double fy = ty - (cy + l.origin.y);
           const glm::dvec4& r0 = rows[static_cast<size_t>(cy - y0)];
@@ -1070,21 +1076,6 @@ class Builder {
     // stops than fit, so it is wide whatever the other axis.
     constexpr double kSurelyWide = kMaxPoints + 2;
     if (x.width() >= kSurelyWide || y.width() >= kSurelyWide) return everyValue();
-    struct Stops {
-      std::array<double, kMaxPoints + 2> at;
-      size_t count = 0;
-    };
-    // False when there are more than fit (the box is wide).
-    const auto stops = [](Interval v, Stops& out) {
-      out.at[out.count++] = v.lo;
-      for (double k = std::ceil(v.lo - 0.5) + 0.5; k < v.hi; k += 1)
-        if (k > v.lo) {
-          if (out.count == kMaxPoints + 1) return false;
-          out.at[out.count++] = k;
-        }
-      out.at[out.count++] = v.hi;
-      return true;
-    };
     if (model_.decodingPinned || !shading_.blockCompressed) {
       // The common box: inside one cell between texel centres on both axes (a box narrower than a
       // texel mostly is), where the stops are its ends alone.
@@ -1092,7 +1083,7 @@ class Builder {
       if (cx0 == std::floor(x.hi - 0.5) && cy0 == std::floor(y.hi - 0.5))
         return bilinearInCell(x, y, cx0, cy0);
     }
-    Stops xs, ys;
+    Stops<kMaxPoints + 2> xs, ys;
     // Each texel as the least and greatest value it may have: one value unless the block
     // decoding is free. Channels as doubles (exact): the least values of the four channels, then
     // the greatest.
@@ -1123,7 +1114,7 @@ class Builder {
       return Colour{{bounds[0], bounds[1], bounds[2], bounds[3]},
                     {bounds[4], bounds[5], bounds[6], bounds[7]}};
     };
-    if (!stops(x, xs) || !stops(y, ys) || xs.count * ys.count > kMaxPoints) {
+    if (!xs.of(x) || !ys.of(y) || xs.count * ys.count > kMaxPoints) {
       // A wide box: every texel it reaches bounds the filter (a convex combination of them);
       // beyond 16 x 16 texels, the whole range (cheaper than reading them, and still a bound).
       if (y.width() > 16 || x.width() > 16) return everyValue();
