@@ -4,11 +4,13 @@
 // real maps given on the command line (a texture, its mesh and a camera path: tour frames spread
 // over the path, from a cache of the map's coarser levels that fits one 8192^2 texture). Each at
 // 1280 x 720 and 1920 x 1080; llvmpipe with LP_NUM_THREADS=2, the oracle with 2 and 1 threads
-// under the pinned llvmpipe model and with 2 threads under gl45 (result sets for every pixel).
-// Prints one row per scene and size: the medians, the ratio oracle / llvmpipe (target <= 1.0),
-// the oracle's scaling from 1 to 2 threads (target >= 1.8) and the cost of gl45 over the pinned
-// model (target <= 2.0). benchmarks/oracle_vs_llvmpipe.sh builds the maps and runs this three
-// times.
+// under the pinned llvmpipe model and with 2 threads under gl45: as `vt crosscheck` judges a frame
+// (result sets where llvmpipe's frame of the same view differs from the oracle's own value,
+// RenderSettings::judged), and with every pixel's set (`--all-sets`). Prints one row per scene and
+// size: the medians, the ratio oracle / llvmpipe (target <= 1.0), the oracle's scaling from 1 to
+// 2 threads (target >= 1.8), the cost of gl45 over the pinned model (target <= 2.0), the share of
+// pixels whose set was built, and the cost of every pixel's set over the pinned model.
+// benchmarks/oracle_vs_llvmpipe.sh builds the maps and runs this three times.
 // --pinned-only leaves gl45 out (quick runs, profiles of the pinned path). --census adds, per
 // row, what gl45's sets hold: the pixels whose set is one triangle's alternative, those with
 // several or with the empty one besides, and the empty pixels, each with its share of the
@@ -186,8 +188,9 @@ int main(int argc, char** argv) {
   const vt::HeadlessContext context;
   std::printf("%s (%s), LP_NUM_THREADS=2; oracle under the pinned llvmpipe model unless gl45\n",
               context.renderer().c_str(), context.version().c_str());
-  std::printf("%-12s %-9s %6s %9s %10s %10s %10s %8s %8s %9s\n", "scene", "size", "frames",
-              "llvmpipe", "oracle-2t", "oracle-1t", "gl45-2t", "ratio", "scaling", "gl45/pin");
+  std::printf("%-12s %-9s %6s %9s %10s %10s %10s %8s %8s %9s %7s %9s %8s\n", "scene", "size",
+              "frames", "llvmpipe", "oracle-2t", "oracle-1t", "gl45-2t", "ratio", "scaling",
+              "gl45/pin", "sets%", "all-2t", "all/pin");
   const auto pinned = std::make_shared<const vt::PrecisionModel>(vt::llvmpipeModel());
   const auto gl45 = std::make_shared<const vt::PrecisionModel>(vt::gl45Model());
   for (const Scene& scene : scenes)
@@ -201,18 +204,44 @@ int main(int argc, char** argv) {
       settings.model = pinned;
 
       vt::GlFrameRenderer gl(*scene.cache);
-      for (const vt::ClipSpaceMesh& mesh : frames) gl.draw(mesh, settings);  // compile, warm up
+      // llvmpipe's frames, to be judged under gl45; the draws compile and warm up.
+      struct Drawn {
+        std::vector<uint8_t> color;
+        std::vector<uint32_t> need;
+      };
+      std::vector<Drawn> drawn;
+      for (const vt::ClipSpaceMesh& mesh : frames) {
+        const vt::Frame f = gl.render(mesh, settings);
+        Drawn d{f.color, {}};
+        for (const glm::uvec4& v : f.need) d.need.insert(d.need.end(), {v.x, v.y, v.z, v.w});
+        drawn.push_back(std::move(d));
+      }
       const double llvmpipe = medianMilliseconds(repeats, [&] {
         for (const vt::ClipSpaceMesh& mesh : frames) gl.draw(mesh, settings);
       });
-      // Like the GL renderer's targets, the oracle's frame is reused from frame to frame.
+      // Like the GL renderer's targets, the oracle's frame is reused from frame to frame. Judging,
+      // each frame's sets are built where llvmpipe's frame of the same view differs.
       vt::Frame frame;
-      const auto oracle = [&](const vt::RenderSettings& s) {
-        vt::reference::renderFrame(frames.front(), *scene.cache, s, frame);  // warm up
+      const auto oracle = [&](vt::RenderSettings s, bool judging = false) {
+        const auto draw = [&](size_t k) {
+          if (judging) s.judged = {drawn[k].color, drawn[k].need};
+          vt::reference::renderFrame(frames[k], *scene.cache, s, frame);
+        };
+        draw(0);  // warm up
         return medianMilliseconds(repeats, [&] {
-          for (const vt::ClipSpaceMesh& mesh : frames)
-            vt::reference::renderFrame(mesh, *scene.cache, s, frame);
+          for (size_t k = 0; k < frames.size(); ++k) draw(k);
         });
+      };
+      // The share of pixels whose set a judging frame builds.
+      const auto builtShare = [&](vt::RenderSettings s) {
+        uint64_t built = 0, pixels = 0;
+        for (size_t k = 0; k < frames.size(); ++k) {
+          s.judged = {drawn[k].color, drawn[k].need};
+          vt::reference::renderFrame(frames[k], *scene.cache, s, frame);
+          for (size_t i = 0; i + 1 < frame.sets.offsets.size(); ++i) built += frame.sets.built(i);
+          pixels += frame.sets.offsets.size() - 1;
+        }
+        return pixels ? 100.0 * static_cast<double>(built) / static_cast<double>(pixels) : 0.0;
       };
       settings.threads = 2;
       const double oracle2 = oracle(settings);
@@ -222,15 +251,18 @@ int main(int argc, char** argv) {
       vt::applyModel(bounded, *gl45);
       bounded.model = gl45;
       bounded.threads = 2;
-      const double sets2 = pinnedOnly ? std::nan("") : oracle(bounded);
+      const double sets2 = pinnedOnly ? std::nan("") : oracle(bounded, true);
+      const double all2 = pinnedOnly ? std::nan("") : oracle(bounded);
+      const double share = pinnedOnly ? std::nan("") : builtShare(bounded);
 
       const double count = static_cast<double>(frames.size());
       const std::string size =
           std::to_string(viewport.width) + "x" + std::to_string(viewport.height);
-      std::printf("%-12s %-9s %6zu %9.1f %10.1f %10.1f %10.1f %7.2fx %7.2fx %8.2fx\n",
-                  scene.name.c_str(), size.c_str(), frames.size(), llvmpipe / count,
-                  oracle2 / count, oracle1 / count, sets2 / count, oracle2 / llvmpipe,
-                  oracle1 / oracle2, sets2 / oracle2);
+      std::printf(
+          "%-12s %-9s %6zu %9.1f %10.1f %10.1f %10.1f %7.2fx %7.2fx %8.2fx %6.2f%% %9.1f %7.2fx\n",
+          scene.name.c_str(), size.c_str(), frames.size(), llvmpipe / count, oracle2 / count,
+          oracle1 / count, sets2 / count, oracle2 / llvmpipe, oracle1 / oracle2, sets2 / oracle2,
+          share, all2 / count, all2 / oracle2);
       if (census && !pinnedOnly) {
         Census counts;
         for (const vt::ClipSpaceMesh& mesh : frames) {
@@ -243,6 +275,7 @@ int main(int argc, char** argv) {
     }
   std::printf(
       "times: ms per frame, median of %d; ratio = oracle-2t / llvmpipe (target <= 1.0), scaling = "
-      "oracle-1t / oracle-2t (target >= 1.8), gl45/pin = gl45-2t / oracle-2t (target <= 2.0)\n",
+      "oracle-1t / oracle-2t (target >= 1.8), gl45/pin = gl45-2t / oracle-2t (target <= 2.0), "
+      "gl45-2t judging llvmpipe's frames (sets%% of pixels get a set), all-2t every pixel's set\n",
       repeats);
 }

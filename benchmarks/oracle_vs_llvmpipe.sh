@@ -56,10 +56,12 @@ for run in range(1, runs + 1):
             continue
         rows.setdefault((cells[0], cells[1]), []).append(dict(zip(header, cells)))
 print(f"\nover {runs} runs (min - max):")
-print(f"{'scene':12} {'size':9} {'ratio':>13} {'scaling':>13} {'gl45/pin':>15}")
+print(f"{'scene':12} {'size':9} {'ratio':>13} {'scaling':>13} {'gl45/pin':>15} {'sets%':>13} "
+      f"{'all/pin':>15}")
 for (scene, size), values in rows.items():
     def span(key):
-        v = sorted(float(r[key].rstrip('x')) for r in values)
+        v = sorted(float(r[key].rstrip('x%')) for r in values)
         return f"{v[0]:.2f} - {v[-1]:.2f}"
-    print(f"{scene:12} {size:9} {span('ratio'):>13} {span('scaling'):>13} {span('gl45/pin'):>15}")
+    print(f"{scene:12} {size:9} {span('ratio'):>13} {span('scaling'):>13} {span('gl45/pin'):>15} "
+          f"{span('sets%'):>13} {span('all/pin'):>15}")
 PY

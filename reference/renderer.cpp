@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <optional>
+#include <stdexcept>
 #include <thread>
 
 #include "common/parallel_for.h"
@@ -283,6 +284,20 @@ class TileShader {
            static_cast<size_t>(px);
   }
 
+  // Whether the judged frame (RenderSettings::judged) holds the oracle's own value, written, at
+  // pixel `index`: identical there (the predicate compareFrames counts by), it needs no set.
+  bool judgedIdentical(size_t index) const {
+    const RenderSettings::JudgedFrame& judged = job_.settings.judged;
+    if (judged.empty()) return false;
+    const Frame& frame = job_.frame;
+    const glm::uvec4 need(judged.need[index * 4], judged.need[index * 4 + 1],
+                          judged.need[index * 4 + 2], judged.need[index * 4 + 3]);
+    return need == frame.need[index] &&
+           std::equal(frame.color.begin() + static_cast<std::ptrdiff_t>(index * 4),
+                      frame.color.begin() + static_cast<std::ptrdiff_t>(index * 4 + 4),
+                      judged.color.begin() + static_cast<std::ptrdiff_t>(index * 4));
+  }
+
   // No geometry: the clear values.
   void writeEmpty(int px, int py) {
     Frame& frame = job_.frame;
@@ -291,9 +306,11 @@ class TileShader {
     frame.need[index] = job_.noNeed;
     frame.depth[index] = 1.0f;
     frame.triangle[index] = -1;
-    if (job_.model && job_.denormalsOnly) {
+    if (job_.model && judgedIdentical(index)) {
+      sets_->pixels.emplace_back(index, 0u);
+    } else if (job_.model && job_.denormalsOnly) {
       sets_->alternatives.push_back(Alternative{});  // the clear values, in either mode
-      sets_->pixels.emplace_back(indexOf(px, py), 1u);
+      sets_->pixels.emplace_back(index, 1u);
     } else if (job_.model) {
       addSet(px, py, OracleFragment{});
     }
@@ -348,6 +365,10 @@ class TileShader {
   // quad's plane evaluation and its shading both. (Triangle setup runs once: for attributes of
   // texture-coordinate scale its values lie far above the denormal range.)
   void addDenormalSet(int px, int py, int k, const PixelHit& hit, const OracleFragment& own) {
+    if (judgedIdentical(indexOf(px, py))) {
+      sets_->pixels.emplace_back(indexOf(px, py), 0u);
+      return;
+    }
     const SetupTriangle& t = job_.triangles[static_cast<size_t>(hit.triangle)];
     const Arithmetic& arithmetic = job_.arithmetic;
     const int qx = px & ~1, qy = py & ~1, column = k & 1, row = k >> 1;
@@ -403,6 +424,10 @@ class TileShader {
 
   // The pixel's result set under the model, after the oracle's own value.
   void addSet(int px, int py, const OracleFragment& own) {
+    if (judgedIdentical(indexOf(px, py))) {
+      sets_->pixels.emplace_back(indexOf(px, py), 0u);
+      return;
+    }
     const size_t before = sets_->alternatives.size();
     if (!setBuilder_)
       setBuilder_.emplace(*job_.model, job_.shading, job_.triangles, job_.viewport,
@@ -445,6 +470,10 @@ template <class Backend, class Source>
 void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescription& d,
             glm::vec2 cacheSize, const RenderSettings& settings, Frame& frame) {
   const Viewport viewport = settings.viewport;
+  const size_t pixels = static_cast<size_t>(viewport.width) * static_cast<size_t>(viewport.height);
+  if (!settings.judged.empty() &&
+      (settings.judged.need.size() != pixels * 4 || settings.judged.color.size() != pixels * 4))
+    throw std::invalid_argument("renderFrame: the judged frame is not of the viewport's size");
   // The thread limit covers everything: setup, Embree's scene build and the tiles.
   const ThreadLimit parallelism(settings.threads);
   const std::vector<SetupTriangle> triangles = setupTriangles(mesh, viewport, settings.arithmetic);
@@ -491,11 +520,10 @@ void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescr
                        static_cast<int>(tile / static_cast<size_t>(tilesX)) * kTile, nullptr);
     });
   }
-  if (model)
-    gatherSets(tileSets,
-               static_cast<size_t>(viewport.width) * static_cast<size_t>(viewport.height),
-               settings.threads, frame.sets);
-  else
+  if (model) {
+    gatherSets(tileSets, pixels, settings.threads, frame.sets);
+    frame.sets.judged = !settings.judged.empty();
+  } else
     frame.sets = ResultSets{};
 }
 

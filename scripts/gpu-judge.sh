@@ -30,7 +30,8 @@ for set in captures compressed/captures-bc1 compressed/captures-bc3a q3dm6ish st
   for model in "${models[@]}"; do
     name=$(basename "$model" .json)
     report=$out/judged-${set#compressed/}-$name
-    "$vt" crosscheck --captures "$unpacked/$set" --model "$model" -o "$report" >/dev/null ||
+    "$vt" crosscheck --captures "$unpacked/$set" --model "$model" --all-sets -o "$report" \
+      >/dev/null ||
       status=1
     python3 - "$report/summary.json" "${set#compressed/}" "$name" <<'EOF'
 import json, sys

@@ -6,10 +6,11 @@
 #   bc3    the same layout built as BC3 (block decoding free under gl45);
 #   maps   q3dm6ish and am_thornish, every 200th storyboard frame at 480 x 270, where
 #          benchmarks/oracle_vs_llvmpipe.sh has built them ($VT_DATA_CACHE/oracle-bench).
-# and prints the SHA-256 of each summary.json less its texture's path. A summary holds the counts
-# per reason, the ambiguous fraction and the mean widths to full double precision, so equal
-# fingerprints before and after a change mean the same verdicts over the same sets, pixel counts
-# and widths alike.
+# with every pixel's set (--all-sets), and prints the SHA-256 of each summary.json less its
+# texture's path and the fields that say which pixels' sets were built (every pixel here). A
+# summary holds the counts per reason, the ambiguous fraction and the mean widths to full double
+# precision, so equal fingerprints before and after a change mean the same verdicts over the same
+# sets, pixel counts and widths alike.
 #   usage: scripts/set-fingerprint.sh [VT] [WORK]   (default build/src/vt, out/set-fingerprint)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,8 +27,8 @@ if [[ ! -f $work/bc3.vt ]]; then
   "$vt" build out/demo/scene/layout.json --format bc3 -o "$work/bc3.vt" -q
 fi
 checks=(demo bc3)
-"$vt" crosscheck out/demo/scene.vt --model gl45 -o "$work/demo" > /dev/null
-"$vt" crosscheck "$work/bc3.vt" --model gl45 -o "$work/bc3" > /dev/null
+"$vt" crosscheck out/demo/scene.vt --model gl45 --all-sets -o "$work/demo" > /dev/null
+"$vt" crosscheck "$work/bc3.vt" --model gl45 --all-sets -o "$work/bc3" > /dev/null
 bench=${VT_DATA_CACHE:-$HOME/.cache/vt}/oracle-bench
 for map in q3dm6ish am_thornish; do
   if [[ ! -f $bench/$map.vt ]]; then
@@ -35,7 +36,7 @@ for map in q3dm6ish am_thornish; do
     continue
   fi
   "$vt" crosscheck "$bench/$map.vt" --mesh "$bench/$map/$map.obj" \
-    --path "data/paths/$map.storyboard.json" --every 200 --size 480x270 --model gl45 \
+    --path "data/paths/$map.storyboard.json" --every 200 --size 480x270 --model gl45 --all-sets \
     -o "$work/$map" > /dev/null
   checks+=("$map")
 done
@@ -44,6 +45,9 @@ for check in "${checks[@]}"; do
 import hashlib, json, sys
 summary = json.load(open(sys.argv[1]))
 summary.pop("texture", None)  # where WORK put it, not what the sets are
+for record in [summary["totals"], *summary["frames"]]:
+    record.pop("sets", None)  # "every pixel" (--all-sets)
+    record.pop("set_pixels", None)  # then every pixel
 digest = hashlib.sha256(json.dumps(summary, sort_keys=True).encode()).hexdigest()
 print(f"{digest}  {sys.argv[2]}")
 PY

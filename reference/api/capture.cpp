@@ -410,13 +410,17 @@ RenderOptions renderOptions(const Capture& capture, Profile profile) {
 
 namespace {
 
-CaptureCheck checkWith(const Capture& capture, const Texture& texture,
-                       const RenderOptions& options) {
+CaptureCheck checkWith(const Capture& capture, const Texture& texture, RenderOptions options,
+                       SetScope scope) {
   if (texture.identity() != capture.textureIdentity)
     throw Error(texture.path().string() + ": texture identity " + checksumText(texture.identity()) +
                 " does not match the capture's " + checksumText(capture.textureIdentity) +
                 " (the frame was drawn from another texture)");
   CaptureCheck check;
+  if (scope == SetScope::kDiffering) {
+    options.judgedColor = capture.color;
+    options.judgedNeed = capture.need;
+  }
   check.oracle = render(texture, capture.scene, capture.cache, options);
   check.comparison = compare(check.oracle, capture.color, capture.need);
   return check;
@@ -425,18 +429,19 @@ CaptureCheck checkWith(const Capture& capture, const Texture& texture,
 }  // namespace
 
 CaptureCheck checkCapture(const Capture& capture, const Texture& texture, Profile profile,
-                          unsigned threads) {
+                          unsigned threads, SetScope scope) {
   RenderOptions options = renderOptions(capture, profile);
   options.threads = threads;
-  return checkWith(capture, texture, options);
+  return checkWith(capture, texture, options, scope);
 }
 
 CaptureCheck checkCapture(const Capture& capture, const Texture& texture,
-                          const std::filesystem::path& modelFile, unsigned threads) {
+                          const std::filesystem::path& modelFile, unsigned threads,
+                          SetScope scope) {
   RenderOptions options = renderOptions(capture, Profile::kExact);
   options.modelFile = modelFile.string();
   options.threads = threads;
-  return checkWith(capture, texture, options);
+  return checkWith(capture, texture, options, scope);
 }
 
 }  // namespace vt::oracle

@@ -48,6 +48,7 @@ Comparison compare(const Frame& oracle, std::span<const uint8_t> color,
     result.unexplainedBy = c.unexplainedBy;
     result.widenBy = c.widenBy;
     result.model = oracle.model;
+    result.judged = oracle.judged;
     result.needMismatched = c.needMismatched;
     result.maxColorDifference = c.maxColorDifference;
     result.meanColorDifference = c.meanColorDifference;

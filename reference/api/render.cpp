@@ -60,6 +60,14 @@ vt::RenderSettings internalSettings(Viewport viewport, const RenderOptions& opti
   settings.exactFilter = options.sampling == Sampling::kTexelFetch;
   settings.need8 = options.needEncoding == NeedEncoding::k8Bit;
   settings.threads = options.threads;
+  const uint64_t pixels = uint64_t(viewport.width) * uint64_t(viewport.height);
+  if (!options.judgedColor.empty() || !options.judgedNeed.empty()) {
+    if (options.judgedColor.size() != pixels * 4 || options.judgedNeed.size() != pixels * 4)
+      throw Error("render: the judged frame has " + std::to_string(options.judgedColor.size() / 4) +
+                  " colour and " + std::to_string(options.judgedNeed.size() / 4) +
+                  " needbuffer pixels, the viewport " + std::to_string(pixels));
+    settings.judged = {options.judgedColor, options.judgedNeed};
+  }
   return settings;
 }
 
@@ -113,6 +121,7 @@ Frame publicFrame(vt::Frame&& frame, const vt::RenderSettings& settings) {
   const size_t pixels = frame.need.size();
   result.ambiguous.resize(pixels);
   for (size_t i = 0; i < pixels; ++i) result.ambiguous[i] = vt::ambiguous(frame.sets, i) ? 1 : 0;
+  result.judged = frame.sets.judged;
   if (!frame.sets.empty())
     result.sets = std::make_shared<const ResultSets>(ResultSets{std::move(frame.sets)});
   result.viewport = {frame.viewport.width, frame.viewport.height};

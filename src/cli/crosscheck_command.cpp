@@ -22,6 +22,7 @@ void addCrosscheckCommand(CLI::App& app) {
     std::string mesh, path, captures;
     int every = 8;
     unsigned threads = 0;
+    bool allSets = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand(
@@ -59,6 +60,10 @@ void addCrosscheckCommand(CLI::App& app) {
           "measured model of its renderer, else the shipped model its fingerprint names; for "
           "scenes a measured or shipped model whose fingerprint reproduces here; gl45 otherwise")
       ->capture_default_str();
+  command->add_flag(
+      "--all-sets", o->allSets,
+      "Under a model with free parameters, build every pixel's result set, not only those where "
+      "the other frame differs: the ambiguous fraction and set widths of whole frames, slower");
   command->add_option("-o,--output", o->output, "Folder for summary.json and difference images")
       ->capture_default_str();
   command->callback([o] {
@@ -79,6 +84,7 @@ void addCrosscheckCommand(CLI::App& app) {
                     .viewport = parseSize(o->size),
                     .model = o->profile,
                     .threads = o->threads,
+                    .allSets = o->allSets,
                     .output = o->output});
   });
 }

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "shader/needbuffer.h"
 
@@ -338,6 +339,11 @@ FrameComparison compareFrames(const Frame& oracle, const ResultSets& sets,
         };
         if (sets.empty()) {
           consider(pointAlternative(oracle, i, need8));
+        } else if (!sets.built(i)) {
+          // Built against a judged frame that was identical here: another frame is compared.
+          throw std::invalid_argument(
+              "compareFrames: the result sets were built against another frame (pixel " +
+              std::to_string(i) + " differs and has none)");
         } else {
           for (uint32_t k = sets.offsets[i]; k < sets.offsets[i + 1]; ++k)
             consider(sets.alternatives[k]);

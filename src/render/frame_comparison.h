@@ -10,7 +10,9 @@
 //   unexplained  otherwise: a bug in one of the two renderers, or a model too narrow. Each is
 //                attributed to the parameter that would have to widen, and by how much.
 // A pixel is ambiguous when its set holds more than one value; the ambiguous fraction says how
-// much the model leaves open (0 under a pinned model such as llvmpipe).
+// much the model leaves open (0 under a pinned model such as llvmpipe). Sets built against the
+// compared frame (ResultSets::judged) exist only where it differs: ambiguity and the set widths
+// below then count those pixels alone, and comparing another frame throws.
 
 #include <array>
 #include <cstdint>

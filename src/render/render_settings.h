@@ -3,7 +3,9 @@
 // shader's switches (virtual_texture_types.glsl) and, for the oracle, the arithmetic and the
 // precision model the frame will be judged under.
 
+#include <cstdint>
 #include <memory>
+#include <span>
 
 #include "render/arithmetic.h"
 #include "render/precision_model.h"
@@ -34,6 +36,17 @@ struct RenderSettings {
   // The oracle shades one pixel at a time even where the CPU runs eight in SIMD lanes (AVX2): the
   // same bits either way (tests compare them), slower.
   bool scalarShading = false;
+  // Another renderer's frame of the same scene, known before the oracle draws (a capture, or a
+  // frame drawn first), to be judged under `model` (frame_comparison.h): result sets are built
+  // only for the pixels where its colour or needbuffer differs from the oracle's own value, the
+  // pixels that are not identical; the others need none (result_set.h). Rows as the oracle's,
+  // the needbuffer in its encoding; not owned. Empty: every pixel's set.
+  struct JudgedFrame {
+    std::span<const uint8_t> color;  // RGBA8
+    std::span<const uint32_t> need;  // four per pixel
+    bool empty() const { return need.empty(); }
+  };
+  JudgedFrame judged;
 };
 
 // Settings for rendering under `model`: its arithmetic and the model itself.

@@ -24,6 +24,7 @@ const char* reasonName(int bit) {
 bool ambiguous(const ResultSets& sets, size_t pixel) {
   if (sets.empty()) return false;
   const uint32_t first = sets.offsets[pixel], last = sets.offsets[pixel + 1];
+  if (last == first) return false;  // not built: the judged frame is identical there
   if (last - first != 1) return true;
   const Alternative& a = sets.alternatives[first];
   if (a.triangle < 0) return false;

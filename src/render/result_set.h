@@ -37,14 +37,21 @@ struct Alternative {
 
 // The sets of a frame: pixel i's alternatives are alternatives[offsets[i] .. offsets[i + 1]).
 // Empty when the model pins every parameter (every set is the frame's one value).
+//
+// Built against a judged frame (RenderSettings::judged), a pixel where that frame holds the
+// oracle's own value has no alternative: it is identical, and no set is needed to say so. Every
+// pixel's set holds at least one alternative otherwise (a triangle's, or the empty one).
 struct ResultSets {
   std::vector<uint32_t> offsets;
   std::vector<Alternative> alternatives;
+  bool judged = false;  // built only where the judged frame differs from the oracle's value
   bool empty() const { return offsets.empty(); }
+  // Whether pixel i's set was built (always, unless `judged`).
+  bool built(size_t pixel) const { return offsets[pixel + 1] != offsets[pixel]; }
   bool operator==(const ResultSets&) const = default;
 };
 
-// Whether the set of pixel i holds more than one value.
+// Whether the set of pixel i holds more than one value; false for a set not built.
 bool ambiguous(const ResultSets& sets, size_t pixel);
 
 }  // namespace vt

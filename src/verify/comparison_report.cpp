@@ -48,12 +48,18 @@ std::string number(double value) {
 
 }  // namespace
 
+uint64_t setPixels(const oracle::Comparison& c) {
+  return c.judged ? c.pixels - c.identical : c.pixels;
+}
+
 void ComparisonTotals::add(const oracle::Comparison& c, const SetWidths& frameWidths) {
   pixels += c.pixels;
   identical += c.identical;
   explained += c.explained;
   unexplained += c.unexplained;
   ambiguous += c.ambiguous;
+  setPixels += vt::setPixels(c);
+  judged = judged || c.judged;
   for (size_t r = 0; r < oracle::kReasons; ++r) {
     explainedBy[r] += c.explainedBy[r];
     unexplainedBy[r] += c.unexplainedBy[r];
@@ -62,7 +68,7 @@ void ComparisonTotals::add(const oracle::Comparison& c, const SetWidths& frameWi
   widths.add(frameWidths);
 }
 
-double ComparisonTotals::ambiguousFraction() const { return fraction(ambiguous, pixels); }
+double ComparisonTotals::ambiguousFraction() const { return fraction(ambiguous, setPixels); }
 
 nlohmann::json ComparisonTotals::json() const {
   nlohmann::json record = {{"pixels", pixels},
@@ -71,6 +77,8 @@ nlohmann::json ComparisonTotals::json() const {
                            {"unexplained", unexplained},
                            {"ambiguous", ambiguous},
                            {"ambiguous_fraction", ambiguousFraction()},
+                           {"set_pixels", setPixels},
+                           {"sets", judged ? "differing pixels" : "every pixel"},
                            {"explained_by", byReason(explainedBy)},
                            {"unexplained_by", widenings(unexplainedBy, widenBy)}};
   addWidths(record, widths);
@@ -78,14 +86,15 @@ nlohmann::json ComparisonTotals::json() const {
 }
 
 std::string ComparisonTotals::line() const {
-  char text[320];
+  char text[360];
   std::snprintf(text, sizeof text,
                 "%llu of %llu pixels identical, %llu explained, %llu unexplained; ambiguous "
-                "fraction %.4f, colour width %.4f/255, %.4f levels, %.4f pages",
+                "fraction %.4f, colour width %.4f/255, %.4f levels, %.4f pages%s",
                 static_cast<unsigned long long>(identical), static_cast<unsigned long long>(pixels),
                 static_cast<unsigned long long>(explained),
                 static_cast<unsigned long long>(unexplained), ambiguousFraction(),
-                widths.meanColorWidth(), widths.meanLevels(), widths.meanPages());
+                widths.meanColorWidth(), widths.meanLevels(), widths.meanPages(),
+                judged ? " (of the differing pixels)" : "");
   return text;
 }
 
@@ -96,7 +105,9 @@ nlohmann::json comparisonJson(const oracle::Comparison& c, const SetWidths& widt
                            {"explained", c.explained},
                            {"unexplained", c.unexplained},
                            {"ambiguous", c.ambiguous},
-                           {"ambiguous_fraction", fraction(c.ambiguous, c.pixels)},
+                           {"ambiguous_fraction", fraction(c.ambiguous, setPixels(c))},
+                           {"set_pixels", setPixels(c)},
+                           {"sets", c.judged ? "differing pixels" : "every pixel"},
                            {"explained_by", byReason(c.explainedBy)},
                            {"unexplained_by", widenings(c.unexplainedBy, c.widenBy)},
                            {"needbuffer_mismatched", c.needMismatched},
@@ -108,7 +119,8 @@ nlohmann::json comparisonJson(const oracle::Comparison& c, const SetWidths& widt
 
 std::vector<std::pair<std::string, std::string>> widthProperties(
     const oracle::Comparison& c, const SetWidths& widths) {
-  return {{"ambiguous_fraction", number(fraction(c.ambiguous, c.pixels))},
+  return {{"ambiguous_fraction", number(fraction(c.ambiguous, setPixels(c)))},
+          {"set_pixels", std::to_string(setPixels(c))},
           {"covered", std::to_string(widths.covered)},
           {"mean_color_width", number(widths.meanColorWidth())},
           {"mean_candidate_levels", number(widths.meanLevels())},
@@ -119,12 +131,12 @@ void printComparison(const std::string& name, const std::string& detail,
                      const oracle::Comparison& c, const SetWidths& widths) {
   std::printf(
       "  %-12s %-28s %8llu pixels: %8llu identical, %6llu explained, %6llu unexplained, "
-      "ambiguous %.4f (width %.4f/255, %.4f levels, %.4f pages); colour max %d, mean %.4f\n",
+      "ambiguous %.4f (width %.4f/255, %.4f levels, %.4f pages%s); colour max %d, mean %.4f\n",
       name.c_str(), detail.c_str(), static_cast<unsigned long long>(c.pixels),
       static_cast<unsigned long long>(c.identical), static_cast<unsigned long long>(c.explained),
-      static_cast<unsigned long long>(c.unexplained), fraction(c.ambiguous, c.pixels),
-      widths.meanColorWidth(), widths.meanLevels(), widths.meanPages(), c.maxColorDifference,
-      c.meanColorDifference);
+      static_cast<unsigned long long>(c.unexplained), fraction(c.ambiguous, setPixels(c)),
+      widths.meanColorWidth(), widths.meanLevels(), widths.meanPages(),
+      c.judged ? ", of the differing pixels" : "", c.maxColorDifference, c.meanColorDifference);
   for (int r = 0; r < oracle::kReasons; ++r)
     if (c.unexplainedBy[static_cast<size_t>(r)] != 0)
       std::printf("  %-12s %-28s %8llu unexplained pixels need %s widened by %g %s\n", "", "",

@@ -3,7 +3,9 @@
 // scenes and for captures alike: one printed line and one JSON record per frame, difference
 // images, and the totals. Beside the ambiguous fraction each reports how tight the verdict is: the
 // mean colour width, candidate levels and candidate pages of the covered pixels' result sets
-// (SetWidths, src/render/frame_comparison.h, defines them).
+// (SetWidths, src/render/frame_comparison.h, defines them). Both count the pixels whose sets were
+// built: every pixel, or, with sets built against the compared frame (the default of `vt
+// crosscheck`, oracle::RenderOptions' judged frame), the pixels where it differs.
 
 #include <array>
 #include <cstdint>
@@ -20,6 +22,8 @@ namespace vt {
 
 struct ComparisonTotals {
   uint64_t pixels = 0, identical = 0, explained = 0, unexplained = 0, ambiguous = 0;
+  uint64_t setPixels = 0;  // those the ambiguous fraction and the widths count
+  bool judged = false;     // some frame's sets were built where it differs only
   std::array<uint64_t, oracle::kReasons> explainedBy{}, unexplainedBy{};
   std::array<double, oracle::kReasons> widenBy{};
   SetWidths widths;
@@ -28,9 +32,14 @@ struct ComparisonTotals {
   double ambiguousFraction() const;
   nlohmann::json json() const;
   // "<identical> of <pixels> pixels identical, <explained> explained, <unexplained> unexplained;
-  // ambiguous fraction <f>, colour width <w>/255, <l> levels, <p> pages"
+  // ambiguous fraction <f>, colour width <w>/255, <l> levels, <p> pages", the four followed by
+  // "(of the differing pixels)" where they count those alone
   std::string line() const;
 };
+
+// The pixels whose sets the ambiguous count and the widths cover: every pixel, or where the sets
+// were built against the compared frame, those that are not identical.
+uint64_t setPixels(const oracle::Comparison& c);
 
 // The counts, by reason, the needbuffer mismatches, the colour differences and the set widths.
 nlohmann::json comparisonJson(const oracle::Comparison& c, const SetWidths& widths);

@@ -101,6 +101,8 @@ CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options) {
       if (!texture)
         texture = std::make_unique<oracle::Texture>(oracle::Texture::open(capture.texture));
       const JudgingModel judge = judgingModel(options.profile, capture);
+      const oracle::SetScope scope =
+          options.allSets ? oracle::SetScope::kEveryPixel : oracle::SetScope::kDiffering;
       if (!judge.file.empty()) {
         const PrecisionModel model = readModelFile(judge.file);
         if (!model.renderer.empty() && model.renderer != capture.renderer)
@@ -110,8 +112,8 @@ CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options) {
       }
       const oracle::CaptureCheck check =
           judge.file.empty()
-              ? oracle::checkCapture(capture, *texture, judge.profile, options.threads)
-              : oracle::checkCapture(capture, *texture, judge.file, options.threads);
+              ? oracle::checkCapture(capture, *texture, judge.profile, options.threads, scope)
+              : oracle::checkCapture(capture, *texture, judge.file, options.threads, scope);
       const oracle::Comparison& c = check.comparison;
       const SetWidths widths = verdictWidths(check.oracle);
       const oracle::Viewport v = capture.scene.viewport;

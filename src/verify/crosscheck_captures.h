@@ -21,6 +21,9 @@ struct CapturesCheckOptions {
   // per capture the model, its file and which of these chose it ("model_from").
   std::string profile = "auto";
   unsigned threads = 0;  // the oracle's; 0: every core
+  // Result sets for every pixel, not only where a capture differs: the ambiguous fraction and set
+  // widths of whole frames (comparison_report.h), at the sets' full cost.
+  bool allSets = false;
 };
 
 struct CapturesCheck {

@@ -91,11 +91,16 @@ ScenesCheck crosscheckScenes(const ScenesCheckOptions& options) {
     const oracle::Scene publicMesh = oracle::publicScene(mesh, settings.viewport);
     for (const CheckMode& mode : modes) {
       applyMode(settings, mode);
-      const oracle::Frame expected =
-          oracle::render(texture, publicMesh, prepared, publicRenderOptions(settings, modelFile));
+      // GL draws first: the oracle then builds result sets only where GL's frame differs.
       const Frame frame = gl->render(mesh, settings);
-      const oracle::Comparison c =
-          oracle::compare(expected, frame.color, oracle::flatNeed(frame.need));
+      const std::vector<uint32_t> need = oracle::flatNeed(frame.need);
+      oracle::RenderOptions renderOptions = publicRenderOptions(settings, modelFile);
+      if (!options.allSets) {
+        renderOptions.judgedColor = frame.color;
+        renderOptions.judgedNeed = need;
+      }
+      const oracle::Frame expected = oracle::render(texture, publicMesh, prepared, renderOptions);
+      const oracle::Comparison c = oracle::compare(expected, frame.color, need);
       const SetWidths widths = verdictWidths(expected);
       writeComparisonImages(folder, scene.name + "-" + mode.name, publicMesh.viewport, c);
       nlohmann::json record = {{"scene", scene.name}, {"mode", mode.name}};

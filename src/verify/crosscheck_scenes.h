@@ -24,6 +24,9 @@ struct ScenesCheckOptions {
   // Receives summary.json and each comparison's difference images, complete or not at all: the
   // report is written into a temporary folder that replaces `output` at the end.
   std::filesystem::path output;
+  // Result sets for every pixel, not only where GL's frame differs: the ambiguous fraction and set
+  // widths of whole frames (comparison_report.h), at the sets' full cost.
+  bool allSets = false;
 };
 
 struct ScenesCheck {

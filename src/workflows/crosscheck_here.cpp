@@ -12,14 +12,17 @@ namespace vt {
 
 void crosscheckHere(const CrosscheckRequest& request) {
   if (!request.captures.empty()) {
-    if (!crosscheckCaptures({request.captures, request.output, request.model, request.threads})
+    if (!crosscheckCaptures(
+             {request.captures, request.output, request.model, request.threads, request.allSets})
              .passed())
       throw InputError(request.captures,
                        "crosscheck found unexplained pixels or unreadable captures (see " +
                            (request.output / "junit.xml").string() + ")");
     return;
   }
-  ScenesCheckOptions options{request.texture, {}, request.viewport, request.model, request.output};
+  ScenesCheckOptions options{request.texture, {},
+                             request.viewport, request.model,
+                             request.output,  request.allSets};
   // Bad input fails here, before any work.
   if (!request.mesh.empty()) {
     const Mesh mesh = loadObjMesh(request.mesh);

@@ -20,6 +20,7 @@ struct CrosscheckRequest {
   Viewport viewport{320, 200};
   std::string model = "auto";
   unsigned threads = 0;  // with captures: the oracle's (0: every core)
+  bool allSets = false;  // result sets for every pixel, not only where the other frame differs
   std::filesystem::path output;
 };
 

@@ -165,14 +165,34 @@ TEST(CrosscheckCommand, LlvmpipeLiesInsideEveryGl45Set) {
   test::ScratchDirectory dir;
   writeSyntheticTexture(dir / "t.vt",
                         {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, 0.45});
-  const auto result = test::runCommand(VT_EXECUTABLE,
+  // Every pixel's set (--all-sets), and by default the sets where GL's frame differs: the same
+  // verdicts, the ambiguity and widths of the differing pixels alone.
+  const auto judged = test::runCommand(VT_EXECUTABLE,
                                        {"crosscheck", (dir / "t.vt").string(), "--size", "160x100",
-                                        "--model", "gl45", "-o", (dir / "out").string()},
+                                        "--model", "gl45", "-o", (dir / "judged").string()},
                                        dir.path());
+  ASSERT_EQ(judged.exitCode, 0) << judged.out << judged.err;
+  EXPECT_THAT(judged.out, HasSubstr(" pages (of the differing pixels): passed"));
+  const auto result = test::runCommand(
+      VT_EXECUTABLE,
+      {"crosscheck", (dir / "t.vt").string(), "--size", "160x100", "--model", "gl45", "--all-sets",
+       "-o", (dir / "out").string()},
+      dir.path());
   ASSERT_EQ(result.exitCode, 0) << result.out << result.err;
   EXPECT_THAT(result.out, HasSubstr(" 0 unexplained; ambiguous fraction "));
   std::ifstream in(dir / "out" / "summary.json");
   const auto summary = nlohmann::json::parse(in);
+  const auto judgedSummary = nlohmann::json::parse(std::ifstream(dir / "judged" / "summary.json"));
+  const nlohmann::json& totals = summary["totals"];
+  const nlohmann::json& judgedTotals = judgedSummary["totals"];
+  for (const char* count : {"pixels", "identical", "explained", "unexplained", "explained_by"})
+    EXPECT_EQ(judgedTotals[count], totals[count]) << count;
+  EXPECT_EQ(totals["sets"], "every pixel");
+  EXPECT_EQ(totals["set_pixels"], totals["pixels"]);
+  EXPECT_EQ(judgedTotals["sets"], "differing pixels");
+  EXPECT_EQ(judgedTotals["set_pixels"].get<uint64_t>(),
+            totals["pixels"].get<uint64_t>() - totals["identical"].get<uint64_t>());
+  EXPECT_LE(judgedTotals["ambiguous"].get<uint64_t>(), judgedTotals["set_pixels"].get<uint64_t>());
   EXPECT_EQ(summary["model"], "gl45");
   EXPECT_EQ(summary["frames"].size(), 16u);
   EXPECT_EQ(summary["totals"]["unexplained"], 0u);

@@ -193,6 +193,64 @@ TEST(OracleApi, ComparisonNamesExactlyTheChangedPixel) {
   EXPECT_THROW(oracle::compare(frame, std::span(color).first(8), frame.need), oracle::Error);
 }
 
+// Given the frame it will judge, the oracle builds sets where that frame differs and reaches the
+// verdict every pixel's sets reach; compare() refuses a frame that differs where no set was built.
+TEST(OracleApi, AJudgedFrameGetsSetsWhereItDiffersAndTheSameVerdict) {
+  test::ScratchDirectory dir;
+  writeSyntheticTexture(dir / "t.vt", kTexture);
+  const oracle::Texture texture = oracle::Texture::open(dir / "t.vt");
+  const oracle::Scene scene = publicScene("grazing", {80, 60});
+  oracle::RenderOptions options;
+  options.profile = oracle::Profile::kGl45;
+  const oracle::Frame every =
+      oracle::render(texture, scene, oracle::CacheState::everything(), options);
+  EXPECT_FALSE(every.judged);
+  // Three covered pixels changed: red by 1 (inside its set) and by 90 (outside), a level more.
+  std::vector<uint8_t> color = every.color;
+  std::vector<uint32_t> need = every.need;
+  std::vector<size_t> covered;
+  for (size_t i = 0; i < every.ambiguous.size() && covered.size() < 3; i += 97)
+    if (every.color[i * 4 + 3] != 0) covered.push_back(i);
+  ASSERT_EQ(covered.size(), 3u);
+  color[covered[0] * 4] = static_cast<uint8_t>(color[covered[0] * 4] ^ 1);
+  color[covered[1] * 4] = static_cast<uint8_t>(color[covered[1] * 4] + 90);
+  need[covered[2] * 4 + 2] += 1;
+  options.judgedColor = color;
+  options.judgedNeed = need;
+  const oracle::Frame judged =
+      oracle::render(texture, scene, oracle::CacheState::everything(), options);
+  EXPECT_TRUE(judged.judged);
+  EXPECT_EQ(judged.color, every.color);
+  const oracle::Comparison a = oracle::compare(every, color, need);
+  const oracle::Comparison b = oracle::compare(judged, color, need);
+  EXPECT_EQ(a.identical, every.ambiguous.size() - 3);
+  EXPECT_EQ(b.identical, a.identical);
+  EXPECT_EQ(b.explained, a.explained);
+  EXPECT_EQ(b.unexplained, a.unexplained);
+  EXPECT_GE(b.unexplained, 1u);
+  EXPECT_EQ(b.explainedBy, a.explainedBy);
+  EXPECT_TRUE(b.judged);
+  EXPECT_LE(b.ambiguous, 3u);  // only the differing pixels' sets are known
+  EXPECT_GT(a.ambiguous, 100u);
+
+  // Another frame: it differs at a pixel the judged one matched.
+  std::vector<uint8_t> other = every.color;
+  other[(covered[0] + 1) * 4 + 1] ^= 4;
+  try {
+    (void)oracle::compare(judged, other, every.need);
+    ADD_FAILURE() << "compared a frame the sets were not built for";
+  } catch (const oracle::Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("built against another frame"));
+  }
+  options.judgedNeed = std::span(need).first(40);
+  try {
+    (void)oracle::render(texture, scene, oracle::CacheState::everything(), options);
+    ADD_FAILURE() << "rendered against a judged frame of another size";
+  } catch (const oracle::Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("judged frame has 4800 colour and 10 needbuffer pixels"));
+  }
+}
+
 // A capture of the oracle's own frame, written and read back.
 struct CaptureFixture {
   test::ScratchDirectory dir;

@@ -8,8 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <random>
+#include <span>
 
 #include "build/synthetic_texture.h"
 #include "reference/renderer.h"
@@ -107,6 +109,73 @@ TEST_F(ResultSets, UnderGl45AMeshWhoseVerticesSnapElsewhereLiesInTheSets) {
     // The moves change what is drawn (else the check had no power).
     EXPECT_GT(differ, 1000u) << (texelFetch ? "texel fetches" : "GL_LINEAR");
   }
+}
+
+// The needbuffer four values per pixel, as RenderSettings::judged takes it.
+std::vector<uint32_t> flat(const std::vector<glm::uvec4>& need) {
+  std::vector<uint32_t> values;
+  for (const glm::uvec4& v : need) values.insert(values.end(), {v.x, v.y, v.z, v.w});
+  return values;
+}
+
+TEST_F(ResultSets, JudgingAFrameBuildsTheSetsOfExactlyThePixelsWhereItDiffers) {
+  const ClipSpaceMesh mesh = groundAndTriangles();
+  RenderSettings bounded;
+  bounded.viewport = kViewport;
+  applyModel(bounded, gl45Model());
+  RenderSettings pinned = bounded;
+  applyModel(pinned, llvmpipeModel());
+  const Frame every = renderFrame(mesh, *cache_, bounded);
+  const Frame other = renderFrame(snappedElsewhere(mesh, 0.9 / 16, 1), *cache_, pinned);
+  const std::vector<uint32_t> otherNeed = flat(other.need);
+  RenderSettings judging = bounded;
+  judging.judged = {other.color, otherNeed};
+  for (const unsigned threads : {1u, 2u, 3u}) {
+    judging.threads = threads;
+    const Frame judged = renderFrame(mesh, *cache_, judging);
+    EXPECT_EQ(judged.color, every.color);
+    EXPECT_EQ(judged.need, every.need);
+    ASSERT_TRUE(judged.sets.judged);
+    ASSERT_EQ(judged.sets.offsets.size(), every.sets.offsets.size());
+    uint64_t built = 0;
+    for (size_t i = 0; i < every.need.size(); ++i) {
+      const bool identical =
+          other.need[i] == every.need[i] &&
+          std::equal(other.color.begin() + static_cast<std::ptrdiff_t>(4 * i),
+                     other.color.begin() + static_cast<std::ptrdiff_t>(4 * i + 4),
+                     every.color.begin() + static_cast<std::ptrdiff_t>(4 * i));
+      ASSERT_EQ(judged.sets.built(i), !identical) << "pixel " << i << ", " << threads << " threads";
+      if (identical) continue;
+      ++built;
+      // The same alternatives as every pixel's sets hold there.
+      ASSERT_TRUE(std::equal(
+          judged.sets.alternatives.begin() + judged.sets.offsets[i],
+          judged.sets.alternatives.begin() + judged.sets.offsets[i + 1],
+          every.sets.alternatives.begin() + every.sets.offsets[i],
+          every.sets.alternatives.begin() + every.sets.offsets[i + 1]))
+          << "pixel " << i << ", " << threads << " threads";
+    }
+    // The same verdict, from the differing pixels' sets alone.
+    const FrameComparison a = compareFrames(every, other.color, other.need, false);
+    const FrameComparison b = compareFrames(judged, other.color, other.need, false);
+    EXPECT_GT(built, 100u);
+    EXPECT_EQ(built, a.explained + a.unexplained);
+    EXPECT_EQ(b.identical, a.identical);
+    EXPECT_EQ(b.explained, a.explained);
+    EXPECT_EQ(b.unexplained, a.unexplained);
+    EXPECT_EQ(b.explainedBy, a.explainedBy);
+    EXPECT_EQ(b.classificationImage.size(), a.classificationImage.size());
+  }
+  // Another frame, differing where the judged one was identical, has no set there: refused.
+  const Frame judged = renderFrame(mesh, *cache_, judging);
+  std::vector<uint8_t> changed = other.color;
+  size_t pixel = 0;
+  while (judged.sets.built(pixel)) ++pixel;
+  changed[4 * pixel] ^= 1;
+  EXPECT_THROW(compareFrames(judged, changed, other.need, false), std::invalid_argument);
+  // A judged frame of another size is refused before anything is drawn.
+  judging.judged.color = std::span(other.color).first(8);
+  EXPECT_THROW(renderFrame(mesh, *cache_, judging), std::invalid_argument);
 }
 
 }  // namespace

@@ -79,11 +79,16 @@ struct CaptureCheck {
 // Verifies that `texture` is the capture's (its identity), draws the capture's inputs with the
 // oracle and compares them with the captured frame. Throws Error on a texture that is not the
 // capture's, or inputs the oracle cannot draw (see render).
+// Under a model with free parameters the result sets are built where the captured frame differs
+// (SetScope::kDiffering, RenderOptions' judged frame), or for every pixel.
+enum class SetScope { kDiffering, kEveryPixel };
 VT_ORACLE_API CaptureCheck checkCapture(const Capture& capture, const Texture& texture,
-                                        Profile profile, unsigned threads = 0);
+                                        Profile profile, unsigned threads = 0,
+                                        SetScope scope = SetScope::kDiffering);
 // The same under the precision model of a model file (src/render/precision_model_file.h).
 VT_ORACLE_API CaptureCheck checkCapture(const Capture& capture, const Texture& texture,
                                         const std::filesystem::path& modelFile,
-                                        unsigned threads = 0);
+                                        unsigned threads = 0,
+                                        SetScope scope = SetScope::kDiffering);
 
 }  // namespace vt::oracle

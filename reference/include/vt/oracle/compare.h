@@ -46,6 +46,9 @@ struct Comparison {
   int maxColorDifference = 0;               // over all pixels, 8-bit units
   double meanColorDifference = 0;           // over all channels of all pixels
   std::string model;                        // the model that judged
+  // The sets were built against this frame (RenderOptions' judged frame): only where it differs,
+  // so `ambiguous` counts those pixels alone.
+  bool judged = false;
   std::vector<PixelDifference> mismatches;  // the first 1000 unexplained pixels, row by row
   // For people, rows top to bottom, RGBA8: the colour difference times 16, and the class of each
   // pixel (black identical, grey identical but ambiguous, per reason explained: blue coverage,

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,15 @@ struct RenderOptions {
   Filtering filtering = Filtering::kTrilinear;
   Sampling sampling = Sampling::kTexelFetch;
   unsigned threads = 0;  // 0: every core
+  // The frame to be judged, when it is known before the oracle draws (a capture, or a frame drawn
+  // first): under a model with free parameters, result sets are then built only where its colour
+  // or needbuffer differs from the oracle's own value, the pixels compare() does not find
+  // identical; the others need none, and a conforming implementation differs at a few percent of
+  // its pixels. compare() must be given this same frame (it throws Error at a differing pixel
+  // without a set), and `ambiguous` and the set widths count the differing pixels alone. Rows and
+  // encoding as the oracle's Frame; read during render() only. Empty: every pixel's set.
+  std::span<const uint8_t> judgedColor;
+  std::span<const uint32_t> judgedNeed;
 };
 
 // Every pixel's result set under a model with free parameters (opaque; compare() reads it).
@@ -74,6 +84,7 @@ struct Frame {
   NeedEncoding needEncoding = NeedEncoding::k32Bit;
   std::string model;                       // the model's name
   std::shared_ptr<const ResultSets> sets;  // none under a pinned model
+  bool judged = false;  // sets built only where RenderOptions' judged frame differs
 };
 
 // A cache state with its pages read from the texture and its indirection table derived, for
