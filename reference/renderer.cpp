@@ -134,8 +134,9 @@ class TileShader {
   // set to `sets`.
   void shadeTile(int x0, int y0, TileSets* sets) {
     sets_ = sets;
-    if (sets) {
-      // A pixel's set is one alternative mostly; a few more where triangles meet.
+    if (sets && job_.settings.judged.empty()) {
+      // A pixel's set is one alternative mostly; a few more where triangles meet. (Judging a
+      // frame, a few pixels of a frame have sets: no room is kept.)
       sets->pixels.reserve(kTile * kTile);
       sets->alternatives.reserve(kTile * kTile * 5 / 4);
     }
@@ -307,7 +308,7 @@ class TileShader {
     frame.depth[index] = 1.0f;
     frame.triangle[index] = -1;
     if (job_.model && judgedIdentical(index)) {
-      sets_->pixels.emplace_back(index, 0u);
+      // No set (gatherSets counts 0 for a pixel no tile lists).
     } else if (job_.model && job_.denormalsOnly) {
       sets_->alternatives.push_back(Alternative{});  // the clear values, in either mode
       sets_->pixels.emplace_back(index, 1u);
@@ -365,10 +366,7 @@ class TileShader {
   // quad's plane evaluation and its shading both. (Triangle setup runs once: for attributes of
   // texture-coordinate scale its values lie far above the denormal range.)
   void addDenormalSet(int px, int py, int k, const PixelHit& hit, const OracleFragment& own) {
-    if (judgedIdentical(indexOf(px, py))) {
-      sets_->pixels.emplace_back(indexOf(px, py), 0u);
-      return;
-    }
+    if (judgedIdentical(indexOf(px, py))) return;  // no set: gatherSets counts 0
     const SetupTriangle& t = job_.triangles[static_cast<size_t>(hit.triangle)];
     const Arithmetic& arithmetic = job_.arithmetic;
     const int qx = px & ~1, qy = py & ~1, column = k & 1, row = k >> 1;
@@ -424,10 +422,7 @@ class TileShader {
 
   // The pixel's result set under the model, after the oracle's own value.
   void addSet(int px, int py, const OracleFragment& own) {
-    if (judgedIdentical(indexOf(px, py))) {
-      sets_->pixels.emplace_back(indexOf(px, py), 0u);
-      return;
-    }
+    if (judgedIdentical(indexOf(px, py))) return;  // no set: gatherSets counts 0
     const size_t before = sets_->alternatives.size();
     if (!setBuilder_)
       setBuilder_.emplace(*job_.model, job_.shading, job_.triangles, job_.viewport,

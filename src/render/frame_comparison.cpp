@@ -225,6 +225,7 @@ SetWidths pixelSetWidths(const ResultSets& sets, size_t pixel) {
   if (sets.empty()) return {};
   const std::span<const Alternative> set(sets.alternatives.data() + sets.offsets[pixel],
                                          sets.offsets[pixel + 1] - sets.offsets[pixel]);
+  if (set.empty()) return {};  // not built (ResultSets::judged)
   if (set.size() == 1) return alternativeWidths(set[0]);
   std::array<ChannelValues, 4> channels;
   uint32_t levels = 0;  // bit m: level m admitted
