@@ -476,8 +476,11 @@ void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescr
   // beyond those the 8-bit grid covers.
   const PrecisionModel* model =
       settings.model && !settings.model->pinned() ? settings.model.get() : nullptr;
+  // Judging a frame, few blocks need their sets' candidates: the bins, not Embree's scene.
   const Visibility visibility(triangles, viewport, settings.depthFormat, settings.arithmetic,
-                              model ? 1 : 0);
+                              model ? 1 : 0,
+                              settings.judged.empty() ? Visibility::CandidateSearch::kEmbree
+                                                      : Visibility::CandidateSearch::kBins);
   sizeFrame(frame, viewport, settings.debugChannels);
   const FrameJob job{settings,
                      viewport,

@@ -192,12 +192,14 @@ float windowDepth(const SetupTriangle& t, int px, int py, const Arithmetic& arit
 }
 
 Visibility::Visibility(const std::vector<SetupTriangle>& triangles, Viewport viewport,
-                       DepthFormat format, const Arithmetic& arithmetic, int margin)
+                       DepthFormat format, const Arithmetic& arithmetic, int margin,
+                       CandidateSearch search)
     : triangles_(triangles),
       viewport_(viewport),
       format_(format),
       arithmetic_(arithmetic),
-      margin_(margin) {
+      margin_(margin),
+      search_(search) {
   boxData_ = std::make_unique<BoxData>(BoxData{&triangles, margin});
   // Bins by counting: how many triangles each tile holds, then the triangles in draw order.
   tilesX_ = (viewport.width + kTile - 1) / kTile;
@@ -303,9 +305,70 @@ void Visibility::BlockCandidates::of(int dx, int dy, std::vector<int32_t>& out) 
     if (pixels[i] & bit) out.push_back(triangles[i]);
 }
 
+namespace {
+
+// The pixels of the viewport that triangle t's box grown by `margin` and its candidateMargin holds,
+// in 64 bits (a clipped corner's margin may be large): [x0, x1] x [y0, y1], empty when x0 > x1.
+struct GrownBox {
+  int64_t x0, x1, y0, y1;
+};
+GrownBox grownBox(const SetupTriangle& t, int margin, Viewport viewport) {
+  const int64_t m = int64_t{margin} + t.candidateMargin;
+  return {std::max<int64_t>(t.minX - m, 0), std::min<int64_t>(t.maxX + m, viewport.width - 1),
+          std::max<int64_t>(t.minY - m, 0), std::min<int64_t>(t.maxY + m, viewport.height - 1)};
+}
+
+}  // namespace
+
+void Visibility::binCandidates() const {
+  std::call_once(candidatesBinned_, [this] {
+    const int tilesY = (viewport_.height + kTile - 1) / kTile;
+    candidateStart_.assign(static_cast<size_t>(tilesX_) * static_cast<size_t>(tilesY) + 1, 0);
+    const auto forEachTile = [&](const SetupTriangle& t, const auto& visit) {
+      const GrownBox b = grownBox(t, margin_, viewport_);
+      if (b.x0 > b.x1 || b.y0 > b.y1) return;
+      for (int64_t ty = b.y0 / kTile; ty <= b.y1 / kTile; ++ty)
+        for (int64_t tx = b.x0 / kTile; tx <= b.x1 / kTile; ++tx)
+          visit(static_cast<size_t>(ty) * static_cast<size_t>(tilesX_) + static_cast<size_t>(tx));
+    };
+    for (const SetupTriangle& t : triangles_)
+      forEachTile(t, [&](size_t i) { ++candidateStart_[i + 1]; });
+    for (size_t i = 1; i < candidateStart_.size(); ++i)
+      candidateStart_[i] += candidateStart_[i - 1];
+    candidateBinned_.resize(candidateStart_.back());
+    std::vector<uint32_t> next(candidateStart_.begin(), candidateStart_.end() - 1);
+    for (size_t k = 0; k < triangles_.size(); ++k)
+      forEachTile(triangles_[k],
+                  [&](size_t i) { candidateBinned_[next[i]++] = static_cast<uint32_t>(k); });
+  });
+}
+
+void Visibility::blockCandidatesFromBins(int x0, int y0, BlockCandidates& out) const {
+  binCandidates();
+  const size_t bin = static_cast<size_t>(y0 / kTile) * static_cast<size_t>(tilesX_) +
+                     static_cast<size_t>(x0 / kTile);
+  for (uint32_t i = candidateStart_[bin]; i < candidateStart_[bin + 1]; ++i) {
+    const int32_t k = static_cast<int32_t>(candidateBinned_[i]);
+    const GrownBox b = grownBox(triangles_[static_cast<size_t>(k)], margin_, viewport_);
+    // The block's columns and rows inside the box (and so inside the viewport).
+    const int64_t c0 = std::max<int64_t>(b.x0 - x0, 0), c1 = std::min<int64_t>(b.x1 - x0, kBlock - 1);
+    const int64_t r0 = std::max<int64_t>(b.y0 - y0, 0), r1 = std::min<int64_t>(b.y1 - y0, kBlock - 1);
+    if (c0 > c1 || r0 > r1) continue;
+    const unsigned row = ((1u << (c1 + 1)) - 1u) & ~((1u << c0) - 1u);
+    unsigned pixels = 0;
+    for (int64_t r = r0; r <= r1; ++r) pixels |= row << (kBlock * r);
+    out.triangles.push_back(k);
+    out.pixels.push_back(static_cast<uint16_t>(pixels));
+  }
+}
+
 void Visibility::blockCandidates(int x0, int y0, BlockCandidates& out) const {
   out.triangles.clear();
   out.pixels.clear();
+  if (search_ == CandidateSearch::kBins) {
+    blockCandidatesFromBins(x0, y0, out);
+    return;
+  }
   buildScene();
   BlockQuery query(triangles_, x0, y0, format_, arithmetic_, margin_);
   thread_local std::vector<std::pair<int32_t, uint16_t>> reports;

@@ -10,7 +10,10 @@
 // centres its snapped vertices can enclose (an integer range, so the box is exact, not estimated).
 // The ray of pixel (px, py) runs along +z through its centre, so it meets the box of every
 // triangle that could cover it. Its scene is built on the first such query, so a frame that needs
-// none pays nothing for it.
+// none pays nothing for it. A frame whose sets few blocks need (judging a frame that differs at a
+// few pixels, RenderSettings::judged) searches the blocks' candidates in the tiles' bins of the
+// grown boxes instead (CandidateSearch::kBins), which cost far less to build than Embree's scene
+// and find the same candidates (a test).
 //
 // Either way, for each candidate the GL rules decide exactly, in one function: the integer edge
 // functions with the tie rule (coverage), depth from the z plane (rule 7) with the depth format's
@@ -48,10 +51,15 @@ class Visibility {
   static constexpr int kBlock = 4;  // pixels per side of a packet
   static constexpr int kTile = 16;  // pixels per side of a tile
 
+  // How blockCandidates searches: Embree's packets, or the tiles' bins of the grown boxes (each
+  // built by the first query that needs it).
+  enum class CandidateSearch { kEmbree, kBins };
+
   // `margin`: pixels by which each triangle's box of candidate centres grows, for a model under
   // which snapping to a coarser grid may cover centres beside those of the oracle's 8-bit grid.
   Visibility(const std::vector<SetupTriangle>& triangles, Viewport viewport, DepthFormat format,
-             const Arithmetic& arithmetic, int margin = 0);
+             const Arithmetic& arithmetic, int margin = 0,
+             CandidateSearch search = CandidateSearch::kEmbree);
   ~Visibility();
   Visibility(const Visibility&) = delete;
   Visibility& operator=(const Visibility&) = delete;
@@ -91,6 +99,13 @@ class Visibility {
   // order.
   int tilesX_ = 0;
   std::vector<uint32_t> binStart_, binned_;
+  // The same for the boxes grown by the margin and each triangle's candidateMargin
+  // (CandidateSearch::kBins), binned by the first query that needs them.
+  CandidateSearch search_;
+  void binCandidates() const;
+  mutable std::once_flag candidatesBinned_;
+  mutable std::vector<uint32_t> candidateStart_, candidateBinned_;
+  void blockCandidatesFromBins(int x0, int y0, BlockCandidates& out) const;
   // Embree's scene, built by the first query that needs it.
   void buildScene() const;
   std::unique_ptr<BoxData> boxData_;
