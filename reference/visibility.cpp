@@ -351,8 +351,10 @@ void Visibility::blockCandidatesFromBins(int x0, int y0, BlockCandidates& out) c
     const int32_t k = static_cast<int32_t>(candidateBinned_[i]);
     const GrownBox b = grownBox(triangles_[static_cast<size_t>(k)], margin_, viewport_);
     // The block's columns and rows inside the box (and so inside the viewport).
-    const int64_t c0 = std::max<int64_t>(b.x0 - x0, 0), c1 = std::min<int64_t>(b.x1 - x0, kBlock - 1);
-    const int64_t r0 = std::max<int64_t>(b.y0 - y0, 0), r1 = std::min<int64_t>(b.y1 - y0, kBlock - 1);
+    const int64_t c0 = std::max<int64_t>(b.x0 - x0, 0),
+                  c1 = std::min<int64_t>(b.x1 - x0, kBlock - 1);
+    const int64_t r0 = std::max<int64_t>(b.y0 - y0, 0),
+                  r1 = std::min<int64_t>(b.y1 - y0, kBlock - 1);
     if (c0 > c1 || r0 > r1) continue;
     const unsigned row = ((1u << (c1 + 1)) - 1u) & ~((1u << c0) - 1u);
     unsigned pixels = 0;

@@ -20,9 +20,8 @@ void crosscheckHere(const CrosscheckRequest& request) {
                            (request.output / "junit.xml").string() + ")");
     return;
   }
-  ScenesCheckOptions options{request.texture, {},
-                             request.viewport, request.model,
-                             request.output,  request.allSets};
+  ScenesCheckOptions options{request.texture, {}, request.viewport, request.model, request.output,
+                             request.allSets};
   // Bad input fails here, before any work.
   if (!request.mesh.empty()) {
     const Mesh mesh = loadObjMesh(request.mesh);

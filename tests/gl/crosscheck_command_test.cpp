@@ -173,11 +173,11 @@ TEST(CrosscheckCommand, LlvmpipeLiesInsideEveryGl45Set) {
                                        dir.path());
   ASSERT_EQ(judged.exitCode, 0) << judged.out << judged.err;
   EXPECT_THAT(judged.out, HasSubstr(" pages (of the differing pixels): passed"));
-  const auto result = test::runCommand(
-      VT_EXECUTABLE,
-      {"crosscheck", (dir / "t.vt").string(), "--size", "160x100", "--model", "gl45", "--all-sets",
-       "-o", (dir / "out").string()},
-      dir.path());
+  const auto result =
+      test::runCommand(VT_EXECUTABLE,
+                       {"crosscheck", (dir / "t.vt").string(), "--size", "160x100", "--model",
+                        "gl45", "--all-sets", "-o", (dir / "out").string()},
+                       dir.path());
   ASSERT_EQ(result.exitCode, 0) << result.out << result.err;
   EXPECT_THAT(result.out, HasSubstr(" 0 unexplained; ambiguous fraction "));
   std::ifstream in(dir / "out" / "summary.json");

@@ -148,11 +148,10 @@ TEST_F(ResultSets, JudgingAFrameBuildsTheSetsOfExactlyThePixelsWhereItDiffers) {
       if (identical) continue;
       ++built;
       // The same alternatives as every pixel's sets hold there.
-      ASSERT_TRUE(std::equal(
-          judged.sets.alternatives.begin() + judged.sets.offsets[i],
-          judged.sets.alternatives.begin() + judged.sets.offsets[i + 1],
-          every.sets.alternatives.begin() + every.sets.offsets[i],
-          every.sets.alternatives.begin() + every.sets.offsets[i + 1]))
+      ASSERT_TRUE(std::equal(judged.sets.alternatives.begin() + judged.sets.offsets[i],
+                             judged.sets.alternatives.begin() + judged.sets.offsets[i + 1],
+                             every.sets.alternatives.begin() + every.sets.offsets[i],
+                             every.sets.alternatives.begin() + every.sets.offsets[i + 1]))
           << "pixel " << i << ", " << threads << " threads";
     }
     // The same verdict, from the differing pixels' sets alone.

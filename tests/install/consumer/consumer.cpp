@@ -20,8 +20,8 @@ int main(int argc, char** argv) {
       const vt::oracle::Texture texture = vt::oracle::Texture::open(capture.texture);
       const vt::oracle::Profile profile = vt::oracle::profileForRenderer(capture.renderer);
       // Every pixel's set: another frame than the captured one is compared below.
-      const vt::oracle::CaptureCheck check = vt::oracle::checkCapture(
-          capture, texture, profile, 0, vt::oracle::SetScope::kEveryPixel);
+      const vt::oracle::CaptureCheck check =
+          vt::oracle::checkCapture(capture, texture, profile, 0, vt::oracle::SetScope::kEveryPixel);
       std::printf("%s: %llu of %llu pixels identical, %llu unexplained\n",
                   manifest.filename().c_str(),
                   static_cast<unsigned long long>(check.comparison.identical),
