@@ -65,7 +65,8 @@ class ArithmeticVariant : public ::testing::Test {
     const std::string out = (dir_ / ("out-" + model.substr(model.rfind('/') + 1))).string();
     const test::CommandResult result = run(
         environment,
-        {"crosscheck", (dir_ / "t.vt").string(), "--size", "160x100", "--model", model, "-o", out});
+        {"crosscheck", (dir_ / "t.vt").string(), "--size", "160x100", "--model", model,
+         "--all-sets", "-o", out});
     std::cout << result.out << result.err;
     EXPECT_EQ(result.exitCode, 0) << result.err;
     if (err) *err = result.err;

@@ -247,10 +247,10 @@ TEST(CrosscheckCommand, SoftpipeIsBitExactUnderItsModel) {
   writeSyntheticTexture(dir / "t.vt",
                         {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4}, 0.45});
   useSoftpipe();
-  const auto result = test::runCommand(
-      VT_EXECUTABLE,
-      {"crosscheck", (dir / "t.vt").string(), "--size", "160x100", "-o", (dir / "out").string()},
-      dir.path());
+  const auto result = test::runCommand(VT_EXECUTABLE,
+                                       {"crosscheck", (dir / "t.vt").string(), "--size", "160x100",
+                                        "--all-sets", "-o", (dir / "out").string()},
+                                       dir.path());
   std::cout << result.out;
   ASSERT_EQ(result.exitCode, 0) << result.out << result.err;
   std::ifstream in(dir / "out" / "summary.json");
