@@ -63,10 +63,9 @@ class ArithmeticVariant : public ::testing::Test {
   nlohmann::json crosscheck(const Environment& environment, const std::string& model,
                             std::string* err = nullptr) {
     const std::string out = (dir_ / ("out-" + model.substr(model.rfind('/') + 1))).string();
-    const test::CommandResult result = run(
-        environment,
-        {"crosscheck", (dir_ / "t.vt").string(), "--size", "160x100", "--model", model,
-         "--all-sets", "-o", out});
+    const test::CommandResult result =
+        run(environment, {"crosscheck", (dir_ / "t.vt").string(), "--size", "160x100", "--model",
+                          model, "--all-sets", "-o", out});
     std::cout << result.out << result.err;
     EXPECT_EQ(result.exitCode, 0) << result.err;
     if (err) *err = result.err;

@@ -178,8 +178,7 @@ nlohmann::json calibrateAndCrosscheck(const test::ScratchDirectory& dir, std::st
   const auto result =
       test::runCommand(VT_EXECUTABLE,
                        {"crosscheck", (dir / "t.vt").string(), "--size", "160x100", "--model",
-                        (dir / "model.json").string(), "--all-sets", "-o",
-                        (dir / "out").string()},
+                        (dir / "model.json").string(), "--all-sets", "-o", (dir / "out").string()},
                        dir.path());
   std::cout << calibration.out << result.out;
   EXPECT_EQ(result.exitCode, 0) << result.out << result.err;
@@ -234,11 +233,11 @@ TEST(CalibrateCommand, SoftpipesCalibratedModelIsBitExactWhereGl45IsAmbiguous) {
   EXPECT_EQ(describe(model.arithmetic), describe(softpipe));
   EXPECT_TRUE(model.onlyDenormalsFree());
 
-  const auto gl45 = test::runCommand(VT_EXECUTABLE,
-                                     {"crosscheck", (dir / "t.vt").string(), "--size", "160x100",
-                                      "--model", "gl45", "--all-sets", "-o",
-                                      (dir / "gl45").string()},
-                                     dir.path());
+  const auto gl45 =
+      test::runCommand(VT_EXECUTABLE,
+                       {"crosscheck", (dir / "t.vt").string(), "--size", "160x100", "--model",
+                        "gl45", "--all-sets", "-o", (dir / "gl45").string()},
+                       dir.path());
   EXPECT_EQ(gl45.exitCode, 0) << gl45.out << gl45.err;
   std::ifstream in(dir / "gl45" / "summary.json");
   const double loose = nlohmann::json::parse(in)["totals"]["ambiguous_fraction"].get<double>();
