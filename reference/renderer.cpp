@@ -307,11 +307,12 @@ class TileShader {
     frame.need[index] = job_.noNeed;
     frame.depth[index] = 1.0f;
     frame.triangle[index] = -1;
-    if (job_.model && judgedIdentical(index)) {
-      // No set (gatherSets counts 0 for a pixel no tile lists).
-    } else if (job_.model && job_.denormalsOnly) {
-      sets_->alternatives.push_back(Alternative{});  // the clear values, in either mode
-      sets_->pixels.emplace_back(index, 1u);
+    if (job_.model && job_.denormalsOnly) {
+      // Where the judged frame is identical, no set: gatherSets counts 0.
+      if (!judgedIdentical(index)) {
+        sets_->alternatives.push_back(Alternative{});  // the clear values, in either mode
+        sets_->pixels.emplace_back(index, 1u);
+      }
     } else if (job_.model) {
       addSet(px, py, OracleFragment{});
     }

@@ -191,6 +191,45 @@ float windowDepth(const SetupTriangle& t, int px, int py, const Arithmetic& arit
   return std::clamp(offset, 0.0f, 1.0f);
 }
 
+namespace {
+
+// The pixels of the viewport that triangle t's box grown by `grow` pixels holds, in 64 bits (a
+// clipped corner's candidate margin may be large): [x0, x1] x [y0, y1], empty when x0 > x1.
+struct PixelBox {
+  int64_t x0, x1, y0, y1;
+};
+PixelBox grownBox(const SetupTriangle& t, int64_t grow, Viewport viewport) {
+  return {std::max<int64_t>(t.minX - grow, 0), std::min<int64_t>(t.maxX + grow, viewport.width - 1),
+          std::max<int64_t>(t.minY - grow, 0),
+          std::min<int64_t>(t.maxY + grow, viewport.height - 1)};
+}
+
+// Bins the triangles into the kTile x kTile tiles their boxes (boxOf) touch, by counting: how many
+// each tile holds, then the triangles in draw order; tile i's are binned[start[i] .. start[i + 1]).
+template <class BoxOf>
+void binByTiles(const std::vector<SetupTriangle>& triangles, Viewport viewport, BoxOf boxOf,
+                std::vector<uint32_t>& start, std::vector<uint32_t>& binned) {
+  constexpr int kTile = Visibility::kTile;
+  const int tilesX = (viewport.width + kTile - 1) / kTile;
+  const int tilesY = (viewport.height + kTile - 1) / kTile;
+  start.assign(static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY) + 1, 0);
+  const auto forEachTile = [&](const SetupTriangle& t, const auto& visit) {
+    const PixelBox b = boxOf(t);
+    if (b.x0 > b.x1 || b.y0 > b.y1) return;
+    for (int64_t ty = b.y0 / kTile; ty <= b.y1 / kTile; ++ty)
+      for (int64_t tx = b.x0 / kTile; tx <= b.x1 / kTile; ++tx)
+        visit(static_cast<size_t>(ty) * static_cast<size_t>(tilesX) + static_cast<size_t>(tx));
+  };
+  for (const SetupTriangle& t : triangles) forEachTile(t, [&](size_t i) { ++start[i + 1]; });
+  for (size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+  binned.resize(start.back());
+  std::vector<uint32_t> next(start.begin(), start.end() - 1);
+  for (size_t k = 0; k < triangles.size(); ++k)
+    forEachTile(triangles[k], [&](size_t i) { binned[next[i]++] = static_cast<uint32_t>(k); });
+}
+
+}  // namespace
+
 Visibility::Visibility(const std::vector<SetupTriangle>& triangles, Viewport viewport,
                        DepthFormat format, const Arithmetic& arithmetic, int margin,
                        CandidateSearch search)
@@ -201,24 +240,11 @@ Visibility::Visibility(const std::vector<SetupTriangle>& triangles, Viewport vie
       margin_(margin),
       search_(search) {
   boxData_ = std::make_unique<BoxData>(BoxData{&triangles, margin});
-  // Bins by counting: how many triangles each tile holds, then the triangles in draw order.
   tilesX_ = (viewport.width + kTile - 1) / kTile;
-  const int tilesY = (viewport.height + kTile - 1) / kTile;
-  binStart_.assign(static_cast<size_t>(tilesX_) * static_cast<size_t>(tilesY) + 1, 0);
-  const auto forEachTile = [&](const SetupTriangle& t, const auto& visit) {
-    const int x0 = std::max(t.minX, 0), x1 = std::min(t.maxX, viewport.width - 1);
-    const int y0 = std::max(t.minY, 0), y1 = std::min(t.maxY, viewport.height - 1);
-    if (x0 > x1 || y0 > y1) return;
-    for (int ty = y0 / kTile; ty <= y1 / kTile; ++ty)
-      for (int tx = x0 / kTile; tx <= x1 / kTile; ++tx)
-        visit(static_cast<size_t>(ty) * static_cast<size_t>(tilesX_) + static_cast<size_t>(tx));
-  };
-  for (const SetupTriangle& t : triangles) forEachTile(t, [&](size_t i) { ++binStart_[i + 1]; });
-  for (size_t i = 1; i < binStart_.size(); ++i) binStart_[i] += binStart_[i - 1];
-  binned_.resize(binStart_.back());
-  std::vector<uint32_t> next(binStart_.begin(), binStart_.end() - 1);
-  for (size_t k = 0; k < triangles.size(); ++k)
-    forEachTile(triangles[k], [&](size_t i) { binned_[next[i]++] = static_cast<uint32_t>(k); });
+  // The tile rasterizer's bins: each triangle's own box of candidate centres.
+  binByTiles(
+      triangles, viewport, [&](const SetupTriangle& t) { return grownBox(t, 0, viewport); },
+      binStart_, binned_);
 }
 
 void Visibility::buildScene() const {
@@ -307,39 +333,19 @@ void Visibility::BlockCandidates::of(int dx, int dy, std::vector<int32_t>& out) 
 
 namespace {
 
-// The pixels of the viewport that triangle t's box grown by `margin` and its candidateMargin holds,
-// in 64 bits (a clipped corner's margin may be large): [x0, x1] x [y0, y1], empty when x0 > x1.
-struct GrownBox {
-  int64_t x0, x1, y0, y1;
-};
-GrownBox grownBox(const SetupTriangle& t, int margin, Viewport viewport) {
-  const int64_t m = int64_t{margin} + t.candidateMargin;
-  return {std::max<int64_t>(t.minX - m, 0), std::min<int64_t>(t.maxX + m, viewport.width - 1),
-          std::max<int64_t>(t.minY - m, 0), std::min<int64_t>(t.maxY + m, viewport.height - 1)};
+// Triangle t's box grown by `margin` and its own candidateMargin, in the viewport.
+PixelBox candidateBox(const SetupTriangle& t, int margin, Viewport viewport) {
+  return grownBox(t, int64_t{margin} + t.candidateMargin, viewport);
 }
 
 }  // namespace
 
 void Visibility::binCandidates() const {
   std::call_once(candidatesBinned_, [this] {
-    const int tilesY = (viewport_.height + kTile - 1) / kTile;
-    candidateStart_.assign(static_cast<size_t>(tilesX_) * static_cast<size_t>(tilesY) + 1, 0);
-    const auto forEachTile = [&](const SetupTriangle& t, const auto& visit) {
-      const GrownBox b = grownBox(t, margin_, viewport_);
-      if (b.x0 > b.x1 || b.y0 > b.y1) return;
-      for (int64_t ty = b.y0 / kTile; ty <= b.y1 / kTile; ++ty)
-        for (int64_t tx = b.x0 / kTile; tx <= b.x1 / kTile; ++tx)
-          visit(static_cast<size_t>(ty) * static_cast<size_t>(tilesX_) + static_cast<size_t>(tx));
-    };
-    for (const SetupTriangle& t : triangles_)
-      forEachTile(t, [&](size_t i) { ++candidateStart_[i + 1]; });
-    for (size_t i = 1; i < candidateStart_.size(); ++i)
-      candidateStart_[i] += candidateStart_[i - 1];
-    candidateBinned_.resize(candidateStart_.back());
-    std::vector<uint32_t> next(candidateStart_.begin(), candidateStart_.end() - 1);
-    for (size_t k = 0; k < triangles_.size(); ++k)
-      forEachTile(triangles_[k],
-                  [&](size_t i) { candidateBinned_[next[i]++] = static_cast<uint32_t>(k); });
+    binByTiles(
+        triangles_, viewport_,
+        [&](const SetupTriangle& t) { return candidateBox(t, margin_, viewport_); },
+        candidateStart_, candidateBinned_);
   });
 }
 
@@ -349,7 +355,7 @@ void Visibility::blockCandidatesFromBins(int x0, int y0, BlockCandidates& out) c
                      static_cast<size_t>(x0 / kTile);
   for (uint32_t i = candidateStart_[bin]; i < candidateStart_[bin + 1]; ++i) {
     const int32_t k = static_cast<int32_t>(candidateBinned_[i]);
-    const GrownBox b = grownBox(triangles_[static_cast<size_t>(k)], margin_, viewport_);
+    const PixelBox b = candidateBox(triangles_[static_cast<size_t>(k)], margin_, viewport_);
     // The block's columns and rows inside the box (and so inside the viewport).
     const int64_t c0 = std::max<int64_t>(b.x0 - x0, 0),
                   c1 = std::min<int64_t>(b.x1 - x0, kBlock - 1);

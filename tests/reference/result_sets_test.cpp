@@ -14,6 +14,7 @@
 #include <span>
 
 #include "build/synthetic_texture.h"
+#include "reference/api/api_internal.h"
 #include "reference/renderer.h"
 #include "render/arithmetic_points.h"
 #include "render/frame_comparison.h"
@@ -111,13 +112,6 @@ TEST_F(ResultSets, UnderGl45AMeshWhoseVerticesSnapElsewhereLiesInTheSets) {
   }
 }
 
-// The needbuffer four values per pixel, as RenderSettings::judged takes it.
-std::vector<uint32_t> flat(const std::vector<glm::uvec4>& need) {
-  std::vector<uint32_t> values;
-  for (const glm::uvec4& v : need) values.insert(values.end(), {v.x, v.y, v.z, v.w});
-  return values;
-}
-
 TEST_F(ResultSets, JudgingAFrameBuildsTheSetsOfExactlyThePixelsWhereItDiffers) {
   const ClipSpaceMesh mesh = groundAndTriangles();
   RenderSettings bounded;
@@ -127,7 +121,7 @@ TEST_F(ResultSets, JudgingAFrameBuildsTheSetsOfExactlyThePixelsWhereItDiffers) {
   applyModel(pinned, llvmpipeModel());
   const Frame every = renderFrame(mesh, *cache_, bounded);
   const Frame other = renderFrame(snappedElsewhere(mesh, 0.9 / 16, 1), *cache_, pinned);
-  const std::vector<uint32_t> otherNeed = flat(other.need);
+  const std::vector<uint32_t> otherNeed = oracle::flatNeed(other.need);  // as judged takes it
   RenderSettings judging = bounded;
   judging.judged = {other.color, otherNeed};
   for (const unsigned threads : {1u, 2u, 3u}) {
