@@ -13,6 +13,7 @@
 #include <cstring>
 #include <limits>
 
+#include "reference/framebuffer_conversion.h"
 #include "reference/shader_math.h"
 #include "reference/triangle_setup.h"
 #include "render/arithmetic.h"
@@ -254,8 +255,13 @@ void shadeLanes(Scalar& scalar, const Arithmetic& arithmetic, const shader::VtPa
                                                 : shader.vtShadeFragment(uvIn, dUVdx, dUVdy, p);
   const lanes::Int8 color[4] = {lane_detail::toUnorm8(f.color.x), lane_detail::toUnorm8(f.color.y),
                                 lane_detail::toUnorm8(f.color.z), lane_detail::toUnorm8(f.color.w)};
+  const lanes::Float8* channels[4] = {&f.color.x, &f.color.y, &f.color.z, &f.color.w};
+  // A quantizing framebuffer (a measured member) converts lane by lane, as toUnorm8 does.
+  const bool nearest = arithmetic.colourConversion.rule == ColourConversionRule::kNearest;
   for (int k = 0; k < lanes::kLanes; ++k) {
-    for (int c = 0; c < 4; ++c) out.color[k][c] = static_cast<uint8_t>(color[c][k]);
+    for (int c = 0; c < 4; ++c)
+      out.color[k][c] = nearest ? static_cast<uint8_t>(color[c][k])
+                                : toUnorm8((*channels[c])[k], arithmetic.colourConversion);
     out.need[k][0] = f.need.x[k];
     out.need[k][1] = f.need.y[k];
     out.need[k][2] = f.need.z[k];

@@ -216,7 +216,8 @@ void recolor(const Frame& drawn, std::span<const CacheState* const> caches,
         }
         const Shader::VtFragment f = shaders[k].vtShadeFragment(
             drawn.uv[i], shader::vec2(d.x, d.y), shader::vec2(d.z, d.w), parameters[k]);
-        for (int c = 0; c < 4; ++c) out[c] = toUnorm8(f.color[c]);
+        for (int c = 0; c < 4; ++c)
+          out[c] = toUnorm8(f.color[c], settings.arithmetic.colourConversion);
       }
     }
   });

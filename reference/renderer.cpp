@@ -331,8 +331,9 @@ class TileShader {
         job_.settings.needOnly
             ? needOfFragment(pixel.uv, pixel.dUVdx, pixel.dUVdy)
             : shader_.vtShadeFragment(pixel.uv, pixel.dUVdx, pixel.dUVdy, job_.parameters);
-    const glm::u8vec4 color(toUnorm8(f.color.x), toUnorm8(f.color.y), toUnorm8(f.color.z),
-                            toUnorm8(f.color.w));
+    const ColourConversion& conversion = job_.arithmetic.colourConversion;
+    const glm::u8vec4 color(toUnorm8(f.color.x, conversion), toUnorm8(f.color.y, conversion),
+                            toUnorm8(f.color.z, conversion), toUnorm8(f.color.w, conversion));
     writePixel(px, py, hit, pixel, color, f.need, f.lod, f.residentLevel);
     if (job_.model && job_.denormalsOnly)
       addDenormalSet(px, py, k, hit,
@@ -387,7 +388,7 @@ class TileShader {
                                  : shader_.vtShadeFragment(uv, dUVdx, dUVdy, job_.parameters);
     }
     glm::u8vec4 color;
-    for (int c = 0; c < 4; ++c) color[c] = toUnorm8(f.color[c]);
+    for (int c = 0; c < 4; ++c) color[c] = toUnorm8(f.color[c], arithmetic.colourConversion);
     const auto clamped = [&](vec2 v) {
       return glm::vec2(shader_.vtClampOrZero(v.x, 1.0f), shader_.vtClampOrZero(v.y, 1.0f));
     };
@@ -450,8 +451,10 @@ class TileShader {
   std::array<PixelHit, kTile * kTile> tileHits_{};  // the tile's winners
 };
 
-SetShading setShading(const TextureDescription& d, const RenderSettings& settings) {
+SetShading setShading(const TextureDescription& d, const RenderSettings& settings,
+                      glm::vec2 cacheSize) {
   SetShading shading;
+  shading.cacheSide = std::max(cacheSize.x, cacheSize.y);
   shading.pageSize = static_cast<int>(d.pageSize);
   shading.border = static_cast<int>(d.border);
   shading.finestLevel = static_cast<int>(d.finestLevel());
@@ -491,11 +494,11 @@ void render(const ClipSpaceMesh& mesh, const Source& texture, const TextureDescr
                      visibility,
                      model,
                      model != nullptr && model->onlyDenormalsFree(),
-                     setShading(d, settings),
+                     setShading(d, settings, cacheSize),
                      shaderParameters(d, cacheSize, settings),
                      needClearValue(settings.need8),
-                     !(model != nullptr && model->onlyDenormalsFree()) &&
-                         !settings.scalarShading && lanes::lanesAvailable(),
+                     !(model != nullptr && model->onlyDenormalsFree()) && !settings.scalarShading &&
+                         lanes::lanesAvailable(),
                      frame};
 
   constexpr int kTile = TileShader<Backend, Source>::kTile;

@@ -282,6 +282,7 @@ struct LevelBounds {
 // range there).
 struct LocalFilter {
   glm::dvec4 lipschitzX{0}, lipschitzY{0};
+  glm::dvec4 rounding{0};  // the corner-weight sampler's rounding on these cells (cornerRounding)
   Colour range;      // the filter's least and greatest value over the box
   glm::dvec4 at{0};  // its value at the box's centre
 };
@@ -322,6 +323,9 @@ class Builder {
         static_cast<double>(shading.pageSize) * static_cast<double>(1 << shading.finestLevel),
         -shading.needScaleLog2);
     subTexelStep_ = std::ldexp(1.0, -model.subTexelBits);
+    if (const Filter& f = model.arithmetic.filter; !shading.exactFilter && model.filterPinned &&
+                                                   f.weights == FilterWeights::kFixedPointCorners)
+      cornerStep_ = std::ldexp(f.lerpRounding == LerpRounding::kNearest ? 0.5 : 1.0, -f.weightBits);
   }
 
   // Whether the model lets vertices move at all (else coverage, depth and attributes are the
@@ -438,10 +442,11 @@ class Builder {
                           widen(l.map.y(tt), 0, l.positionError)};
       LocalFilter here;
       if (!localFilter(b, l, box, at, here)) return false;
-      range[static_cast<size_t>(m)] = widen(here.range, b.valueError);
+      range[static_cast<size_t>(m)] = {here.range.lo - here.rounding - b.valueError,
+                                       here.range.hi + here.rounding + b.valueError};
       if (m == oracleCoarse || m == oracleCoarse + 1)
         atOracle[static_cast<size_t>(m - oracleCoarse)] = here.at;
-      own = glm::max(own, (here.lipschitzX + here.lipschitzY) * l.positionError);
+      own = glm::max(own, (here.lipschitzX + here.lipschitzY) * l.positionError + here.rounding);
     }
     // The trilinear blend of neighbouring levels over the LOD's weights, as shade() blends.
     Colour colour = nothing();
@@ -851,8 +856,8 @@ class Builder {
   // `at` inside it; false where the box reads texels not kept. Its range: inside one cell between
   // texel centres the filter is bilinear, its bounds at the box's corners; across cells, its value
   // at the point within the Lipschitz bound, and within the texels' hull.
-  static bool localFilter(const OwnBlock& b, const LevelBounds& l, const WindowBox& box,
-                          glm::dvec2 at, LocalFilter& f) {
+  bool localFilter(const OwnBlock& b, const LevelBounds& l, const WindowBox& box, glm::dvec2 at,
+                   LocalFilter& f) const {
     const int x0 = static_cast<int>(std::floor(box.x.lo - 0.5)) - l.origin.x;
     const int y0 = static_cast<int>(std::floor(box.y.lo - 0.5)) - l.origin.y;
     const int x1 = static_cast<int>(std::floor(box.x.hi - 0.5)) + 1 - l.origin.x;
@@ -869,6 +874,11 @@ class Builder {
         hi = glm::max(hi, v);
         if (tx > x0) dx = glm::max(dx, glm::abs(v - texel(tx - 1, ty)));
         if (ty > y0) dy = glm::max(dy, glm::abs(v - texel(tx, ty - 1)));
+        if (cornerStep_ != 0 && tx > x0 && ty > y0)
+          f.rounding =
+              glm::max(f.rounding, cornerRounding(glm::dvec4(texel(tx - 1, ty - 1)),
+                                                  glm::dvec4(texel(tx, ty - 1)),
+                                                  glm::dvec4(texel(tx - 1, ty)), glm::dvec4(v)));
       }
     f.lipschitzX = glm::dvec4(dx);
     f.lipschitzY = glm::dvec4(dy);
@@ -1039,6 +1049,18 @@ class Builder {
             shading_.pageSize};
   }
 
+  // The corner-weight sampler (Filter::kFixedPointCorners) on a cell of texels c00, c10, c01, c11:
+  // its sum differs from the exact bilinear filter at its rounded position only by the rounding of
+  // w11 (half a step of 2^-weightBits, or a whole one floored) times c00 - c10 - c01 + c11, since
+  // w10, w01 and w00 follow from w11. 0 for the other members (their errors are samplerErrors').
+  glm::dvec4 cornerRounding(const glm::dvec4& c00, const glm::dvec4& c10, const glm::dvec4& c01,
+                            const glm::dvec4& c11) const {
+    if (cornerStep_ == 0) return glm::dvec4(0);
+    return glm::abs(c00 - c10 - c01 + c11) * cornerStep_;
+  }
+  // The same bound over every texel value the filter could read (|cross term| <= 2 * 255).
+  double worstCornerRounding() const { return 510 * cornerStep_; }
+
   // How far a bilinear sample's texel position (in cache texels, at most `magnitude`) and its
   // value (units of 1/255) may lie from the exact filter's at the exact position, under the model.
   struct SamplerErrors {
@@ -1055,6 +1077,17 @@ class Builder {
       if (!model_.filterPinned) {
         e.position += subTexelStep_;
         e.value = model_.filterErrorUnits;
+      } else if (const Filter& f = model_.arithmetic.filter;
+                 f.weights == FilterWeights::kFixedPointCorners) {
+        // The coordinate truncated to 2^-coordinateBits of the cache's side, the position rounded
+        // to 2^-weightBits texel (half a step either way, or a whole one down); the corner
+        // product's rounding is the cell's (cornerRounding), the result's rounding here.
+        const double step = std::ldexp(1.0, -f.weightBits);
+        e.position += shading_.cacheSide * std::ldexp(1.0, -f.coordinateBits) +
+                      (f.positionRounding == PositionRounding::kHalfUp ? step / 2 : step);
+        e.value += f.output == FilterOutput::kUnorm8    ? 0.5
+                   : f.output == FilterOutput::kUnorm16 ? 0.5 * 255 / 65535
+                                                        : 0.0;
       } else if (model_.arithmetic.filter.weights == FilterWeights::kFixedPoint8) {
         e.position += kFixedPointSubTexelStep;
         // Three lerps, each rounded to nearest: 0.5 + 0.5; each floored: under 1 + 1.
@@ -1170,7 +1203,21 @@ class Builder {
         include(value);
       }
     }
-    return colour();
+    if (cornerStep_ == 0) return colour();
+    // The corner rounding of any cell the box reads: its texels' own, or with free decoding
+    // the bound over any values.
+    glm::dvec4 rounding(channels == 8 ? worstCornerRounding() : 0.0);
+    if (channels == 4)
+      for (int ty = 0; ty + 1 < height; ++ty)
+        for (int tx = 0; tx + 1 < width; ++tx) {
+          const auto at = [&](int dx, int dy) {
+            const Range& r = block[static_cast<size_t>((ty + dy) * width + tx + dx)];
+            return glm::dvec4(r[0], r[1], r[2], r[3]);
+          };
+          rounding = glm::max(rounding, cornerRounding(at(0, 0), at(1, 0), at(0, 1), at(1, 1)));
+        }
+    const Colour c = colour();
+    return {c.lo - rounding, c.hi + rounding};
   }
 
   // bilinearRange for a box inside the cell whose lower-left texel is (cx0, cy0), texels of one
@@ -1204,6 +1251,10 @@ class Builder {
         c.hi = glm::max(c.hi, v);
       }
     }
+    if (cornerStep_ != 0) {
+      const glm::dvec4 rounding = cornerRounding(c00, c10, c01, c11);
+      c = {c.lo - rounding, c.hi + rounding};
+    }
     return c;
   }
 
@@ -1215,7 +1266,17 @@ class Builder {
     for (int k = 0; k < 4; ++k) {
       const Interval v = clamp(Interval{c.lo[k], c.hi[k]}, 0, 255);
       double l, h;
-      if (model_.colorRoundsToNearest) {
+      const ColourConversion& conversion = model_.arithmetic.colourConversion;
+      if (model_.colorPinned && conversion.rule == ColourConversionRule::kQuantized) {
+        // (255 floor(x 2^bits) + bias) >> bits does not decrease with x: its values at the ends.
+        const auto quantized = [&](double units) {
+          const double x = std::clamp(units / 255, 0.0, 1.0);
+          const double k = std::floor(std::ldexp(x, conversion.bits));
+          return std::floor(std::ldexp(255 * k + conversion.bias, -conversion.bits));
+        };
+        l = quantized(v.lo - kSlack);
+        h = quantized(v.hi + kSlack);
+      } else if (model_.colorPinned) {
         l = std::ceil(v.lo - 0.5 - kSlack);
         h = std::floor(v.hi + 0.5 + kSlack);
       } else {
@@ -1233,6 +1294,7 @@ class Builder {
   TexelSource& source_;
   double finestSide_ = 1;
   double subTexelStep_ = 1;  // a free sampler's texel positions: 2^-subTexelBits texel
+  double cornerStep_ = 0;    // the corner-weight sampler's w11 rounding (cornerRounding)
   std::unordered_map<int32_t, Snapped> snapped_;  // by set-up index (elements never move)
   // The four texels of the cells bilinearInCell read last (the cache does not change meanwhile).
   struct Cell {

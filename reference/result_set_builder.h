@@ -54,6 +54,7 @@ struct SetShading {
   bool trilinear = true, exactFilter = true;
   int needScaleLog2 = 0;
   bool blockCompressed = false;  // the cache's texels are decoded from blocks
+  double cacheSide = 0;  // the cache texture's larger side in texels (a sampler's coordinate bits)
 };
 
 // What the oracle itself drew at the pixel: the index (set-up list) of the triangle it shows, -1

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 
+#include "reference/framebuffer_conversion.h"
 #include "reference/linear_filter.h"
 #include "reference/renderer.h"
 #include "reference/shader_math.h"
@@ -175,12 +176,6 @@ class CacheBackend {
   const CacheState* state_;
   Arithmetic arithmetic_;
 };
-
-// The framebuffer's conversion: clamp, then round to nearest even. NaN becomes 0.
-inline uint8_t toUnorm8(float c) {
-  const float clamped = c >= 0.0f ? (c <= 1.0f ? c : 1.0f) : 0.0f;
-  return static_cast<uint8_t>(std::nearbyint(clamped * 255.0f));
-}
 
 // The shader's uniforms for texture `d`, a cache texture of `cacheSize` texels, and `settings`.
 inline shader::VtParameters shaderParameters(const TextureDescription& d, glm::vec2 cacheSize,

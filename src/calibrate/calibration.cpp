@@ -16,8 +16,36 @@
 namespace vt::calibrate {
 namespace {
 
+struct ColourConversionFit {
+  ParameterFit fit;
+  ColourConversion conversion;  // the member pinned (nearest when none is)
+};
+
+// The quantized members (render/arithmetic.h, ColourConversion) that reproduce every channel: per
+// number of bits the biases each (input, output) pair allows, out 2^bits <= 255 k + bias <
+// (out + 1) 2^bits with k = floor(x 2^bits), intersected.
+std::vector<ColourConversion> quantizedConversions(const std::vector<glm::vec4>& inputs,
+                                                   const std::vector<glm::u8vec4>& out) {
+  std::vector<ColourConversion> fitting;
+  for (int bits = 8; bits <= 24; ++bits) {
+    const int64_t one = int64_t{1} << bits;
+    int64_t lo = 0, hi = one - 1;
+    for (size_t i = 0; i < out.size() && lo <= hi; ++i)
+      for (int c = 0; c < 4; ++c) {
+        const double x = std::clamp(static_cast<double>(inputs[i][c]), 0.0, 1.0);
+        const auto k = static_cast<int64_t>(std::ldexp(x, bits));
+        lo = std::max(lo, out[i][c] * one - 255 * k);
+        hi = std::min(hi, (out[i][c] + 1) * one - 255 * k - 1);
+      }
+    for (int64_t bias = lo; bias <= hi && fitting.size() < 2; ++bias)
+      fitting.push_back({ColourConversionRule::kQuantized, bits, static_cast<int>(bias)});
+    if (fitting.size() > 1) break;  // more than one: the probe cannot tell them apart
+  }
+  return fitting;
+}
+
 // Colour conversion: floats between two unorm8 values written to an RGBA8 target.
-ParameterFit fitColourConversion() {
+ColourConversionFit fitColourConversion() {
   ShaderProbe probe;
   probe.body = "result = x;";
   probe.width = 255;
@@ -37,19 +65,40 @@ ParameterFit fitColourConversion() {
       const int k = static_cast<int>(i % 255);
       beyond += out[i][c] != k && out[i][c] != k + 1;
     }
-  ParameterFit fit{"color_conversion",
-                   "2,040 floats between two unorm8 values",
-                   out.size() * 4,
-                   {{"nearest", other}}};
+  ColourConversionFit result{ParameterFit{"color_conversion",
+                                          "2,040 floats between two unorm8 values",
+                                          out.size() * 4,
+                                          {{"nearest", other}}},
+                             {}};
+  ParameterFit& fit = result.fit;
+  // Not the nearest value: the one quantized member that reproduces every channel, if one does
+  // (none, or several the probe cannot tell apart, leave the conversion free).
+  std::vector<ColourConversion> quantized;
+  if (other != 0 && beyond == 0) quantized = quantizedConversions(probe.inputs, out);
+  if (quantized.size() == 1) {
+    const ColourConversion& q = quantized[0];
+    fit.members.push_back(
+        {"quantized_" + std::to_string(q.bits) + "_bits_bias_" + std::to_string(q.bias), 0});
+    result.conversion = q;
+  }
   fit.choose();
   fit.unit = "values beyond the two nearest";
-  fit.largestResidual = static_cast<double>(beyond);
+  fit.largestResidual = fit.pinned ? 0.0 : static_cast<double>(beyond);
+  const std::string alone = quantized.size() > 1 ? ", more than one quantization reproduces it"
+                            : fit.pinned
+                                ? ""
+                                : ", no quantization of 8 to 24 bits with a bias reproduces it";
   fit.finding =
-      other == 0 ? "always the nearest unorm8 value"
-                 : differ(other, fit.probes) + " from the nearest unorm8 value" +
-                       (beyond ? ", " + std::to_string(beyond) + " beyond both of the two nearest"
-                               : std::string(": either of the two"));
-  return fit;
+      other == 0   ? "always the nearest unorm8 value"
+      : fit.pinned ? "(255 floor(x 2^" + std::to_string(result.conversion.bits) + ") + " +
+                         std::to_string(result.conversion.bias) + ") >> " +
+                         std::to_string(result.conversion.bits) + ", every channel bit for bit (" +
+                         fit.memberSummary() + ")"
+                   : differ(other, fit.probes) + " from the nearest unorm8 value" +
+                         (beyond ? ", " + std::to_string(beyond) + " beyond both of the two nearest"
+                                 : std::string(": either of the two")) +
+                         alone;
+  return result;
 }
 
 // Two overlapping quads, one at window z 0.25 and one at 0.75, drawn far then near and near then
@@ -135,7 +184,8 @@ Calibration calibrate() {
   c.vendor = identity.vendor;
   const ShaderMathFits math = fitShaderMath();
   const FilterFit filter = fitFilter(math.conversion);
-  const ParameterFit colour = fitColourConversion();
+  const ColourConversionFit colourFit = fitColourConversion();
+  const ParameterFit& colour = colourFit.fit;
   const ParameterFit depthTest = fitDepthTest();
   const DecodingFit decoding = fitBlockDecoding();
   Arithmetic shaderMembers;
@@ -165,7 +215,8 @@ Calibration calibrate() {
   m.filterPinned = filter.fit.pinned;
   m.subTexelBits = filter.fit.pinned ? 0 : filter.subTexelBits;
   m.filterErrorUnits = filter.fit.pinned ? 0 : filter.errorUnits;
-  m.colorRoundsToNearest = colour.pinned;
+  m.colorPinned = colour.pinned;
+  m.arithmetic.colourConversion = colourFit.conversion;
   m.denormalsPinned = math.denormalsAlike;
   m.arithmetic.blockDecoding = decoding.decoding;
   m.decodingPinned = decoding.pinned();

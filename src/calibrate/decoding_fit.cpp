@@ -1,7 +1,9 @@
 #include "calibrate/decoding_fit.h"
 
+#include <array>
 #include <cmath>
 #include <glm/glm.hpp>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -21,6 +23,93 @@ int unorm8Of(float v) {
 }
 
 std::string ruleName(PaletteRule rule) { return std::string(nameOf(kPaletteRuleNames, rule)); }
+
+// The weights member's fit: per step (six sevenths, then four fifths) the whole weights w in
+// [0, 4096] with (a0 (4096 - w) + a1 w + 2048) >> 12 equal to every measured value.
+struct WeightRanges {
+  std::array<int, 10> lo{}, hi{};
+  uint64_t samples = 0;
+  WeightRanges() {
+    lo.fill(0);
+    hi.fill(1 << kPaletteWeightBits);
+  }
+  // One measured value v of step k (1-based) between a0 and a1.
+  void add(int a0, int a1, int k, int v) {
+    const size_t i = static_cast<size_t>(a0 > a1 ? k - 1 : 5 + k);
+    ++samples;
+    constexpr int kOne = 1 << kPaletteWeightBits;
+    // v 4096 <= a0 4096 + d w + 2048 < (v + 1) 4096, with d = a1 - a0.
+    const int d = a1 - a0, low = v * kOne - a0 * kOne - kOne / 2, high = low + kOne - 1;
+    if (d == 0) {
+      if (low > 0 || high < 0) hi[i] = lo[i] - 1;  // no weight gives v
+      return;
+    }
+    const auto floorDiv = [](int n, int m) {
+      return n / m - ((n % m != 0) && ((n < 0) != (m < 0)));
+    };
+    const auto ceilDiv = [&](int n, int m) { return -floorDiv(-n, m); };
+    const int from = d > 0 ? ceilDiv(low, d) : ceilDiv(high, d);
+    const int to = d > 0 ? floorDiv(high, d) : floorDiv(low, d);
+    lo[i] = std::max(lo[i], from);
+    hi[i] = std::min(hi[i], to);
+  }
+  bool consistent() const {
+    for (size_t i = 0; i < lo.size(); ++i)
+      if (lo[i] > hi[i]) return false;
+    return true;
+  }
+  bool unique() const {
+    for (size_t i = 0; i < lo.size(); ++i)
+      if (lo[i] != hi[i]) return false;
+    return true;
+  }
+  std::string text() const {
+    std::string t;
+    for (size_t i = 0; i < lo.size(); ++i) {
+      t += (i ? (i == 6 ? "; fifths " : ", ") : "sevenths ");
+      t += lo[i] > hi[i]    ? std::string("none")
+           : lo[i] == hi[i] ? std::to_string(lo[i])
+                            : std::to_string(lo[i]) + " to " + std::to_string(hi[i]);
+    }
+    return t + " (of 4096)";
+  }
+};
+
+WeightRanges alphaWeightRanges(const std::vector<glm::vec4>& bc3Measured,
+                               const std::optional<std::vector<uint8_t>>& table) {
+  WeightRanges ranges;
+  if (table) {
+    for (int pair = 0; pair < 65536; ++pair) {
+      const int a0 = pair >> 8, a1 = pair & 255, n = a0 > a1 ? 7 : 5;
+      for (int k = 1; k < n; ++k)
+        ranges.add(a0, a1, k, (*table)[static_cast<size_t>(pair) * 6 + static_cast<size_t>(k - 1)]);
+    }
+    return ranges;
+  }
+  const std::vector<std::byte> blocks = decodingProbeBlocks(PixelFormat::kBc3);
+  for (int y = 0; y < kDecodingProbeSide; ++y)
+    for (int x = 0; x < kDecodingProbeSide; ++x) {
+      const std::byte* block = blocks.data() + (size_t(y / 4) * kBlocksPerSide + size_t(x / 4)) *
+                                                   blockBytes(PixelFormat::kBc3);
+      const int a0 = std::to_integer<int>(block[0]), a1 = std::to_integer<int>(block[1]);
+      const uint64_t indices = [&] {
+        uint64_t v = 0;
+        for (int b = 0; b < 6; ++b)
+          v |= uint64_t{std::to_integer<uint8_t>(block[2 + b])} << (8 * b);
+        return v;
+      }();
+      const int index = static_cast<int>((indices >> (3 * ((y % 4) * 4 + x % 4))) & 7);
+      const int n = a0 > a1 ? 7 : 5, k = index - 1;
+      if (k < 1 || k >= n) continue;  // an end point, or the five-value mode's 0 and 255
+      const int v = unorm8Of(bc3Measured[size_t(y) * kDecodingProbeSide + size_t(x)][3]);
+      if (v < 0) {
+        ranges.hi[a0 > a1 ? size_t(k - 1) : size_t(5 + k)] = -1;  // not an 8-bit value
+        continue;
+      }
+      ranges.add(a0, a1, k, v);
+    }
+  return ranges;
+}
 
 }  // namespace
 
@@ -88,6 +177,8 @@ DecodingFit fitBlockDecoding() {
   const uint64_t colourProbes = 2 * kTexels * 3, alphaProbes = kTexels;
   for (const auto& [rule, name] : kPaletteRuleNames) {
     uint64_t colourMisses = 0, alphaMisses = 0;
+    // The weights member has no weights of its own: fitted below.
+    if (rule == PaletteRule::kWeights) continue;
     for (size_t f = 0; f < 2; ++f) {
       const std::vector<BlockTexel> expected =
           decodeProbe(formats[f], {rule, PaletteRule::kNearest});
@@ -101,7 +192,7 @@ DecodingFit fitBlockDecoding() {
           alphaMisses += unorm8Of(measured[f][i][3]) != expectedAlpha[i][3];
       }
     }
-    colours.push_back({ruleName(rule), colourMisses});
+    if (isColourRule(rule)) colours.push_back({ruleName(rule), colourMisses});
     if (isAlphaRule(rule)) alphas.push_back({ruleName(rule), alphaMisses});
   }
   fit.colour = ParameterFit{"block_decoding",
@@ -112,11 +203,44 @@ DecodingFit fitBlockDecoding() {
                            "texelFetch of every texel of a 64 x 64 BC3 texture of random blocks: "
                            "alpha",
                            alphaProbes, alphas};
-  fit.decoding.colour = kPaletteRuleNames[fit.colour.choose()].value;
+  {
+    const size_t colourIndex = fit.colour.choose();
+    size_t seen = 0;
+    for (const auto& [rule, name] : kPaletteRuleNames)
+      if (isColourRule(rule) && seen++ == colourIndex) fit.decoding.colour = rule;
+  }
   const size_t alphaIndex = fit.alpha.choose();
   size_t seen = 0;
   for (const auto& [rule, name] : kPaletteRuleNames)
-    if (isAlphaRule(rule) && seen++ == alphaIndex) fit.decoding.alpha = rule;
+    if (isAlphaRule(rule) && rule != PaletteRule::kWeights && seen++ == alphaIndex)
+      fit.decoding.alpha = rule;
+  std::string weightsFinding;
+  if (!fit.alpha.pinned) {
+    // No rule reproduces the alpha: the weights member, where the measured values allow one
+    // weight per step.
+    const std::optional<std::vector<uint8_t>> table = denseAlphaTable();
+    const WeightRanges ranges = alphaWeightRanges(measured[1], table);
+    weightsFinding = std::string(table ? "the dense alpha table (every end-point pair, " +
+                                             std::to_string(ranges.samples) + " values)"
+                                       : "the probe's alpha") +
+                     " allows weights " + ranges.text();
+    if (ranges.consistent() && ranges.unique()) {
+      BlockDecoding weights{PaletteRule::kNearest, PaletteRule::kWeights, {}};
+      for (size_t i = 0; i < weights.alphaWeights.size(); ++i)
+        weights.alphaWeights[i] = static_cast<uint16_t>(ranges.lo[i]);
+      // The weights must reproduce the probe too (the table may come from another draw).
+      const std::vector<BlockTexel> expected = decodeProbe(PixelFormat::kBc3, weights);
+      uint64_t misses = 0;
+      for (size_t i = 0; i < expected.size(); ++i)
+        misses += unorm8Of(measured[1][i][3]) != expected[i][3];
+      fit.alpha.members.push_back({"weights", misses});
+      if (misses == 0) {
+        fit.alpha.choose();
+        fit.decoding.alpha = PaletteRule::kWeights;
+        fit.decoding.alphaWeights = weights.alphaWeights;
+      }
+    }
+  }
 
   // Every channel against what any conforming decoder may return there.
   for (size_t f = 0; f < 2; ++f) {
@@ -142,6 +266,7 @@ DecodingFit fitBlockDecoding() {
                         : "no member reproduces every texel, closest " + part->chosen + " (" +
                               part->memberSummary() + ")";
   }
+  if (!weightsFinding.empty()) fit.alpha.finding += "; " + weightsFinding;
   return fit;
 }
 

@@ -24,6 +24,14 @@ struct DecodingFit {
   bool pinned() const { return colour.pinned && alpha.pinned; }
 };
 
+// The dense BC3 alpha table a GPU's probe folder may hold (scripts/bc3-alpha-probe.py): for every
+// end-point pair (a0 slow, a1 fast) the alphas at indices 2 to 7, one byte each. When no member
+// reproduces BC3 alpha, the weights member (format/block_decoding.h) is fitted: per step the
+// integer weights every measured texel allows, from the table where the folder has one, else
+// from the 64 x 64 probe; pinned where each step allows exactly one.
+inline constexpr const char* kDenseAlphaTableName = "bc3-alpha.u8";
+inline constexpr size_t kDenseAlphaTableBytes = 65536 * 6;
+
 // The probe texture of `format` (bc1 or bc3): kDecodingProbeSide x kDecodingProbeSide texels.
 inline constexpr int kDecodingProbeSide = 64;
 std::vector<std::byte> decodingProbeBlocks(PixelFormat format);

@@ -68,8 +68,11 @@ bool reproducesSample(const ShaderProbe& probe, size_t i, const glm::vec4& got,
   };
   const glm::vec4 expected = reference::sampleLinearAt(fetch8, glm::vec2(probe.inputs[i]),
                                                        probe.textureSize, filter, conversion);
+  const bool wholeUnits = filter.weights == FilterWeights::kFixedPoint8 ||
+                          (filter.weights == FilterWeights::kFixedPointCorners &&
+                           filter.output == FilterOutput::kUnorm8);
   for (int c = 0; c < 4; ++c) {
-    if (filter.weights == FilterWeights::kFixedPoint8) {
+    if (wholeUnits) {
       // A whole number of 1/255: how it becomes a float (k / 255 or k * (1 / 255)) does not reach
       // an RGBA8 target.
       const float units = got[c] * 255.0f;
@@ -119,6 +122,57 @@ const std::vector<NamedFilter>& filterMembers() {
   return members;
 }
 
+namespace {
+
+// The corner-weight members (render/arithmetic.h, Filter): every combination of coordinate bits
+// (8 to 24), weight bits (4 to 12), position and corner-product rounding and output, against the
+// samples. Returns those that reproduce every sample (at most two: more cannot be told apart)
+// and, when none does, the one that misses fewest with its count.
+struct CornerSearch {
+  std::vector<Filter> fitting;
+  Filter closest;
+  uint64_t closestMisses = ~uint64_t{0};
+};
+
+CornerSearch searchCornerMembers(const std::vector<Sampled>& sampled, UnormConversion conversion) {
+  CornerSearch search;
+  Filter f{.weights = FilterWeights::kFixedPointCorners};
+  for (int weightBits = 4; weightBits <= 12; ++weightBits)
+    for (int coordinateBits = std::max(8, weightBits); coordinateBits <= 24; ++coordinateBits)
+      for (const auto& [position, positionName] : kPositionRoundingNames)
+        for (const auto& [corner, cornerName] : kLerpRoundingNames)
+          for (const auto& [output, outputName] : kFilterOutputNames) {
+            f.weightBits = weightBits;
+            f.coordinateBits = coordinateBits;
+            f.positionRounding = position;
+            f.lerpRounding = corner;
+            f.output = output;
+            // Counted until it misses more than the closest so far.
+            uint64_t missed = 0;
+            for (const Sampled& s : sampled)
+              for (size_t i = 0; i < s.out.size() && missed <= search.closestMisses; ++i)
+                missed += !reproducesSample(s.probe, i, s.out[i], f, conversion);
+            if (missed == 0 && search.fitting.size() < 2) search.fitting.push_back(f);
+            if (missed < search.closestMisses) {
+              search.closestMisses = missed;
+              search.closest = f;
+            }
+          }
+  return search;
+}
+
+// "fixed_point_corners_21_8_half_up_nearest_unorm16": coordinate and weight bits, position and
+// corner rounding, output.
+std::string cornerMemberName(const Filter& f) {
+  return "fixed_point_corners_" + std::to_string(f.coordinateBits) + "_" +
+         std::to_string(f.weightBits) + "_" +
+         std::string(nameOf(kPositionRoundingNames, f.positionRounding)) + "_" +
+         std::string(nameOf(kLerpRoundingNames, f.lerpRounding)) + "_" +
+         std::string(nameOf(kFilterOutputNames, f.output));
+}
+
+}  // namespace
+
 FilterFit fitFilter(UnormConversion conversion) {
   const std::vector<Sampled> sampled = probes();
   FilterFit result;
@@ -135,6 +189,21 @@ FilterFit fitFilter(UnormConversion conversion) {
     result.fit.members.push_back({member.name, missed});
   }
   result.filter = filterMembers()[result.fit.choose()].filter;
+  if (!result.fit.pinned) {
+    // None of the named members: the corner-weight family's parameters, pinned where exactly one
+    // combination reproduces every sample.
+    const CornerSearch corners = searchCornerMembers(sampled, conversion);
+    const Filter& best = corners.fitting.empty() ? corners.closest : corners.fitting[0];
+    result.fit.members.push_back(
+        {cornerMemberName(best), corners.fitting.empty() ? corners.closestMisses : uint64_t{0}});
+    if (corners.fitting.size() > 1)
+      result.fit.members.push_back({cornerMemberName(corners.fitting[1]), 0});
+    const size_t chosen = result.fit.choose();
+    const size_t named = filterMembers().size();
+    if (chosen >= named) result.filter = chosen == named ? best : corners.fitting[1];
+    // Two combinations that reproduce every sample: the probe cannot tell them apart.
+    if (corners.fitting.size() > 1) result.fit.pinned = false;
+  }
   if (result.fit.pinned) {
     result.fit.finding = result.fit.chosen + ", every sample bit for bit (" +
                          result.fit.memberSummary() + " samples)";

@@ -170,6 +170,10 @@ RasterReadback drawTriangles(const ClipSpaceMesh& mesh, Viewport viewport, Depth
 
 ProbeIdentity probeIdentity() { return currentDrawer ? currentDrawer->identity() : identityHere(); }
 
+std::optional<std::vector<uint8_t>> denseAlphaTable() {
+  return currentDrawer ? currentDrawer->denseAlphaTable() : std::nullopt;
+}
+
 // Random triangles of all sizes, perspective, overlapping, some crossing the near plane and the
 // frustum's sides, some slivers and a coplanar duplicate of the first.
 ClipSpaceMesh randomTriangles(unsigned seed, int triangles) {

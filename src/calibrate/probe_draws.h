@@ -4,6 +4,7 @@
 // and integer targets), so that calibration.h can compare them with the oracle's arithmetic.
 
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -76,7 +77,13 @@ class ProbeDrawer {
   virtual RasterReadback triangles(const ClipSpaceMesh& mesh, Viewport viewport,
                                    DepthFormat format) = 0;
   virtual ProbeIdentity identity() = 0;
+  // A dense BC3 alpha table measured beside the probes (decoding_fit.h), if the drawer has one.
+  virtual std::optional<std::vector<uint8_t>> denseAlphaTable() { return std::nullopt; }
 };
+
+// The set drawer's dense BC3 alpha table; none without a drawer (this context draws no such
+// probe: scripts/bc3-alpha-probe.py makes it for a GPU).
+std::optional<std::vector<uint8_t>> denseAlphaTable();
 
 class UsingProbeDrawer {
  public:

@@ -1,5 +1,8 @@
 #include "calibrate/recorded_probes.h"
 
+#include <fstream>
+
+#include "calibrate/decoding_fit.h"
 #include "capture/probe_files.h"
 #include "common/error.h"
 
@@ -80,6 +83,23 @@ std::vector<glm::u8vec4> RecordedProbeDrawer::colour(const ShaderProbe& probe) {
 RasterReadback RecordedProbeDrawer::triangles(const ClipSpaceMesh& mesh, Viewport viewport,
                                               DepthFormat format) {
   return replay(folder_, count_, next_, trianglesRequest(mesh, viewport, format)).raster;
+}
+
+std::optional<std::vector<uint8_t>> RecordedProbeDrawer::denseAlphaTable() {
+  const std::filesystem::path file = folder_ / kDenseAlphaTableName;
+  std::error_code error;
+  if (!std::filesystem::exists(file, error)) return std::nullopt;
+  const uintmax_t size = std::filesystem::file_size(file, error);
+  if (error || size != kDenseAlphaTableBytes)
+    throw InputError(file, "is not a dense BC3 alpha table: " +
+                               (error ? error.message()
+                                      : std::to_string(size) + " bytes, not " +
+                                            std::to_string(kDenseAlphaTableBytes)));
+  std::vector<uint8_t> table(kDenseAlphaTableBytes);
+  std::ifstream in(file, std::ios::binary);
+  if (!in.read(reinterpret_cast<char*>(table.data()), static_cast<std::streamsize>(table.size())))
+    throw InputError(file, "cannot be read");
+  return table;
 }
 
 }  // namespace vt::calibrate

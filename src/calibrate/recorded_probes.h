@@ -37,6 +37,9 @@ class RecordedProbeDrawer : public ProbeDrawer {
   RasterReadback triangles(const ClipSpaceMesh& mesh, Viewport viewport,
                            DepthFormat format) override;
   ProbeIdentity identity() override { return identity_; }
+  // The folder's bc3-alpha.u8 (scripts/bc3-alpha-probe.py table), if it has one; InputError
+  // naming it when it is not 65,536 x 6 bytes.
+  std::optional<std::vector<uint8_t>> denseAlphaTable() override;
 
  private:
   std::filesystem::path folder_;

@@ -35,7 +35,8 @@ int step(PaletteRule rule, int a, int b, int k, int n) {
       if (2 * k == n) return (a + b + 1) >> 1;
       return k == 1 ? (43 * a + 21 * b + 32) >> 6 : (21 * a + 43 * b + 32) >> 6;
     case PaletteRule::kNvidia:
-      break;  // needs the 5-bit end points: nvidiaChannel
+    case PaletteRule::kWeights:
+      break;  // needs the 5-bit end points (nvidiaChannel) or the weights (alphaPalette)
   }
   return sum / n;
 }
@@ -113,12 +114,22 @@ Palette colourPalette(const ColourBlock& b, PaletteRule rule) {
   return p;
 }
 
-std::array<uint8_t, 8> alphaPalette(const std::byte* block, PaletteRule rule) {
+std::array<uint8_t, 8> alphaPalette(const std::byte* block, PaletteRule rule,
+                                    const AlphaWeights& weights = {}) {
   const int a0 = std::to_integer<int>(block[0]), a1 = std::to_integer<int>(block[1]);
   std::array<uint8_t, 8> p{static_cast<uint8_t>(a0), static_cast<uint8_t>(a1)};
   const int n = a0 > a1 ? 7 : 5;
-  for (int k = 1; k < n; ++k)
-    p[static_cast<size_t>(k + 1)] = static_cast<uint8_t>(step(rule, a0, a1, k, n));
+  constexpr int kOne = 1 << kPaletteWeightBits;
+  for (int k = 1; k < n; ++k) {
+    int v;
+    if (rule == PaletteRule::kWeights) {
+      const int w = weights[static_cast<size_t>(n == 7 ? k - 1 : 5 + k)];
+      v = (a0 * (kOne - w) + a1 * w + kOne / 2) >> kPaletteWeightBits;
+    } else {
+      v = step(rule, a0, a1, k, n);
+    }
+    p[static_cast<size_t>(k + 1)] = static_cast<uint8_t>(v);
+  }
   if (n == 5) {
     p[6] = 0;
     p[7] = 255;
@@ -147,7 +158,7 @@ std::array<BlockTexel, 16> decodeBlock(PixelFormat format, const std::byte* bloc
   const std::byte* colour = colourPart(format, block);
   const Palette palette = colourPalette(readColour(colour, !bc1), decoding.colour);
   std::array<uint8_t, 8> alpha{};
-  if (!bc1) alpha = alphaPalette(block, decoding.alpha);
+  if (!bc1) alpha = alphaPalette(block, decoding.alpha, decoding.alphaWeights);
   std::array<BlockTexel, 16> texels;
   for (uint32_t t = 0; t < 16; ++t) {
     texels[t] = palette[colourIndex(colour, t)];
@@ -164,6 +175,7 @@ std::array<BlockTexel, 2> decodeTexelRange(PixelFormat format, const std::byte* 
   const uint32_t ci = colourIndex(colour, index);
   BlockTexel lo = colourPalette(b, PaletteRule::kNearest)[ci], hi = lo;
   for (const auto& [rule, name] : kPaletteRuleNames) {
+    if (!isColourRule(rule)) continue;
     const BlockTexel v = colourPalette(b, rule)[ci];
     for (size_t c = 0; c < 3; ++c) {
       lo[c] = std::min(lo[c], v[c]);
@@ -184,8 +196,9 @@ std::array<BlockTexel, 2> decodeTexelRange(PixelFormat format, const std::byte* 
   const int a0 = std::to_integer<int>(block[0]), a1 = std::to_integer<int>(block[1]);
   const int n = a0 > a1 ? 7 : 5, k = static_cast<int>(ai) - 1;
   int aLo = alphaPalette(block, PaletteRule::kNearest)[ai], aHi = aLo;
+  // The weights member has no weights of its own: the measured steps below bound the one known.
   for (const auto& [rule, name] : kPaletteRuleNames)
-    if (isAlphaRule(rule)) {
+    if (isAlphaRule(rule) && rule != PaletteRule::kWeights) {
       const int v = alphaPalette(block, rule)[ai];
       aLo = std::min(aLo, v);
       aHi = std::max(aHi, v);

@@ -29,6 +29,11 @@
 //                     (its alpha palettes have no midpoint: they are fixed_point_lerp's)
 //   amd               colour only: (43 a + 21 b + 32) >> 6 and the midpoint (a + b + 1) >> 1 on
 //                     8-bit end points, as published for AMD GPUs by the rgbcx encoder
+//   weights           alpha only: the k-th of n steps as (a (4096 - w) + b w + 2048) >> 12 with one
+//                     measured integer weight w per step (BlockDecoding::alphaWeights: six for
+//                     sevenths, then four for fifths), fitted by `vt calibrate` on a GPU's dense
+//                     alpha probe (data/gpus/nvidia-h100/bc3-alpha.u8: w = 578, 1156, 1784, 2312,
+//                     2940, 3518 and 770, 1540, 2556, 3326 reproduce every end-point pair there)
 //   nvidia            colour only: red and blue interpolated on the 5-bit end points,
 //                     ((2 a + b) * 22) / 8 and midpoint ((a + b) * 33) / 8, green from the 8-bit
 //                     end points as (256 a + d / 4 + 128 + 80 d) / 256 with d = b - a (midpoint:
@@ -60,26 +65,36 @@ enum class PaletteRule {
   kFixedPointLerp,
   kFixedPointLerpFlooredHalf,
   kAmd,
-  kNvidia
+  kNvidia,
+  kWeights
 };
-inline constexpr EnumNames<PaletteRule, 6> kPaletteRuleNames = {
+inline constexpr EnumNames<PaletteRule, 7> kPaletteRuleNames = {
     {{PaletteRule::kNearest, "nearest"},
      {PaletteRule::kTruncated, "truncated"},
      {PaletteRule::kFixedPointLerp, "fixed_point_lerp"},
      {PaletteRule::kFixedPointLerpFlooredHalf, "fixed_point_lerp_floored_half"},
      {PaletteRule::kAmd, "amd"},
-     {PaletteRule::kNvidia, "nvidia"}}};
+     {PaletteRule::kNvidia, "nvidia"},
+     {PaletteRule::kWeights, "weights"}}};
 
 // The members a BC3 alpha palette may use (the published hardware rules describe colour only;
 // without a midpoint, fixed_point_lerp_floored_half is fixed_point_lerp).
 constexpr bool isAlphaRule(PaletteRule rule) {
   return rule == PaletteRule::kNearest || rule == PaletteRule::kTruncated ||
-         rule == PaletteRule::kFixedPointLerp;
+         rule == PaletteRule::kFixedPointLerp || rule == PaletteRule::kWeights;
 }
+// The members a colour palette may use.
+constexpr bool isColourRule(PaletteRule rule) { return rule != PaletteRule::kWeights; }
+
+// The weights member's fraction bits: w / 2^12 of the far end point.
+inline constexpr int kPaletteWeightBits = 12;
+// Its weights: steps 1 to 6 of sevenths (a0 > a1), then steps 1 to 4 of fifths (a0 <= a1).
+using AlphaWeights = std::array<uint16_t, 10>;
 
 struct BlockDecoding {
   PaletteRule colour = PaletteRule::kNearest;
   PaletteRule alpha = PaletteRule::kNearest;
+  AlphaWeights alphaWeights{};  // alpha == kWeights only
   bool operator==(const BlockDecoding&) const = default;
 };
 

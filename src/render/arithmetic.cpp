@@ -21,17 +21,35 @@ std::string describe(const Arithmetic& a) {
   line("depth", std::string(a.depth.offsetAndClamp ? "offset and clamp" : "as interpolated") +
                     ", Z24 " + std::string(nameOf(kZ24ConversionNames, a.depth.z24)));
   line("log2", std::string(nameOf(kLog2FormNames, a.log2)));
-  line("filter",
-       std::string(nameOf(kFilterWeightsNames, a.filter.weights)) +
-           (a.filter.weights == FilterWeights::kFloat
-                ? std::string(a.filter.fusedLerp ? ", fused lerp" : ", unfused lerp") +
-                      (a.filter.fusedCoordinate ? ", fused position" : ", unfused position")
-                : ", lerp products rounded to " +
-                      std::string(nameOf(kLerpRoundingNames, a.filter.lerpRounding))));
+  const Filter& f = a.filter;
+  const std::string rounding(nameOf(kLerpRoundingNames, f.lerpRounding));
+  std::string filter(nameOf(kFilterWeightsNames, f.weights));
+  if (f.weights == FilterWeights::kFloat)
+    filter += std::string(f.fusedLerp ? ", fused lerp" : ", unfused lerp") +
+              (f.fusedCoordinate ? ", fused position" : ", unfused position");
+  else if (f.weights == FilterWeights::kFixedPoint8)
+    filter += ", lerp products rounded to " + rounding;
+  else
+    filter += ", coordinates on " + std::to_string(f.coordinateBits) + " bits, positions " +
+              std::string(nameOf(kPositionRoundingNames, f.positionRounding)) + " to 2^-" +
+              std::to_string(f.weightBits) + " texel, corner product rounded to " + rounding +
+              ", " + std::string(nameOf(kFilterOutputNames, f.output)) + " result";
+  line("filter", filter);
   line("texel_conversion", std::string(nameOf(kUnormConversionNames, a.texelConversion)));
   line("denormals", a.flushDenormals ? "flushed" : "kept");
-  line("block_decoding", "colour " + std::string(nameOf(kPaletteRuleNames, a.blockDecoding.colour)) +
-                             ", alpha " + std::string(nameOf(kPaletteRuleNames, a.blockDecoding.alpha)));
+  std::string alpha(nameOf(kPaletteRuleNames, a.blockDecoding.alpha));
+  if (a.blockDecoding.alpha == PaletteRule::kWeights) {
+    alpha += " (of 4096:";
+    for (const uint16_t w : a.blockDecoding.alphaWeights) alpha += " " + std::to_string(w);
+    alpha += ")";
+  }
+  line("block_decoding", "colour " +
+                             std::string(nameOf(kPaletteRuleNames, a.blockDecoding.colour)) +
+                             ", alpha " + alpha);
+  // Written for a measured member only, so that the named points describe themselves as before.
+  if (a.colourConversion.rule == ColourConversionRule::kQuantized)
+    line("colour_conversion", "quantized to " + std::to_string(a.colourConversion.bits) +
+                                  " bits, bias " + std::to_string(a.colourConversion.bias));
   return text;
 }
 

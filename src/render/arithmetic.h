@@ -36,9 +36,12 @@
 //                  log2f, or logf(x) * 1.442695f (softpipe-arithmetic.md, 5.2)
 //   GL_LINEAR      weights on 8 bits with fixed-point lerps a + ((f * (b - a) + 128) >> 8)
 //                  (DESIGN 7, rule 9) or with the product floored, a + ((f * (b - a)) >> 8)
-//                  (a multiply-high without rounding), or float weights with lerps a + (b - a) * w rounded per
-//                  operation or fma(w, b - a, a); the texel position u * size - 0.5 as a product
-//                  and a difference or one fma
+//                  (a multiply-high without rounding), or float weights with lerps a + (b - a) * w
+//                  rounded per operation or fma(w, b - a, a); the texel position u * size - 0.5 as
+//                  a product and a difference or one fma or corner weights on fixed-point positions
+//                  with the result as unorm16 (the parameters of Filter: coordinate bits, position
+//                  rounding, weight bits, how the corner product rounds, the output's precision;
+//                  measured on a GPU)
 //   texel values   texelFetch of unorm8 k as k * (1 / 255) (DESIGN 7, rule 9) or k / 255
 //   precision      each float operation rounded to float (SSE arithmetic), or expressions
 //                  evaluated in extended precision and rounded once (an x87 code generator):
@@ -47,7 +50,9 @@
 //   block decoding how a BC1/BC3 palette's thirds, halves, sevenths and fifths become 8 bits, one
 //                  rule for colour and one for alpha: rounded to nearest, truncated (Mesa's util
 //                  decoder, softpipe), llvmpipe's fixed-point lerps, or a published hardware
-//                  rule (format/block_decoding.h)
+//                  rule, or for alpha measured integer weights (format/block_decoding.h)
+//   framebuffer    a float colour to unorm8 rounded to nearest even, or truncated to a number of
+//                  bits first and scaled with a bias (ColourConversion; measured on a GPU)
 //
 // sqrt and the shader's + - * are IEEE in every member (GLSL 4.50 section 4.7.1 allows more; a
 // measurement that differs is bounded, see precision_model.h).
@@ -114,21 +119,51 @@ inline constexpr EnumNames<Log2Form, 4> kLog2FormNames = {
      {Log2Form::kLibm, "libm"},
      {Log2Form::kNaturalTimesLog2e, "natural_times_log2e"}}};
 
-enum class FilterWeights { kFixedPoint8, kFloat };
-inline constexpr EnumNames<FilterWeights, 2> kFilterWeightsNames = {
-    {{FilterWeights::kFixedPoint8, "fixed_point_8"}, {FilterWeights::kFloat, "float"}}};
+enum class FilterWeights { kFixedPoint8, kFloat, kFixedPointCorners };
+inline constexpr EnumNames<FilterWeights, 3> kFilterWeightsNames = {
+    {{FilterWeights::kFixedPoint8, "fixed_point_8"},
+     {FilterWeights::kFloat, "float"},
+     {FilterWeights::kFixedPointCorners, "fixed_point_corners"}}};
 
-// kFixedPoint8: how a lerp's product f * (b - a) comes back to 8 bits.
+// kFixedPoint8: how a lerp's product f * (b - a) comes back to 8 bits; kFixedPointCorners: how
+// the product of the two weights does.
 enum class LerpRounding { kNearest, kFloor };
 inline constexpr EnumNames<LerpRounding, 2> kLerpRoundingNames = {
     {{LerpRounding::kNearest, "nearest"}, {LerpRounding::kFloor, "floor"}}};
+
+// kFixedPointCorners: how the texel position becomes a whole number of 2^-weightBits texel.
+enum class PositionRounding { kHalfUp, kFloor };
+inline constexpr EnumNames<PositionRounding, 2> kPositionRoundingNames = {
+    {{PositionRounding::kHalfUp, "half_up"}, {PositionRounding::kFloor, "floor"}}};
+
+// kFixedPointCorners: what the sampler returns, the weighted sum S of the four texels (a whole
+// number of 1 / (255 * 2^weightBits)) rounded half up to a unorm8 or unorm16 value, or S divided
+// in float.
+enum class FilterOutput { kUnorm8, kUnorm16, kFloat };
+inline constexpr EnumNames<FilterOutput, 3> kFilterOutputNames = {
+    {{FilterOutput::kUnorm8, "unorm8"},
+     {FilterOutput::kUnorm16, "unorm16"},
+     {FilterOutput::kFloat, "float"}}};
 
 struct Filter {
   FilterWeights weights = FilterWeights::kFloat;
   bool fusedLerp = false;        // kFloat: fma(w, b - a, a) instead of a + (b - a) * w
   bool fusedCoordinate = false;  // kFloat: fma(u, size, -0.5) instead of u * size - 0.5
-  // kFixedPoint8: + 128 before >> 8 (kNearest) or >> 8 alone (kFloor)
+  // kFixedPoint8: + 128 before >> 8 (kNearest) or >> 8 alone (kFloor); kFixedPointCorners: the
+  // same for the corner weight w11 = fx fy / 2^weightBits.
   LerpRounding lerpRounding = LerpRounding::kNearest;
+  // kFixedPointCorners only (the other members ignore them):
+  //   U = floor(u 2^coordinateBits)          the normalized coordinate truncated
+  //   P = U size / 2^coordinateBits - 1/2    the texel position, exact
+  //   q = round(P 2^weightBits)              by positionRounding; i0 = q >> weightBits,
+  //                                          f = q & (2^weightBits - 1) per axis
+  //   w11 = fx fy / 2^weightBits (rounded by lerpRounding), w10 = fx - w11, w01 = fy - w11,
+  //   w00 = 2^weightBits - fx - fy + w11;  S = sum of w t over the four texels (unorm8 t)
+  //   the result: S as `output` says.
+  int coordinateBits = 21;
+  int weightBits = 8;
+  PositionRounding positionRounding = PositionRounding::kHalfUp;
+  FilterOutput output = FilterOutput::kUnorm16;
   bool operator==(const Filter&) const = default;
 };
 
@@ -136,6 +171,20 @@ enum class UnormConversion { kTimesReciprocal, kDivided };
 inline constexpr EnumNames<UnormConversion, 2> kUnormConversionNames = {
     {{UnormConversion::kTimesReciprocal, "times_reciprocal"},
      {UnormConversion::kDivided, "divided"}}};
+
+// The framebuffer's conversion of a float colour x in [0, 1] to unorm8: rounded to nearest even
+// (x * 255 in float, DESIGN section 7), or quantized first: x truncated to `bits` fractional bits,
+// then k = floor(x 2^bits) scaled to (255 k + bias) >> bits.
+enum class ColourConversionRule { kNearest, kQuantized };
+inline constexpr EnumNames<ColourConversionRule, 2> kColourConversionRuleNames = {
+    {{ColourConversionRule::kNearest, "nearest"}, {ColourConversionRule::kQuantized, "quantized"}}};
+
+struct ColourConversion {
+  ColourConversionRule rule = ColourConversionRule::kNearest;
+  int bits = 12;    // kQuantized: 8 to 24
+  int bias = 2047;  // kQuantized: 0 to 2^bits - 1
+  bool operator==(const ColourConversion&) const = default;
+};
 
 struct Arithmetic {
   bool fusedViewport = false;
@@ -149,6 +198,7 @@ struct Arithmetic {
   UnormConversion texelConversion = UnormConversion::kTimesReciprocal;
   bool flushDenormals = false;
   BlockDecoding blockDecoding;
+  ColourConversion colourConversion;
   bool operator==(const Arithmetic&) const = default;
 };
 

@@ -22,8 +22,8 @@ std::map<std::string, std::string> everyParameterFrom(const std::string& source)
 
 bool PrecisionModel::pinned() const {
   return coveragePinned() && depthUlps == 0 && depthRoundsToNearest && attributeUlps == 0 &&
-         log2Pinned && sqrtUlps == 0 && arithmeticUlps == 0 && filterPinned &&
-         colorRoundsToNearest && denormalsPinned && decodingPinned;
+         log2Pinned && sqrtUlps == 0 && arithmeticUlps == 0 && filterPinned && colorPinned &&
+         denormalsPinned && decodingPinned;
 }
 
 bool PrecisionModel::onlyDenormalsFree() const {
@@ -98,7 +98,7 @@ PrecisionModel gl45Model() {
   m.sources["filter"] =
       "GL 4.5 core, section 8.14.2 gives no precision; dEQP's texture lookup verifier (strict "
       "precision): 7 sub-texel bits, colour threshold of format bits minus 2, 4 units of 1/255";
-  m.colorRoundsToNearest = false;
+  m.colorPinned = false;
   m.sources["color_conversion"] =
       "GL 4.5 core, section 2.3.5.2: either of the two nearest unorm values (nearest preferred); "
       "section 17.3.10: dithering, enabled by default, may choose either";

@@ -70,9 +70,10 @@ struct PrecisionModel {
   int subTexelBits = 0;         // bounded: texel positions snapped to 2^-subTexelBits texel
   double filterErrorUnits = 0;  // bounded: error of the filtered value, in units of 1/255
 
-  // Framebuffer: a float colour becomes RGBA8 by rounding to nearest (pinned) or may become either
-  // of the two nearest values (GL 4.5 section 2.3.5.2).
-  bool colorRoundsToNearest = true;
+  // Framebuffer: a float colour becomes RGBA8 as the arithmetic's colour conversion says (pinned:
+  // rounded to nearest, or a measured quantization) or may become either of the two nearest
+  // values (GL 4.5 section 2.3.5.2).
+  bool colorPinned = true;
   // Denormals in fragment arithmetic: pinned to the arithmetic's choice, or free.
   bool denormalsPinned = true;
   // Block-compressed caches: texels decoded as the arithmetic's block-decoding member (pinned),

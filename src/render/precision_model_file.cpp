@@ -71,6 +71,23 @@ class Fields {
                                   std::to_string(lo) + " to " + std::to_string(hi));
     return v.get<double>();
   }
+  // The ten weights of a palette's weights member, each a whole number from 0 to 2^12.
+  AlphaWeights weights(const char* field) const {
+    const nlohmann::json& v = at(field);
+    AlphaWeights w{};
+    if (!v.is_array() || v.size() != w.size())
+      throw InputError(file_, "field " + prefix_ + field + " is not a list of " +
+                                  std::to_string(w.size()) + " weights");
+    for (size_t i = 0; i < w.size(); ++i) {
+      if (!v[i].is_number_integer() || v[i].get<int64_t>() < 0 ||
+          v[i].get<int64_t>() > (1 << kPaletteWeightBits))
+        throw InputError(file_, "field " + prefix_ + field + "[" + std::to_string(i) +
+                                    "] is not a whole number from 0 to " +
+                                    std::to_string(1 << kPaletteWeightBits));
+      w[i] = static_cast<uint16_t>(v[i].get<int64_t>());
+    }
+    return w;
+  }
   int whole(const char* field, int lo, int hi) const {
     const nlohmann::json& v = at(field);
     if (!v.is_number_integer() || v.get<int64_t>() < lo || v.get<int64_t>() > hi)
@@ -103,6 +120,15 @@ Arithmetic readArithmetic(const Fields& f) {
   a.log2 = f.named("log2", kLog2FormNames);
   const Fields filter = f.object("filter");
   a.filter.weights = filter.named("weights", kFilterWeightsNames);
+  // The corner-weight member's parameters, written for it alone.
+  if (a.filter.weights == FilterWeights::kFixedPointCorners) {
+    a.filter.coordinateBits = filter.whole("coordinate_bits", 8, 30);
+    a.filter.weightBits = filter.whole("weight_bits", 1, 12);
+    if (a.filter.weightBits > a.filter.coordinateBits)
+      throw filter.failure("field weight_bits is more than coordinate_bits");
+    a.filter.positionRounding = filter.named("position_rounding", kPositionRoundingNames);
+    a.filter.output = filter.named("output", kFilterOutputNames);
+  }
   a.filter.fusedLerp = filter.flag("fused_lerp");
   a.filter.fusedCoordinate = filter.flag("fused_coordinate");
   // Absent from files written before the member existed, which all rounded to nearest.
@@ -120,6 +146,21 @@ Arithmetic readArithmetic(const Fields& f) {
       throw decoding.failure("field alpha is '" +
                              std::string(nameOf(kPaletteRuleNames, a.blockDecoding.alpha)) +
                              "', a rule for colour palettes only");
+    if (!isColourRule(a.blockDecoding.colour))
+      throw decoding.failure("field colour is '" +
+                             std::string(nameOf(kPaletteRuleNames, a.blockDecoding.colour)) +
+                             "', a rule for alpha palettes only");
+    if (a.blockDecoding.alpha == PaletteRule::kWeights)
+      a.blockDecoding.alphaWeights = decoding.weights("alpha_weights");
+  }
+  // Absent from files written before the member existed: rounded to nearest.
+  if (f.has("colour_conversion")) {
+    const Fields conversion = f.object("colour_conversion");
+    a.colourConversion.rule = conversion.named("rule", kColourConversionRuleNames);
+    if (a.colourConversion.rule == ColourConversionRule::kQuantized) {
+      a.colourConversion.bits = conversion.whole("bits", 8, 24);
+      a.colourConversion.bias = conversion.whole("bias", 0, (1 << a.colourConversion.bits) - 1);
+    }
   }
   return a;
 }
@@ -135,30 +176,48 @@ void readVersion1(const Fields& f, PrecisionModel& m) {
 }  // namespace
 
 nlohmann::ordered_json arithmeticJson(const Arithmetic& a) {
-  return {{"viewport", a.fusedViewport ? "fused" : "unfused"},
-          {"coverage",
-           {{"rule", nameOf(kCoverageRuleNames, a.coverage.rule)},
-            {"subpixel_bits", a.coverage.subpixelBits},
-            {"rounding", nameOf(kSnapRoundingNames, a.coverage.rounding)},
-            {"left_edges_in", a.coverage.leftEdgesIn},
-            {"bottom_edges_in", a.coverage.bottomEdgesIn}}},
-          {"plane_setup", nameOf(kPlaneSetupNames, a.planeSetup)},
-          {"plane_evaluation", nameOf(kPlaneEvaluationNames, a.planeEvaluation)},
-          {"perspective", nameOf(kPerspectiveNames, a.perspective)},
-          {"depth",
-           {{"offset_and_clamp", a.depth.offsetAndClamp},
-            {"z24", nameOf(kZ24ConversionNames, a.depth.z24)}}},
-          {"log2", nameOf(kLog2FormNames, a.log2)},
-          {"filter",
-           {{"weights", nameOf(kFilterWeightsNames, a.filter.weights)},
-            {"fused_lerp", a.filter.fusedLerp},
-            {"fused_coordinate", a.filter.fusedCoordinate},
-            {"lerp_rounding", nameOf(kLerpRoundingNames, a.filter.lerpRounding)}}},
-          {"texel_conversion", nameOf(kUnormConversionNames, a.texelConversion)},
-          {"denormals", a.flushDenormals ? "flushed" : "kept"},
-          {"block_decoding",
-           {{"colour", nameOf(kPaletteRuleNames, a.blockDecoding.colour)},
-            {"alpha", nameOf(kPaletteRuleNames, a.blockDecoding.alpha)}}}};
+  nlohmann::ordered_json json = {
+      {"viewport", a.fusedViewport ? "fused" : "unfused"},
+      {"coverage",
+       {{"rule", nameOf(kCoverageRuleNames, a.coverage.rule)},
+        {"subpixel_bits", a.coverage.subpixelBits},
+        {"rounding", nameOf(kSnapRoundingNames, a.coverage.rounding)},
+        {"left_edges_in", a.coverage.leftEdgesIn},
+        {"bottom_edges_in", a.coverage.bottomEdgesIn}}},
+      {"plane_setup", nameOf(kPlaneSetupNames, a.planeSetup)},
+      {"plane_evaluation", nameOf(kPlaneEvaluationNames, a.planeEvaluation)},
+      {"perspective", nameOf(kPerspectiveNames, a.perspective)},
+      {"depth",
+       {{"offset_and_clamp", a.depth.offsetAndClamp},
+        {"z24", nameOf(kZ24ConversionNames, a.depth.z24)}}},
+      {"log2", nameOf(kLog2FormNames, a.log2)},
+      {"filter",
+       {{"weights", nameOf(kFilterWeightsNames, a.filter.weights)},
+        {"fused_lerp", a.filter.fusedLerp},
+        {"fused_coordinate", a.filter.fusedCoordinate},
+        {"lerp_rounding", nameOf(kLerpRoundingNames, a.filter.lerpRounding)}}},
+      {"texel_conversion", nameOf(kUnormConversionNames, a.texelConversion)},
+      {"denormals", a.flushDenormals ? "flushed" : "kept"},
+      {"block_decoding",
+       {{"colour", nameOf(kPaletteRuleNames, a.blockDecoding.colour)},
+        {"alpha", nameOf(kPaletteRuleNames, a.blockDecoding.alpha)}}}};
+  // Members measured on a GPU carry their parameters; files of the other members stay as they
+  // were written before these existed.
+  if (a.filter.weights == FilterWeights::kFixedPointCorners) {
+    nlohmann::ordered_json& filter = json["filter"];
+    filter["coordinate_bits"] = a.filter.coordinateBits;
+    filter["weight_bits"] = a.filter.weightBits;
+    filter["position_rounding"] = nameOf(kPositionRoundingNames, a.filter.positionRounding);
+    filter["output"] = nameOf(kFilterOutputNames, a.filter.output);
+  }
+  if (a.blockDecoding.alpha == PaletteRule::kWeights)
+    json["block_decoding"]["alpha_weights"] = a.blockDecoding.alphaWeights;
+  if (a.colourConversion.rule != ColourConversionRule::kNearest)
+    json["colour_conversion"] = {
+        {"rule", nameOf(kColourConversionRuleNames, a.colourConversion.rule)},
+        {"bits", a.colourConversion.bits},
+        {"bias", a.colourConversion.bias}};
+  return json;
 }
 
 PrecisionModel readModelFile(const std::filesystem::path& file) {
@@ -192,7 +251,15 @@ PrecisionModel readModelFile(const std::filesystem::path& file) {
   m.arithmeticUlps = f.number("arithmetic_ulps", 0, kMaxError);
   m.subTexelBits = f.whole("sub_texel_bits", 0, 16);
   m.filterErrorUnits = f.number("filter_error_units", 0, 255);
-  m.colorRoundsToNearest = f.choice("color_conversion", {"nearest", "either"}) == "nearest";
+  // "nearest" in files of the nearest member (all written before measured members existed),
+  // "pinned" for a measured one.
+  const std::string colour = f.choice("color_conversion", {"nearest", "pinned", "either"});
+  m.colorPinned = colour != "either";
+  if (colour != "either" && (colour == "nearest") != (m.arithmetic.colourConversion.rule ==
+                                                      ColourConversionRule::kNearest))
+    throw f.failure(
+        "field color_conversion is '" + colour + "' but the arithmetic's is '" +
+        std::string(nameOf(kColourConversionRuleNames, m.arithmetic.colourConversion.rule)) + "'");
   m.denormalsPinned = f.choice("denormals", {"pinned", "free"}) == "pinned";
   // Absent from files written before block formats: pinned, as they decoded one way.
   m.decodingPinned =
@@ -243,7 +310,10 @@ std::string modelJson(const PrecisionModel& m) {
       {"filter", m.filterPinned ? "pinned" : "bounded"},
       {"sub_texel_bits", m.subTexelBits},
       {"filter_error_units", m.filterErrorUnits},
-      {"color_conversion", m.colorRoundsToNearest ? "nearest" : "either"},
+      {"color_conversion", !m.colorPinned ? "either"
+                           : m.arithmetic.colourConversion.rule == ColourConversionRule::kNearest
+                               ? "nearest"
+                               : "pinned"},
       {"denormals", m.denormalsPinned ? "pinned" : "free"},
       {"block_decoding", m.decodingPinned ? "pinned" : "free"},
       {"sources", m.sources}};

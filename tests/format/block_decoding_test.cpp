@@ -126,8 +126,11 @@ TEST(BlockDecoding, TheRangeHoldsEveryMemberAndTheFractionRoundedEitherWay) {
         const std::array<BlockTexel, 2> range = decodeTexelRange(format, block.data(), t);
         for (const auto& [colour, colourName] : kPaletteRuleNames)
           for (const auto& [alpha, alphaName] : kPaletteRuleNames) {
-            if (!isAlphaRule(alpha)) continue;
-            const BlockTexel v = decodeBlock(format, block.data(), {colour, alpha})[t];
+            if (!isColourRule(colour) || !isAlphaRule(alpha)) continue;
+            // The weights member as measured on an H100 (data/gpus/nvidia-h100/model.json).
+            const BlockTexel v = decodeBlock(
+                format, block.data(),
+                {colour, alpha, {578, 1156, 1784, 2312, 2940, 3518, 770, 1540, 2556, 3326}})[t];
             for (size_t c = 0; c < 4; ++c) {
               EXPECT_LE(range[0][c], v[c]);
               EXPECT_GE(range[1][c], v[c]);
@@ -144,7 +147,8 @@ TEST(BlockDecoding, TheRangeHoldsEveryMemberAndTheFractionRoundedEitherWay) {
 TEST(BlockDecoding, TheCalibrationProbesTellEveryTwoMembersApart) {
   for (const auto& [a, aName] : kPaletteRuleNames)
     for (const auto& [b, bName] : kPaletteRuleNames) {
-      if (a >= b) continue;
+      // The weights member is its weights, fitted apart from the rules (calibrate/decoding_fit.h).
+      if (a >= b || a == PaletteRule::kWeights || b == PaletteRule::kWeights) continue;
       SCOPED_TRACE(std::string(aName) + " and " + std::string(bName));
       bool colourDiffers = false, alphaDiffers = false;
       for (const PixelFormat format : {PixelFormat::kBc1, PixelFormat::kBc3}) {
@@ -160,6 +164,31 @@ TEST(BlockDecoding, TheCalibrationProbesTellEveryTwoMembersApart) {
       for (size_t i = 0; i < ta.size(); ++i) alphaDiffers |= ta[i][3] != tb[i][3];
       EXPECT_TRUE(alphaDiffers);
     }
+}
+
+// The weights member: step k of a BC3 alpha palette as (a0 (4096 - w) + a1 w + 2048) >> 12.
+TEST(BlockDecoding, TheWeightsMemberInterpolatesAlphaWithItsMeasuredWeights) {
+  // a0 = 255 > a1 = 0 (sevenths), every texel at index 4 (the third step, weight 1784):
+  // (255 2312 + 2048) >> 12 = 591608 >> 12 = 144; the specification's 4 255 / 7 = 145.7 rounds to
+  // 146.
+  std::byte block[16] = {std::byte{255}, std::byte{0}};
+  uint64_t indices = 0;
+  for (int t = 0; t < 16; ++t) indices |= uint64_t{4} << (3 * t);
+  for (int b = 0; b < 6; ++b) block[2 + b] = std::byte((indices >> (8 * b)) & 0xff);
+  BlockDecoding weights{PaletteRule::kNearest,
+                        PaletteRule::kWeights,
+                        {578, 1156, 1784, 2312, 2940, 3518, 770, 1540, 2556, 3326}};
+  EXPECT_EQ(decodeBlock(PixelFormat::kBc3, block, weights)[0][3], 144);
+  EXPECT_EQ(decodeBlock(PixelFormat::kBc3, block, {})[0][3], 146);
+  // a0 = 0 <= a1 = 200 (fifths), index 4 (the third step, weight 2556):
+  // (200 2556 + 2048) >> 12 = 513248 >> 12 = 125; the specification's 3 200 / 5 = 120.
+  block[0] = std::byte{0};
+  block[1] = std::byte{200};
+  EXPECT_EQ(decodeBlock(PixelFormat::kBc3, block, weights)[0][3], 125);
+  EXPECT_EQ(decodeBlock(PixelFormat::kBc3, block, {})[0][3], 120);
+  // Other weights, other values: the member is its weights.
+  weights.alphaWeights[8] = 2048;  // half: (200 2048 + 2048) >> 12 = 100
+  EXPECT_EQ(decodeBlock(PixelFormat::kBc3, block, weights)[0][3], 100);
 }
 
 }  // namespace

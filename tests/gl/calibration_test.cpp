@@ -95,7 +95,7 @@ void expectSameParameters(const calibrate::Calibration& c, const PrecisionModel&
   EXPECT_EQ(got.filterPinned, want.filterPinned);
   EXPECT_EQ(got.subTexelBits, want.subTexelBits);
   EXPECT_EQ(got.filterErrorUnits, want.filterErrorUnits);
-  EXPECT_EQ(got.colorRoundsToNearest, want.colorRoundsToNearest);
+  EXPECT_EQ(got.colorPinned, want.colorPinned);
   EXPECT_EQ(got.denormalsPinned, want.denormalsPinned);
   EXPECT_EQ(got.decodingPinned, want.decodingPinned);
   // And nothing else: the fields above are all the parameters.

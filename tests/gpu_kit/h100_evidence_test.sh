@@ -11,6 +11,8 @@ rm -rf "$work"
 mkdir -p "$work"
 tar -C "$work" -xzf "$evidence/probes.tar.gz"
 tar -C "$work" -xzf "$evidence/captures.tar.gz"
+# The dense BC3 alpha table beside the probes pins the alpha palette's weights (decoding_fit.h).
+cp "$evidence/bc3-alpha.u8" "$work/probes/"
 
 "$vt" calibrate --probes "$work/probes" -o "$work/model.json" >"$work/calibrate.txt" 2>&1 || {
   cat "$work/calibrate.txt"

@@ -55,8 +55,23 @@ TEST(PrecisionModelFile, RoundTripsEveryParameter) {
   PrecisionModel floored = llvmpipeModel();
   floored.name = "floored";
   floored.arithmetic.filter.lerpRounding = LerpRounding::kFloor;
+  // The members measured on a GPU, with their parameters.
+  PrecisionModel gpu = gl45Model();
+  gpu.name = "gpu";
+  gpu.filterPinned = true;
+  gpu.arithmetic.filter = {.weights = FilterWeights::kFixedPointCorners,
+                           .lerpRounding = LerpRounding::kFloor,
+                           .coordinateBits = 20,
+                           .weightBits = 6,
+                           .positionRounding = PositionRounding::kFloor,
+                           .output = FilterOutput::kUnorm8};
+  gpu.colorPinned = true;
+  gpu.arithmetic.colourConversion = {ColourConversionRule::kQuantized, 10, 511};
+  gpu.decodingPinned = true;
+  gpu.arithmetic.blockDecoding = {
+      PaletteRule::kNvidia, PaletteRule::kWeights, {1, 2, 3, 4, 5, 6, 7, 8, 9, 4096}};
   for (const PrecisionModel& m :
-       {measured, floored, llvmpipeModel(), softpipeModel(), exactModel()}) {
+       {measured, floored, gpu, llvmpipeModel(), softpipeModel(), exactModel()}) {
     std::ofstream(dir / "m.json") << modelJson(m);
     EXPECT_EQ(readModelFile(dir / "m.json"), m) << m.name;
     EXPECT_EQ(resolveModel((dir / "m.json").string(), "llvmpipe"), m);
@@ -117,6 +132,24 @@ TEST(PrecisionModelFile, RefusesMalformedFilesNamingTheField) {
   j = good;
   j["arithmetic"]["filter"]["lerp_rounding"] = "up";
   refused(j, "field arithmetic.filter.lerp_rounding is 'up', not one of nearest, floor");
+  j = good;
+  j["arithmetic"]["filter"]["weights"] = "fixed_point_corners";
+  refused(j, "field arithmetic.filter.coordinate_bits is missing");
+  j = good;
+  j["arithmetic"]["block_decoding"]["alpha"] = "weights";
+  refused(j, "field arithmetic.block_decoding.alpha_weights is missing");
+  j["arithmetic"]["block_decoding"]["alpha_weights"] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 4097};
+  refused(j,
+          "field arithmetic.block_decoding.alpha_weights[9] is not a whole number from 0 to 4096");
+  j = good;
+  j["arithmetic"]["block_decoding"]["colour"] = "weights";
+  refused(j, "field colour is 'weights', a rule for alpha palettes only");
+  j = good;
+  j["arithmetic"]["colour_conversion"] = {{"rule", "quantized"}, {"bits", 12}, {"bias", 4096}};
+  refused(j, "field arithmetic.colour_conversion.bias is not a whole number from 0 to 4095");
+  j["arithmetic"]["colour_conversion"]["bias"] = 2047;
+  j["color_conversion"] = "nearest";
+  refused(j, "field color_conversion is 'nearest' but the arithmetic's is 'quantized'");
   j = good;
   j["filter_error_units"] = 5;
   refused(j,
