@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "format/page_address.h"
+#include "reference/framebuffer_conversion.h"
 #include "reference/interval.h"
 #include "reference/perturbed_triangle.h"
 #include "shader/shader_cpp.h"
@@ -1052,10 +1053,10 @@ class Builder {
   // The corner-weight sampler (Filter::kFixedPointCorners) on a cell of texels c00, c10, c01, c11:
   // its sum differs from the exact bilinear filter at its rounded position only by the rounding of
   // w11 (half a step of 2^-weightBits, or a whole one floored) times c00 - c10 - c01 + c11, since
-  // w10, w01 and w00 follow from w11. 0 for the other members (their errors are samplerErrors').
+  // w10, w01 and w00 follow from w11. Callers ask only when cornerStep_ is not 0 (the other
+  // members' errors are samplerErrors').
   glm::dvec4 cornerRounding(const glm::dvec4& c00, const glm::dvec4& c10, const glm::dvec4& c01,
                             const glm::dvec4& c11) const {
-    if (cornerStep_ == 0) return glm::dvec4(0);
     return glm::abs(c00 - c10 - c01 + c11) * cornerStep_;
   }
   // The same bound over every texel value the filter could read (|cross term| <= 2 * 255).
@@ -1268,14 +1269,9 @@ class Builder {
       double l, h;
       const ColourConversion& conversion = model_.arithmetic.colourConversion;
       if (model_.colorPinned && conversion.rule == ColourConversionRule::kQuantized) {
-        // (255 floor(x 2^bits) + bias) >> bits does not decrease with x: its values at the ends.
-        const auto quantized = [&](double units) {
-          const double x = std::clamp(units / 255, 0.0, 1.0);
-          const double k = std::floor(std::ldexp(x, conversion.bits));
-          return std::floor(std::ldexp(255 * k + conversion.bias, -conversion.bits));
-        };
-        l = quantized(v.lo - kSlack);
-        h = quantized(v.hi + kSlack);
+        // It does not decrease with the value: its values at the interval's ends.
+        l = quantizedUnorm8(std::clamp((v.lo - kSlack) / 255, 0.0, 1.0), conversion);
+        h = quantizedUnorm8(std::clamp((v.hi + kSlack) / 255, 0.0, 1.0), conversion);
       } else if (model_.colorPinned) {
         l = std::ceil(v.lo - 0.5 - kSlack);
         h = std::floor(v.hi + 0.5 + kSlack);

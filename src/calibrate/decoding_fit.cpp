@@ -35,7 +35,7 @@ struct WeightRanges {
   }
   // One measured value v of step k (1-based) between a0 and a1.
   void add(int a0, int a1, int k, int v) {
-    const size_t i = static_cast<size_t>(a0 > a1 ? k - 1 : 5 + k);
+    const size_t i = alphaWeightSlot(a0, a1, k);
     ++samples;
     constexpr int kOne = 1 << kPaletteWeightBits;
     // v 4096 <= a0 4096 + d w + 2048 < (v + 1) 4096, with d = a1 - a0.
@@ -92,18 +92,12 @@ WeightRanges alphaWeightRanges(const std::vector<glm::vec4>& bc3Measured,
       const std::byte* block = blocks.data() + (size_t(y / 4) * kBlocksPerSide + size_t(x / 4)) *
                                                    blockBytes(PixelFormat::kBc3);
       const int a0 = std::to_integer<int>(block[0]), a1 = std::to_integer<int>(block[1]);
-      const uint64_t indices = [&] {
-        uint64_t v = 0;
-        for (int b = 0; b < 6; ++b)
-          v |= uint64_t{std::to_integer<uint8_t>(block[2 + b])} << (8 * b);
-        return v;
-      }();
-      const int index = static_cast<int>((indices >> (3 * ((y % 4) * 4 + x % 4))) & 7);
+      const int index = static_cast<int>(alphaIndex(block, uint32_t((y % 4) * 4 + x % 4)));
       const int n = a0 > a1 ? 7 : 5, k = index - 1;
       if (k < 1 || k >= n) continue;  // an end point, or the five-value mode's 0 and 255
       const int v = unorm8Of(bc3Measured[size_t(y) * kDecodingProbeSide + size_t(x)][3]);
       if (v < 0) {
-        ranges.hi[a0 > a1 ? size_t(k - 1) : size_t(5 + k)] = -1;  // not an 8-bit value
+        ranges.hi[alphaWeightSlot(a0, a1, k)] = -1;  // not an 8-bit value
         continue;
       }
       ranges.add(a0, a1, k, v);
@@ -173,6 +167,7 @@ DecodingFit fitBlockDecoding() {
 
   // Every member against every texel; the alpha rules on BC3's alpha only.
   std::vector<MemberResult> colours, alphas;
+  std::vector<PaletteRule> colourRules, alphaRules;  // the rule of each member, in order
   constexpr uint64_t kTexels = uint64_t{kDecodingProbeSide} * kDecodingProbeSide;
   const uint64_t colourProbes = 2 * kTexels * 3, alphaProbes = kTexels;
   for (const auto& [rule, name] : kPaletteRuleNames) {
@@ -192,8 +187,14 @@ DecodingFit fitBlockDecoding() {
           alphaMisses += unorm8Of(measured[f][i][3]) != expectedAlpha[i][3];
       }
     }
-    if (isColourRule(rule)) colours.push_back({ruleName(rule), colourMisses});
-    if (isAlphaRule(rule)) alphas.push_back({ruleName(rule), alphaMisses});
+    if (isColourRule(rule)) {
+      colours.push_back({ruleName(rule), colourMisses});
+      colourRules.push_back(rule);
+    }
+    if (isAlphaRule(rule)) {
+      alphas.push_back({ruleName(rule), alphaMisses});
+      alphaRules.push_back(rule);
+    }
   }
   fit.colour = ParameterFit{"block_decoding",
                             "texelFetch of every texel of a 64 x 64 BC1 and a 64 x 64 BC3 texture "
@@ -203,17 +204,8 @@ DecodingFit fitBlockDecoding() {
                            "texelFetch of every texel of a 64 x 64 BC3 texture of random blocks: "
                            "alpha",
                            alphaProbes, alphas};
-  {
-    const size_t colourIndex = fit.colour.choose();
-    size_t seen = 0;
-    for (const auto& [rule, name] : kPaletteRuleNames)
-      if (isColourRule(rule) && seen++ == colourIndex) fit.decoding.colour = rule;
-  }
-  const size_t alphaIndex = fit.alpha.choose();
-  size_t seen = 0;
-  for (const auto& [rule, name] : kPaletteRuleNames)
-    if (isAlphaRule(rule) && rule != PaletteRule::kWeights && seen++ == alphaIndex)
-      fit.decoding.alpha = rule;
+  fit.decoding.colour = colourRules[fit.colour.choose()];
+  fit.decoding.alpha = alphaRules[fit.alpha.choose()];
   std::string weightsFinding;
   if (!fit.alpha.pinned) {
     // No rule reproduces the alpha: the weights member, where the measured values allow one

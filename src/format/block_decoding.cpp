@@ -123,7 +123,7 @@ std::array<uint8_t, 8> alphaPalette(const std::byte* block, PaletteRule rule,
   for (int k = 1; k < n; ++k) {
     int v;
     if (rule == PaletteRule::kWeights) {
-      const int w = weights[static_cast<size_t>(n == 7 ? k - 1 : 5 + k)];
+      const int w = weights[alphaWeightSlot(a0, a1, k)];
       v = (a0 * (kOne - w) + a1 * w + kOne / 2) >> kPaletteWeightBits;
     } else {
       v = step(rule, a0, a1, k, n);
@@ -141,16 +141,16 @@ uint32_t colourIndex(const std::byte* colourBlock, uint32_t texel) {
   return (loadLittle(colourBlock + 4, 4) >> (2 * texel)) & 3;
 }
 
-uint32_t alphaIndex(const std::byte* block, uint32_t texel) {
-  const uint64_t indices = loadLittle(block + 2, 3) | (uint64_t{loadLittle(block + 5, 3)} << 24);
-  return static_cast<uint32_t>((indices >> (3 * texel)) & 7);
-}
-
 const std::byte* colourPart(PixelFormat format, const std::byte* block) {
   return format == PixelFormat::kBc1 ? block : block + 8;
 }
 
 }  // namespace
+
+uint32_t alphaIndex(const std::byte* block, uint32_t texel) {
+  const uint64_t indices = loadLittle(block + 2, 3) | (uint64_t{loadLittle(block + 5, 3)} << 24);
+  return static_cast<uint32_t>((indices >> (3 * texel)) & 7);
+}
 
 std::array<BlockTexel, 16> decodeBlock(PixelFormat format, const std::byte* block,
                                        BlockDecoding decoding) {

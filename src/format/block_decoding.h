@@ -90,6 +90,10 @@ constexpr bool isColourRule(PaletteRule rule) { return rule != PaletteRule::kWei
 inline constexpr int kPaletteWeightBits = 12;
 // Its weights: steps 1 to 6 of sevenths (a0 > a1), then steps 1 to 4 of fifths (a0 <= a1).
 using AlphaWeights = std::array<uint16_t, 10>;
+// The weight step k (1-based) of end points a0, a1 uses.
+constexpr size_t alphaWeightSlot(int a0, int a1, int k) {
+  return static_cast<size_t>(a0 > a1 ? k - 1 : 5 + k);
+}
 
 struct BlockDecoding {
   PaletteRule colour = PaletteRule::kNearest;
@@ -107,6 +111,9 @@ constexpr size_t blockBytes(PixelFormat format) { return format == PixelFormat::
 // side / 4 blocks of increasing t, TextureDescription::storedPageBytes of them) into RGBA8.
 void decodeBlocks(PixelFormat format, uint32_t side, std::span<const std::byte> blocks,
                   std::span<std::byte> rgba, BlockDecoding decoding = {});
+
+// The 3-bit alpha index of texel `texel` (row * 4 + column) of a BC3 block.
+uint32_t alphaIndex(const std::byte* block, uint32_t texel);
 
 // The 16 texels of one block, row by row.
 std::array<BlockTexel, 16> decodeBlock(PixelFormat format, const std::byte* block,
