@@ -2,6 +2,7 @@
 
 #include <epoxy/gl.h>
 
+#include <cmath>
 #include <cstddef>
 #include <random>
 #include <stdexcept>
@@ -155,8 +156,54 @@ ProbeIdentity identityHere() {
   return {glString(GL_RENDERER), glString(GL_VERSION), glString(GL_VENDOR)};
 }
 
+namespace {
+
+// No value a fit compares may be NaN or infinite: a comparison with NaN is false, so it would slip
+// past every check of a bound and become the model. The calibration's probes are made so that every
+// exact result is a finite number (shader probes: log2 and sqrt of positive inputs, products, lerps
+// and texture reads of finite values; triangles: attributes and depth of finite vertices with
+// w > 0 at every covered pixel), and GL 4.5 section 2.3.4 and GLSL 4.50 section 4.7.1 give
+// operations on finite values a finite result within their precision. Anything else breaks a rule:
+// the calibration stops with the probe and the value, and writes no model.
+std::string valueText(float v) { return std::isnan(v) ? "NaN" : v > 0 ? "+infinity" : "-infinity"; }
+
+[[noreturn]] void refuseValue(const std::string& probe, size_t at, const std::string& what,
+                              float v) {
+  throw std::runtime_error(
+      "the implementation breaks a rule (GL 4.5 core, section 2.3.4; GLSL 4.50, section 4.7.1: "
+      "operations on finite values give finite results): " +
+      probe + " returned " + valueText(v) + " " + what + " " + std::to_string(at) +
+      ", where the exact result is a finite number; no model written");
+}
+
+void refuseNonFinite(const ShaderProbe& probe, const std::vector<glm::vec4>& out) {
+  for (size_t i = 0; i < out.size(); ++i)
+    for (int c = 0; c < 4; ++c)
+      if (!std::isfinite(out[i][c]))
+        refuseValue("the shader probe '" + probe.body + "'", i,
+                    "in channel " + std::to_string(c) + " of sample", out[i][c]);
+}
+
+void refuseNonFinite(const RasterReadback& r, size_t triangles) {
+  for (size_t i = 0; i < r.triangle.size(); ++i) {
+    if (r.triangle[i] < 0) continue;  // uncovered: nothing was interpolated there
+    const float values[] = {r.uv[i].x,          r.uv[i].y,          r.derivatives[i].x,
+                            r.derivatives[i].y, r.derivatives[i].z, r.derivatives[i].w,
+                            r.depth[i]};
+    for (const float v : values)
+      if (!std::isfinite(v))
+        refuseValue("the triangle probe of " + std::to_string(triangles) + " triangles", i,
+                    "as a texture coordinate, derivative or depth at covered pixel", v);
+  }
+}
+
+}  // namespace
+
 std::vector<glm::vec4> runShaderProbe(const ShaderProbe& probe) {
-  return currentDrawer ? currentDrawer->shader(probe) : drawShaderProbeHere(probe);
+  std::vector<glm::vec4> out =
+      currentDrawer ? currentDrawer->shader(probe) : drawShaderProbeHere(probe);
+  refuseNonFinite(probe, out);
+  return out;
 }
 
 std::vector<glm::u8vec4> runColourProbe(const ShaderProbe& probe) {
@@ -164,8 +211,10 @@ std::vector<glm::u8vec4> runColourProbe(const ShaderProbe& probe) {
 }
 
 RasterReadback drawTriangles(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format) {
-  return currentDrawer ? currentDrawer->triangles(mesh, viewport, format)
-                       : drawTrianglesHere(mesh, viewport, format);
+  RasterReadback r = currentDrawer ? currentDrawer->triangles(mesh, viewport, format)
+                                   : drawTrianglesHere(mesh, viewport, format);
+  refuseNonFinite(r, mesh.indices.size() / 3);
+  return r;
 }
 
 ProbeIdentity probeIdentity() { return currentDrawer ? currentDrawer->identity() : identityHere(); }
