@@ -1,5 +1,6 @@
 #include "render/precision_model.h"
 
+#include <cmath>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -11,9 +12,9 @@ namespace {
 // One source for every parameter: a model pinned by one measurement or one arithmetic.
 std::map<std::string, std::string> everyParameterFrom(const std::string& source) {
   std::map<std::string, std::string> sources;
-  for (const char* parameter : {"subpixel_bits", "fill_rule", "depth", "attributes", "log2", "sqrt",
-                                "arithmetic", "filter", "color_conversion", "denormals",
-                                "block_decoding"})
+  for (const char* parameter :
+       {"subpixel_bits", "fill_rule", "depth", "attributes", "log2", "sqrt", "arithmetic", "filter",
+        "color_conversion", "denormals", "block_decoding"})
     sources[parameter] = source;
   return sources;
 }
@@ -121,25 +122,45 @@ std::vector<Gl45Excess> excessesOverGl45(const PrecisionModel& m) {
   std::vector<Gl45Excess> excesses;
   const auto beyond = [&](const std::string& what, double value, double bound,
                           const std::string& key) {
-    excesses.push_back({key, what + " " + std::to_string(value) + " beyond the specification's " +
+    const std::string measured = std::isfinite(value)
+                                     ? std::to_string(value)
+                                     : "not a finite number (" + std::to_string(value) + ")";
+    excesses.push_back({key, what + " " + measured + " beyond the specification's " +
                                  std::to_string(bound) + " (" + g.sources.at(key) + ")"});
   };
+  // A bound is within the specification's only when it compares at most equal: NaN compares
+  // false with everything, so it is never within.
+  const auto above = [](double value, double bound) { return !(value <= bound); };
   if (m.subpixelBits < g.subpixelBits)
     beyond("sub-pixel bits", m.subpixelBits, g.subpixelBits, "subpixel_bits");
-  if (m.depthUlps > g.depthUlps) beyond("depth error in ulps", m.depthUlps, g.depthUlps, "depth");
-  if (m.attributeUlps > g.attributeUlps)
+  if (above(m.depthUlps, g.depthUlps))
+    beyond("depth error in ulps", m.depthUlps, g.depthUlps, "depth");
+  if (above(m.attributeUlps, g.attributeUlps))
     beyond("attribute error in ulps", m.attributeUlps, g.attributeUlps, "attributes");
-  if (!m.log2Pinned && m.log2AbsoluteError > g.log2AbsoluteError)
+  // A pinned log2 ignores its bounds, yet they are written to the file: finite there too.
+  if ((!m.log2Pinned || !std::isfinite(m.log2AbsoluteError)) &&
+      above(m.log2AbsoluteError, g.log2AbsoluteError))
     beyond("log2 absolute error inside [0.5, 2]", m.log2AbsoluteError, g.log2AbsoluteError, "log2");
-  if (!m.log2Pinned && m.log2Ulps > g.log2Ulps)
+  if ((!m.log2Pinned || !std::isfinite(m.log2Ulps)) && above(m.log2Ulps, g.log2Ulps))
     beyond("log2 error in ulps outside [0.5, 2]", m.log2Ulps, g.log2Ulps, "log2");
-  if (m.sqrtUlps > g.sqrtUlps) beyond("sqrt error in ulps", m.sqrtUlps, g.sqrtUlps, "sqrt");
-  if (m.arithmeticUlps > g.arithmeticUlps)
+  if (above(m.sqrtUlps, g.sqrtUlps)) beyond("sqrt error in ulps", m.sqrtUlps, g.sqrtUlps, "sqrt");
+  if (above(m.arithmeticUlps, g.arithmeticUlps))
     beyond("shader arithmetic error in ulps", m.arithmeticUlps, g.arithmeticUlps, "arithmetic");
   if (!m.filterPinned && m.subTexelBits < g.subTexelBits)
     beyond("GL_LINEAR sub-texel bits", m.subTexelBits, g.subTexelBits, "filter");
-  if (!m.filterPinned && m.filterErrorUnits > g.filterErrorUnits)
+  if ((!m.filterPinned || !std::isfinite(m.filterErrorUnits)) &&
+      above(m.filterErrorUnits, g.filterErrorUnits))
     beyond("GL_LINEAR error in units of 1/255", m.filterErrorUnits, g.filterErrorUnits, "filter");
+  // A negative bound admits nothing, not even the oracle's own value: no measurement gives one.
+  const std::pair<const char*, double> bounds[] = {
+      {"depth", m.depthUlps},        {"attributes", m.attributeUlps},
+      {"log2", m.log2AbsoluteError}, {"log2", m.log2Ulps},
+      {"sqrt", m.sqrtUlps},          {"arithmetic", m.arithmeticUlps},
+      {"filter", m.filterErrorUnits}};
+  for (const auto& [key, value] : bounds)
+    if (value < 0)
+      excesses.push_back({key, std::string(key) + " bound " + std::to_string(value) +
+                                   " is negative, which no measurement gives"});
   return excesses;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <vector>
 
 #include "common/error.h"
@@ -26,7 +27,16 @@ class Fields {
 
   const nlohmann::json& at(const char* field) const {
     if (!json_.contains(field)) throw InputError(file_, "field " + prefix_ + field + " is missing");
+    read_.insert(field);
     return json_.at(field);
+  }
+  // A field nobody read would judge under a default the file's author never chose (a misspelt
+  // bound, a member's parameter under another member): refused, as capture manifests refuse it.
+  void refuseUnread() const {
+    for (const auto& item : json_.items())
+      if (!read_.count(item.key()))
+        throw InputError(
+            file_, "field " + prefix_ + item.key() + " is not a field of a precision model here");
   }
   InputError failure(const std::string& text) const { return InputError(file_, text); }
   bool has(const char* field) const { return json_.contains(field); }
@@ -100,6 +110,7 @@ class Fields {
   const std::filesystem::path& file_;
   const nlohmann::json& json_;
   std::string prefix_;
+  mutable std::set<std::string> read_;
 };
 
 Arithmetic readArithmetic(const Fields& f) {
@@ -111,12 +122,14 @@ Arithmetic readArithmetic(const Fields& f) {
   a.coverage.rounding = coverage.named("rounding", kSnapRoundingNames);
   a.coverage.leftEdgesIn = coverage.flag("left_edges_in");
   a.coverage.bottomEdgesIn = coverage.flag("bottom_edges_in");
+  coverage.refuseUnread();
   a.planeSetup = f.named("plane_setup", kPlaneSetupNames);
   a.planeEvaluation = f.named("plane_evaluation", kPlaneEvaluationNames);
   a.perspective = f.named("perspective", kPerspectiveNames);
   const Fields depth = f.object("depth");
   a.depth.offsetAndClamp = depth.flag("offset_and_clamp");
   a.depth.z24 = depth.named("z24", kZ24ConversionNames);
+  depth.refuseUnread();
   a.log2 = f.named("log2", kLog2FormNames);
   const Fields filter = f.object("filter");
   a.filter.weights = filter.named("weights", kFilterWeightsNames);
@@ -135,6 +148,7 @@ Arithmetic readArithmetic(const Fields& f) {
   a.filter.lerpRounding = filter.has("lerp_rounding")
                               ? filter.named("lerp_rounding", kLerpRoundingNames)
                               : LerpRounding::kNearest;
+  filter.refuseUnread();
   a.texelConversion = f.named("texel_conversion", kUnormConversionNames);
   a.flushDenormals = f.choice("denormals", {"flushed", "kept"}) == "flushed";
   // Absent from files written before block formats, which decoded to nearest.
@@ -152,6 +166,7 @@ Arithmetic readArithmetic(const Fields& f) {
                              "', a rule for alpha palettes only");
     if (a.blockDecoding.alpha == PaletteRule::kWeights)
       a.blockDecoding.alphaWeights = decoding.weights("alpha_weights");
+    decoding.refuseUnread();
   }
   // Absent from files written before the member existed: rounded to nearest.
   if (f.has("colour_conversion")) {
@@ -161,7 +176,9 @@ Arithmetic readArithmetic(const Fields& f) {
       a.colourConversion.bits = conversion.whole("bits", 8, 24);
       a.colourConversion.bias = conversion.whole("bias", 0, (1 << a.colourConversion.bits) - 1);
     }
+    conversion.refuseUnread();
   }
+  f.refuseUnread();
   return a;
 }
 
@@ -171,6 +188,22 @@ void readVersion1(const Fields& f, PrecisionModel& m) {
   if (!readVersion1Arithmetic(point, log2, filter, m))
     throw f.failure("fields arithmetic, log2 and filter ('" + point + "', '" + log2 + "', '" +
                     filter + "') are not a version 1 model's");
+}
+
+// The evidence `vt calibrate` writes under "calibration" (calibration.cpp): judging reads only the
+// driver's version, the rest is checked for its shape so that a damaged record is not trusted.
+std::string readCalibration(const Fields& c) {
+  (void)c.text("gl_renderer");
+  (void)c.text("gl_vendor");
+  (void)c.text("point");
+  const nlohmann::json& parameters = c.at("parameters");
+  if (!parameters.is_array()) throw c.failure("field calibration.parameters is not a list");
+  for (const nlohmann::json& parameter : parameters)
+    if (!parameter.is_object())
+      throw c.failure("field calibration.parameters holds an entry that is not an object");
+  std::string version = c.text("gl_version");
+  c.refuseUnread();
+  return version;
 }
 
 }  // namespace
@@ -271,13 +304,8 @@ PrecisionModel readModelFile(const std::filesystem::path& file) {
       throw InputError(file, "field sources." + parameter + " is not a string");
     m.sources[parameter] = source.get<std::string>();
   }
-  if (json.contains("calibration")) {
-    const nlohmann::json& calibration = json.at("calibration");
-    if (!calibration.is_object() || !calibration.contains("gl_version") ||
-        !calibration.at("gl_version").is_string())
-      throw InputError(file, "field calibration.gl_version is missing or not a string");
-    m.glVersion = calibration.at("gl_version").get<std::string>();
-  }
+  if (f.has("calibration")) m.glVersion = readCalibration(f.object("calibration"));
+  f.refuseUnread();
   if (m.fillRulePinned && m.arithmetic.coverage.rule == CoverageRule::kSnappedEdges &&
       m.subpixelBits != m.arithmetic.coverage.subpixelBits)
     throw InputError(file, "field subpixel_bits is " + std::to_string(m.subpixelBits) +

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <limits>
 
 #include "test_support.h"
@@ -27,6 +28,14 @@ void writeFloat(const std::filesystem::path& file, size_t offset, float value) {
   ASSERT_TRUE(f.good()) << file;
 }
 
+float readFloat(const std::filesystem::path& file, size_t offset) {
+  std::ifstream in(file, std::ios::binary);
+  in.seekg(static_cast<std::streamoff>(offset));
+  float value = 0;
+  in.read(reinterpret_cast<char*>(&value), sizeof value);
+  return value;
+}
+
 // Byte offset of the first covered pixel's depth in a triangle probe's result (per pixel the
 // triangle as int32, then s, t, ds/dx, dt/dx, ds/dy, dt/dy and depth as floats).
 size_t firstCoveredDepth(const std::filesystem::path& file) {
@@ -37,9 +46,33 @@ size_t firstCoveredDepth(const std::filesystem::path& file) {
   return 0;
 }
 
-TEST(CalibrateProbes, ANonFiniteResultIsRefusedNamingTheProbeAndTheValue) {
+// The H100's probes unpacked into a scratch folder, one value changed, then calibrated.
+struct Recalibrated {
+  test::ScratchDirectory dir;
+  test::CommandResult result;
+};
+
+void recalibrate(Recalibrated& r, const char* probe, bool covered, size_t offset,
+                 const std::function<float(float)>& change) {
   const std::filesystem::path evidence =
       std::filesystem::path(VT_TEST_SOURCE_DIR) / ".." / "data" / "gpus" / "nvidia-h100";
+  const test::CommandResult unpacked = test::runCommand(
+      "/bin/tar", {"-C", r.dir.path().string(), "-xzf", (evidence / "probes.tar.gz").string()},
+      r.dir.path());
+  ASSERT_EQ(unpacked.exitCode, 0) << unpacked.err;
+  const std::filesystem::path file = r.dir / "probes" / probe;
+  if (covered) {
+    offset = firstCoveredDepth(file);
+    ASSERT_GT(offset, 0u) << "no covered pixel in " << file;
+  }
+  ASSERT_NO_FATAL_FAILURE(writeFloat(file, offset, change(readFloat(file, offset))));
+  r.result = test::runCommand(
+      VT_EXECUTABLE,
+      {"calibrate", "--probes", (r.dir / "probes").string(), "-o", (r.dir / "model.json").string()},
+      r.dir.path());
+}
+
+TEST(CalibrateProbes, ANonFiniteResultIsRefusedNamingTheProbeAndTheValue) {
   struct Case {
     const char* file;
     bool covered;  // a triangle probe: the first covered pixel's depth
@@ -67,26 +100,46 @@ TEST(CalibrateProbes, ANonFiniteResultIsRefusedNamingTheProbeAndTheValue) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.expected);
-    test::ScratchDirectory dir;
-    const test::CommandResult unpacked = test::runCommand(
-        "/bin/tar", {"-C", dir.path().string(), "-xzf", (evidence / "probes.tar.gz").string()},
-        dir.path());
-    ASSERT_EQ(unpacked.exitCode, 0) << unpacked.err;
-    const std::filesystem::path file = dir / "probes" / c.file;
-    const size_t offset = c.covered ? firstCoveredDepth(file) : c.offset;
-    if (c.covered) {
-      ASSERT_GT(offset, 0u) << "no covered pixel in " << file;
-    }
-    ASSERT_NO_FATAL_FAILURE(writeFloat(file, offset, c.value));
-    const test::CommandResult calibrated = test::runCommand(
-        VT_EXECUTABLE,
-        {"calibrate", "--probes", (dir / "probes").string(), "-o", (dir / "model.json").string()},
-        dir.path());
-    EXPECT_EQ(calibrated.exitCode, 1) << calibrated.out << calibrated.err;
-    EXPECT_THAT(calibrated.err, HasSubstr("breaks a rule (GL 4.5 core, section 2.3.4"));
-    EXPECT_THAT(calibrated.err, HasSubstr(c.expected));
-    EXPECT_THAT(calibrated.err, HasSubstr("where the exact result is a finite number"));
-    EXPECT_FALSE(std::filesystem::exists(dir / "model.json"));
+    Recalibrated r;
+    ASSERT_NO_FATAL_FAILURE(
+        recalibrate(r, c.file, c.covered, c.offset, [&](float) { return c.value; }));
+    EXPECT_EQ(r.result.exitCode, 1) << r.result.out << r.result.err;
+    EXPECT_THAT(r.result.err, HasSubstr("breaks a rule (GL 4.5 core, section 2.3.4"));
+    EXPECT_THAT(r.result.err, HasSubstr(c.expected));
+    EXPECT_THAT(r.result.err, HasSubstr("where the exact result is a finite number"));
+    EXPECT_FALSE(std::filesystem::exists(r.dir / "model.json"));
+  }
+}
+
+// A GPU right at every input but one is still refused: the one value's error is the bound, and
+// the bound beyond the specification's is the rule it breaks. Denormals stand in for a result that
+// collapsed to (almost) zero.
+TEST(CalibrateProbes, OneWrongValueAmongRightOnesIsRefusedNamingTheRule) {
+  struct Case {
+    const char* file;
+    size_t offset;
+    std::function<float(float)> change;
+    const char* expected;
+  };
+  const Case cases[] = {
+      // sqrt of input 100 (2.79e-8) off by about 2^11 ulps.
+      {"probe-0000.result", (100 * 4 + 1) * 4, [](float v) { return v * (1 + 0x1p-12f); },
+       "breaks a rule: sqrt error in ulps"},
+      // log2 of input 100 (outside [0.5, 2]) collapsed to a denormal.
+      {"probe-0000.result", (100 * 4 + 0) * 4, [](float) { return 1e-40f; },
+       "breaks a rule: log2 error in ulps outside [0.5, 2]"},
+      // One GL_LINEAR channel (205/255) collapsed to a denormal.
+      {"probe-0004.result", (1000 * 4 + 1) * 4, [](float) { return 1e-40f; },
+       "breaks a rule: GL_LINEAR error in units of 1/255"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.expected);
+    Recalibrated r;
+    ASSERT_NO_FATAL_FAILURE(recalibrate(r, c.file, false, c.offset, c.change));
+    EXPECT_EQ(r.result.exitCode, 1) << r.result.out << r.result.err;
+    EXPECT_THAT(r.result.err, HasSubstr(c.expected));
+    EXPECT_THAT(r.result.err, HasSubstr("is not conformant"));
+    EXPECT_FALSE(std::filesystem::exists(r.dir / "model.json"));
   }
 }
 

@@ -7,7 +7,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
@@ -136,6 +138,30 @@ TEST(Arithmetic, NoModelIsWiderThanTheSpecification) {
   m = llvmpipeModel();
   m.filterErrorUnits = 331;
   EXPECT_TRUE(excessesOverGl45(m).empty());
+}
+
+// A comparison with NaN is false: a bound that is not a finite number is never within the
+// specification's, pinned or not, and neither is a negative one.
+TEST(Arithmetic, ABoundThatIsNotAFiniteNumberIsBeyondTheSpecification) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::pair<double PrecisionModel::*, const char*> fields[] = {
+      {&PrecisionModel::depthUlps, "depth"},        {&PrecisionModel::attributeUlps, "attributes"},
+      {&PrecisionModel::log2AbsoluteError, "log2"}, {&PrecisionModel::log2Ulps, "log2"},
+      {&PrecisionModel::sqrtUlps, "sqrt"},          {&PrecisionModel::arithmeticUlps, "arithmetic"},
+      {&PrecisionModel::filterErrorUnits, "filter"}};
+  for (const auto& [field, parameter] : fields)
+    for (const PrecisionModel& base : {gl45Model(), llvmpipeModel()})
+      for (const double value : {nan, inf, -1.0}) {
+        PrecisionModel m = base;
+        m.*field = value;
+        const std::vector<Gl45Excess> excesses = excessesOverGl45(m);
+        ASSERT_FALSE(excesses.empty()) << parameter << " " << value << " " << base.name;
+        EXPECT_EQ(excesses.front().parameter, parameter) << value << " " << base.name;
+        if (!std::isfinite(value)) {
+          EXPECT_THAT(excesses.front().text, HasSubstr("not a finite number")) << parameter;
+        }
+      }
 }
 
 }  // namespace

@@ -3,13 +3,14 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
+#include "render/arithmetic_points.h"
 #include "render/precision_model_file.h"
 #include "test_support.h"
-#include "render/arithmetic_points.h"
 
 namespace vt::reference {
 namespace {
@@ -94,8 +95,7 @@ TEST(PrecisionModelFile, AFileWithoutTheLerpRoundingRoundsToNearest) {
   nlohmann::json j = nlohmann::json::parse(modelJson(floored));
   j["arithmetic"]["filter"].erase("lerp_rounding");
   std::ofstream(dir / "old.json") << j.dump();
-  EXPECT_EQ(readModelFile(dir / "old.json").arithmetic.filter.lerpRounding,
-            LerpRounding::kNearest);
+  EXPECT_EQ(readModelFile(dir / "old.json").arithmetic.filter.lerpRounding, LerpRounding::kNearest);
   EXPECT_EQ(readModelFile(dir / "old.json"), llvmpipeModel());
 }
 
@@ -174,8 +174,97 @@ TEST(PrecisionModelFile, RefusesMalformedFilesNamingTheField) {
   refused(j, "field sub_texel_bits is 0 for a bounded filter");
   refused(nlohmann::json::array(), "not a JSON object");
   std::ofstream(dir / "bad.json") << "{\"format\": ";
-  EXPECT_THROW((void)readModelFile(dir / "bad.json"), InputError);
+  try {
+    (void)readModelFile(dir / "bad.json");
+    ADD_FAILURE() << "accepted a truncated file";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("not a precision model"));
+  }
   EXPECT_THROW((void)readModelFile(dir / "missing.json"), InputError);
+}
+
+// A field nobody reads would judge under a default the author never chose: each is refused.
+TEST(PrecisionModelFile, RefusesUnknownAndMistypedFieldsNamingThem) {
+  test::ScratchDirectory dir;
+  const nlohmann::json good = nlohmann::json::parse(modelJson(gl45Model()));
+  const auto refused = [&](const nlohmann::json& json, const std::string& expected) {
+    std::ofstream(dir / "bad.json") << json.dump();
+    try {
+      (void)readModelFile(dir / "bad.json");
+      ADD_FAILURE() << "accepted: " << expected;
+    } catch (const InputError& e) {
+      EXPECT_THAT(e.what(), HasSubstr((dir / "bad.json").string()));
+      EXPECT_THAT(e.what(), HasSubstr(expected));
+    }
+  };
+  nlohmann::json j = good;
+  j["attribute_ulp"] = 0;  // misspelt beside the real bound
+  refused(j, "field attribute_ulp is not a field of a precision model here");
+  j = good;
+  j["arithmetic"]["coverage"]["subpixel_bit"] = 8;
+  refused(j, "field arithmetic.coverage.subpixel_bit is not a field of a precision model here");
+  j = good;
+  j["arithmetic"]["depth"]["z32"] = "truncated";
+  refused(j, "field arithmetic.depth.z32 is not a field");
+  j = good;
+  j["arithmetic"]["planes"] = "snapped";
+  refused(j, "field arithmetic.planes is not a field");
+  // A member's parameter under another member is read by nobody.
+  j = good;
+  j["arithmetic"]["filter"]["coordinate_bits"] = 21;
+  refused(j, "field arithmetic.filter.coordinate_bits is not a field");
+  j = good;
+  j["arithmetic"]["block_decoding"]["alpha_weights"] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
+  refused(j, "field arithmetic.block_decoding.alpha_weights is not a field");
+  j = good;
+  j["arithmetic"]["colour_conversion"] = {{"rule", "nearest"}, {"bits", 12}};
+  refused(j, "field arithmetic.colour_conversion.bits is not a field");
+  // Known fields of the wrong type.
+  j = good;
+  j["fill_rule"] = 1;
+  refused(j, "field fill_rule is not a string");
+  j = good;
+  j["arithmetic"]["coverage"]["left_edges_in"] = "yes";
+  refused(j, "field arithmetic.coverage.left_edges_in is not true or false");
+  j = good;
+  j["depth_ulps"] = "4";
+  refused(j, "field depth_ulps is not a number from 0");
+  j = good;
+  j["subpixel_bits"] = 8.5;
+  refused(j, "field subpixel_bits is not a whole number from 1 to 16");
+  j = good;
+  j["sources"] = {{"depth", 3}};
+  refused(j, "field sources.depth is not a string");
+  // The calibration's evidence: its known fields in their types, nothing else.
+  j = good;
+  j["calibration"] = {{"gl_renderer", "r"},
+                      {"gl_version", "4.5"},
+                      {"gl_vendor", "v"},
+                      {"point", "p"},
+                      {"parameters", nlohmann::json::array()}};
+  std::ofstream(dir / "evidence.json") << j.dump();
+  EXPECT_EQ(readModelFile(dir / "evidence.json").glVersion, "4.5");
+  j["calibration"]["gl_versoin"] = "4.6";
+  refused(j, "field calibration.gl_versoin is not a field of a precision model here");
+  j["calibration"].erase("gl_versoin");
+  j["calibration"]["gl_version"] = 4.5;
+  refused(j, "field calibration.gl_version is not a string");
+  j["calibration"]["gl_version"] = "4.5";
+  j["calibration"]["parameters"] = "all";
+  refused(j, "field calibration.parameters is not a list");
+}
+
+// Every model file the project ships reads under the strict reader.
+TEST(PrecisionModelFile, ReadsTheShippedGpuModels) {
+  const std::filesystem::path gpus =
+      std::filesystem::path(VT_TEST_SOURCE_DIR) / ".." / "data" / "gpus";
+  int models = 0;
+  for (const auto& gpu : std::filesystem::directory_iterator(gpus))
+    if (std::filesystem::exists(gpu.path() / "model.json")) {
+      EXPECT_NO_THROW((void)readModelFile(gpu.path() / "model.json")) << gpu.path();
+      ++models;
+    }
+  EXPECT_GE(models, 1);
 }
 
 }  // namespace
