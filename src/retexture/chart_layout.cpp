@@ -131,7 +131,8 @@ Retexturing layoutCharts(const TexturedScene& scene, uint32_t pageSize,
   std::optional<std::vector<ShelfPosition>> positions;
   for (; level <= kMaxLevel; ++level)
     if ((positions = pack(charts, wide, narrow, levelSide(pageSize, level), column))) break;
-  if (!positions) throw InputError(scene.name, "the charts exceed the format's largest texture");
+  if (!positions)
+    throw InputError(describedSource(scene), "the charts exceed the format's largest texture");
 
   Retexturing layout;
   layout.method = "charts";

@@ -104,7 +104,7 @@ std::vector<Chart> buildCharts(const TexturedScene& scene, const ChartOptions& o
   uint64_t visits = 0;
   for (const auto& [position, faces] : facesAt) visits += faces.size() * (faces.size() - 1) / 2;
   if (visits > kMaxChartPairs)
-    throw limitError(scene.name,
+    throw limitError(describedSource(scene),
                      "pairing the faces that share a vertex position (every two at each position)",
                      visits, kMaxChartPairs, " pairs");
   std::set<std::pair<uint32_t, uint32_t>> pairs;
@@ -118,7 +118,7 @@ std::vector<Chart> buildCharts(const TexturedScene& scene, const ChartOptions& o
   uint64_t checks = 0;
   for (const auto& pair : pairs) checks += scene.faces[pair.second].indexCount;
   if (checks > kMaxChartVertexChecks)
-    throw limitError(scene.name,
+    throw limitError(describedSource(scene),
                      "checking whether the faces of " + std::to_string(pairs.size()) +
                          " pairs lie in one plane with one texture map",
                      checks, kMaxChartVertexChecks, " vertices");

@@ -170,7 +170,7 @@ LayoutQuality measureLayout(const TexturedScene& scene, const Retexturing& layou
   // The rows bound the work of measuring the referenced texels: refused before it starts.
   const uint64_t rows = coverageRows(scene, layout, uvs);
   if (rows > kMaxCoverageRows)
-    throw limitError(scene.name,
+    throw limitError(describedSource(scene),
                      "measuring the texels its faces reference (a run of texels in each texel "
                      "row of each triangle, " +
                          layout.method + " layout)",

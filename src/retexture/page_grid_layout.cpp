@@ -28,9 +28,9 @@ Retexturing layoutOnPageGrid(const TexturedScene& scene, uint32_t pageSize) {
     const double width = repeatsX * texture.width, height = repeatsY * texture.height;
     if (width > double(levelSide(pageSize, kMaxLevel)) ||
         height > double(levelSide(pageSize, kMaxLevel)))
-      throw InputError(scene.name, "a face repeats its texture " + std::to_string(repeatsX) +
-                                       " x " + std::to_string(repeatsY) +
-                                       " times: beyond the format's limit");
+      throw InputError(describedSource(scene),
+                       "a face repeats its texture " + std::to_string(repeatsX) + " x " +
+                           std::to_string(repeatsY) + " times: beyond the format's limit");
     TextureArea area{.texture = face.texture,
                      .sourceX = static_cast<int64_t>(s0) * texture.width,
                      .sourceY = static_cast<int64_t>(t0) * texture.height,
@@ -41,7 +41,8 @@ Retexturing layoutOnPageGrid(const TexturedScene& scene, uint32_t pageSize) {
     std::optional<CellGrid::Cell> cell;
     while (!(cell = grid.firstFit(cellsX, cellsY))) {
       if (levelSide(pageSize, kMaxLevel) / pageSize <= grid.side())
-        throw InputError(scene.name, "the baseline layout exceeds the format's largest texture");
+        throw InputError(describedSource(scene),
+                         "the baseline layout exceeds the format's largest texture");
       grid.grow(2 * grid.side());
     }
     grid.occupy(*cell, cellsX, cellsY);

@@ -152,6 +152,7 @@ TexturedScene loadObjScene(const ObjSceneText& source, const std::filesystem::pa
 
   TexturedScene scene;
   scene.name = path.stem().string();
+  scene.source = path.string();
   MaterialTextures textures(std::move(folders), imageFolder, obj.materials, source, scene);
   for (const ObjFace& face : obj.faces) {
     if (!face.finite()) {

@@ -305,6 +305,7 @@ TexturedScene quake3Scene(const BspFile& bsp, const std::string& source,
                           const ShaderTextures& textureFor, const Quake3Options& options) {
   requireWithinLimits(bsp, source, options.patchLevel);
   TexturedScene scene;
+  scene.source = source;
   for (const BspSurface& surface : bsp.surfaces) {
     const BspShader& shader = bsp.shaders[static_cast<size_t>(surface.shader)];
     const auto type = static_cast<BspSurfaceType>(surface.type);

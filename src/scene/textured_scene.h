@@ -44,6 +44,9 @@ struct SkippedFaces {
 // Vertices are not shared between faces: each face owns the vertices its indices name.
 struct TexturedScene {
   std::string name;
+  // The file it was read from ("maps/q3dm6.bsp", "pak0.pk3: maps/q3dm6.bsp", "scene.obj"): what
+  // every refusal about its contents names. Empty for a scene made in memory.
+  std::string source;
   std::vector<glm::vec3> positions;
   std::vector<glm::vec2> uvs;     // source coordinates (s, t), t along the image's rows
   std::vector<uint32_t> indices;  // three per triangle, counter-clockwise seen from the front
@@ -55,5 +58,11 @@ struct TexturedScene {
   std::vector<Camera> viewpoints;     // where players start (Quake 3 spawn points), in entity order
   std::vector<std::string> warnings;  // one line each, e.g. a texture that was not found
 };
+
+// What a refusal about the scene's contents names: its file, or its name for a scene made in
+// memory.
+inline const std::string& describedSource(const TexturedScene& scene) {
+  return scene.source.empty() ? scene.name : scene.source;
+}
 
 }  // namespace vt

@@ -17,6 +17,7 @@
 #include "format/file_header.h"
 #include "format/page_address.h"
 #include "retexture/face_charts.h"
+#include "retexture/page_grid_layout.h"
 #include "scene/camera_path.h"
 #include "scene/package_files.h"
 #include "scene/quake3_fixtures.h"
@@ -289,6 +290,25 @@ TEST(ResourceLimits, FacesSharingVerticesManyTimesOverAreRefusedBeforeTheyArePai
                                 "is 67108864 vertices"));
   // Fewer make ordinary charts.
   EXPECT_EQ(buildCharts(facesMeetingAtTheOrigin(30, 100, true), ChartOptions{}).size(), 1u);
+}
+
+// A refusal about a map's contents names the file it came from (the .bsp, or the package entry),
+// not the map's short name: the user has to find the file.
+TEST(ResourceLimits, RetextureRefusalsNameTheFileTheSceneCameFrom) {
+  TexturedScene shared = facesMeetingAtTheOrigin(300, 100, true);
+  shared.source = "packages/pak0.pk3:maps/fans.bsp";
+  EXPECT_THAT(
+      [&] { buildCharts(shared, ChartOptions{}); },
+      ThrowsMessage<InputError>(StartsWith("packages/pak0.pk3:maps/fans.bsp: pairing the faces")));
+  // A face whose coordinates repeat its texture beyond the largest texture of the format.
+  TexturedScene repeated = facesMeetingAtTheOrigin(1, 1, false);
+  repeated.source = "maps/repeats.bsp";
+  for (glm::vec2& uv : repeated.uvs) uv *= 1e7f;
+  EXPECT_THAT(
+      [&] { layoutOnPageGrid(repeated, 128); },
+      ThrowsMessage<InputError>(StartsWith("maps/repeats.bsp: a face repeats its texture")));
+  // The loaders record the file: a map read from its bytes names the file it was given.
+  EXPECT_EQ(sceneOf(mapOfSharedPatches(607, 7)).source, "maps/shared.bsp");
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -83,6 +83,7 @@ TEST(ObjMesh, BothLoadersFanPolygonsFromTheirFirstCornerAndFlipV) {
     EXPECT_EQ(mesh.uvs[v], glm::vec2(corners[v].x / 16, 1.0f - corners[v].y / 4));
 
   const TexturedScene scene = loadObjScene(dir / "polygons.obj", dir / "images");
+  EXPECT_EQ(scene.source, (dir / "polygons.obj").string());  // what refusals name
   EXPECT_EQ(scene.indices, fan);
   EXPECT_EQ(scene.positions, mesh.positions);
   EXPECT_EQ(scene.uvs, mesh.uvs);
