@@ -3,7 +3,7 @@
 // at 1920 x 1080 with every stored level up to an 8192^2 cache, each frame drawn and its 32-bit
 // needbuffer brought to the CPU, the camera moving. Prints the time per frame of each and the
 // ratio async / sync. The price of asynchronous readback, the needbuffer one frame late, is
-// measured by `vt fly --readback async` (README).
+// measured by `vt fly --readback async` (docs/streaming.md).
 //   usage: readback_benchmark [frames]
 
 #include <unistd.h>

@@ -23,8 +23,8 @@ using shader::ivec2;
 using shader::vec2;
 using shader::vec4;
 
-// An RGBA8 texel as texelFetch returns it: multiplied by 1/255 (a float constant; DESIGN section
-// 7, rule 9), or divided by 255 (GL 4.5 section 2.3.5.1 as written).
+// An RGBA8 texel as texelFetch returns it: multiplied by 1/255 (a float constant; docs/design.md
+// section 7, rule 9), or divided by 255 (GL 4.5 section 2.3.5.1 as written).
 inline vec4 unorm8ToFloat(glm::u8vec4 t) { return vec4(t) * (1.0f / 255.0f); }
 inline vec4 unorm8ToFloat(glm::u8vec4 t, UnormConversion conversion) {
   return conversion == UnormConversion::kDivided ? vec4(t) / 255.0f : unorm8ToFloat(t);

@@ -1,7 +1,7 @@
 #pragma once
 // The CPU oracle: renders a clip-space mesh with a virtual texture exactly as the GL renderer's
-// shader does (DESIGN section 3), multithreaded over tiles, with the same bytes for any thread
-// count.
+// shader does (docs/design.md section 3), multithreaded over tiles, with the same bytes for any
+// thread count.
 //
 // Per pixel: Embree and the GL rules find the shown triangle (visibility.h); its planes are
 // evaluated at the four pixels of the pixel's 2x2 quad, helper pixels included (they need not be

@@ -6,9 +6,9 @@
 
 namespace vt::reference {
 
-// log2 as a degree-4 minimax polynomial in y = (m - 1) / (m + 1) (DESIGN section 7, rule 8),
-// evaluated with fused multiply-adds or with a product and a sum in their place. Its coefficients
-// c0..c4, which the lanes' version (lane_shading.h) shares:
+// log2 as a degree-4 minimax polynomial in y = (m - 1) / (m + 1) (docs/design.md section 7, rule
+// 8), evaluated with fused multiply-adds or with a product and a sum in their place. Its
+// coefficients c0..c4, which the lanes' version (lane_shading.h) shares:
 inline constexpr float kLog2Coefficients[5] = {
     2.88539009343309178325f, 0.961791550404184197881f, 0.577440339438736392009f,
     0.403343858251329912514f, 0.406718052498846252698f};

@@ -1,6 +1,6 @@
 #pragma once
-// Where the oracle's shader reads texels: a cache state (DESIGN section 4) reduced to what the
-// fragment logic fetches. ResidentTexture is the state "every page resident": each lookup names
+// Where the oracle's shader reads texels: a cache state (docs/design.md section 4) reduced to what
+// the fragment logic fetches. ResidentTexture is the state "every page resident": each lookup names
 // the page itself, or on a sparse texture its nearest stored ancestor, and texels come straight
 // from the virtual-texture file, each page decoded once; or, for a dense texture made in memory
 // (the calibration's probe texture), from a function that makes a page's texels.

@@ -1,8 +1,8 @@
 #pragma once
 // Triangle setup as a GL rasterizer does it, in the members of the arithmetic's families that
-// concern it (render/arithmetic.h): clipping against the frustum (DESIGN section 7, rule 5), the
-// window transform (fused or not), coverage (snapped integer edge functions with a sub-pixel grid,
-// rounding and tie rule, or float scanline spans over unsnapped vertices:
+// concern it (render/arithmetic.h): clipping against the frustum (docs/design.md section 7, rule
+// 5), the window transform (fused or not), coverage (snapped integer edge functions with a
+// sub-pixel grid, rounding and tie rule, or float scanline spans over unsnapped vertices:
 // reference/softpipe-arithmetic.md, 2.3), and the attribute planes (from the first vertex of the
 // oriented triangle, rule 3, or from the lowest vertex, softpipe-arithmetic.md 3.1).
 //

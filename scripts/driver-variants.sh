@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Mesa's driver options as implementations the oracle was not written for (README, precision
-# model): for each variant, `vt calibrate` (exit code, families pinned and bounded), then the
+# Mesa's driver options as implementations the oracle was not written for
+# (docs/precision-models.md): for each variant, `vt calibrate` (exit code, families pinned and bounded), then the
 # named scenes crosschecked under `auto`, `gl45` and the calibrated model. One line per variant.
 #   scripts/driver-variants.sh TEXTURE.vt [SIZE]      (default size 160x100; build/src/vt)
 # A conformant variant should calibrate (exit 0) and pass under every model; a rule breaker

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fuzzing (README, "Hardening"): builds the libFuzzer programs of tests/fuzz with clang in
+# Fuzzing (docs/hardening.md): builds the libFuzzer programs of tests/fuzz with clang in
 # build-fuzz (-fsanitize=fuzzer,address,undefined), makes their seed corpora from real files
 # (scripts/fuzz-seeds.py: OpenArena's q3dm6ish and what `vt retexture` and `vt build` make of
 # it), runs every program for VT_FUZZ_SECONDS (60) seconds, two at a time, and prints for each

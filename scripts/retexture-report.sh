@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Retextures the OpenArena maps the project uses with the thesis's layout and ours and prints the
-# side-by-side table of the README (Markdown). Fetches the maps first (scripts/fetch-openarena.sh).
+# side-by-side table of docs/retexture.md (Markdown). Fetches the maps first (scripts/fetch-openarena.sh).
 #   scripts/retexture-report.sh [BUILD_FOLDER] [OUTPUT_FOLDER]   (defaults: build, out/retexture)
 set -euo pipefail
 cd "$(dirname "$0")/.."

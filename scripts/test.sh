@@ -21,7 +21,7 @@ bash scripts/install-deps.sh
 VT_OPENARENA_DIR=$(bash scripts/fetch-openarena.sh)
 export VT_OPENARENA_DIR
 
-# llvmpipe's results depend on these (shared/DESIGN.md section 7): pin them for every test run.
+# llvmpipe's results depend on these (docs/design.md section 7): pin them for every test run.
 export LP_NUM_THREADS=${LP_NUM_THREADS:-2}
 export EGL_PLATFORM=surfaceless
 

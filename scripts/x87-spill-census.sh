@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Why GALLIUM_NOSSE=1 is bounded, not pinned (README, precision model): counts, in the machine
+# Why GALLIUM_NOSSE=1 is bounded, not pinned (docs/precision-models.md): counts, in the machine
 # code llvmpipe's JIT generates for one crosscheck scene under GALLIUM_NOSSE=1, where x87
 # registers (64-bit significands) are stored to the stack as 32-bit floats. Each such store
 # rounds an intermediate value to float; the others stay extended. Which values the register

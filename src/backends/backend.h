@@ -1,5 +1,5 @@
 #pragma once
-// The one place that chooses a renderer (ARCHITECTURE.md, "Renderers to the loop"): the CPU
+// The one place that chooses a renderer (docs/architecture.md, "Renderers to the loop"): the CPU
 // oracle (reference/) or the GL path (src/gl/). Everything else draws through FrameRenderer, and
 // asks for the roles only the oracle plays through render/reference_roles.h.
 

@@ -16,7 +16,7 @@ namespace vt {
 // How a PNG is compressed (other formats ignore it): kSmall with zlib's default level and
 // libpng's adaptive row filters, for images kept; kFast with level 1 and no row filter, for the
 // images a check writes frame after frame (vt crosscheck's comparison images), where compressing
-// at the default level took a fifth of a gl45 crosscheck (README, Benchmarks).
+// at the default level took a fifth of a gl45 crosscheck (docs/benchmarks.md).
 enum class PngCompression { kSmall, kFast };
 
 // Rows of `width` texels of `channels` bytes each, top row first.

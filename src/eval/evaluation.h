@@ -1,8 +1,8 @@
 #pragma once
 // An evaluation (thesis 4.1): several configurations flown over the same camera path, each frame
-// measured against its reference image (every needed page resident, DESIGN section 5). The runs
-// fly in lockstep: each view is drawn once for all of them (its reference image, needbuffer and
-// depth; reference/recolor.h shades it under each run's cache state), then every run analyses,
+// measured against its reference image (every needed page resident, docs/design.md section 5). The
+// runs fly in lockstep: each view is drawn once for all of them (its reference image, needbuffer
+// and depth; reference/recolor.h shades it under each run's cache state), then every run analyses,
 // streams and measures its frame, in parallel. The per-frame results are the bytes of flights of
 // their own (eval/flight.h), for any number of jobs.
 

@@ -1,6 +1,6 @@
 #pragma once
-// An evaluation's results as files in one folder (DESIGN section 5: CSV, SVG and PNG plots and a
-// short table, every error next to its run time):
+// An evaluation's results as files in one folder (docs/design.md section 5: CSV, SVG and PNG plots
+// and a short table, every error next to its run time):
 //   frames.csv          per configuration and frame: the runtime's statistics, RMSE, SSIM, WSSIM
 //   summary.md          per configuration: mean and minimum SSIM, mean WSSIM and RMSE, pages
 //                       streamed and evicted, misses and run time; then mean SSIM per named

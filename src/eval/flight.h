@@ -2,7 +2,7 @@
 // A flight (thesis chapter 4's setup): a camera path frame by frame with streaming. Each frame is
 // drawn from the current cache state, its needbuffer analysed and prioritised, and pages streamed
 // for the next frame, under one FlightConfiguration. Optionally each frame's quality against its
-// reference image (every needed page resident, DESIGN section 5), measured apart from the
+// reference image (every needed page resident, docs/design.md section 5), measured apart from the
 // flight's run time.
 //
 // Per-frame results are the same for any thread count and for either backend under the

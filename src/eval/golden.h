@@ -1,6 +1,6 @@
 #pragma once
-// Golden images: a flight's frames recorded once and checked later (DESIGN section 5). A golden
-// set is a folder:
+// Golden images: a flight's frames recorded once and checked later (docs/design.md section 5). A
+// golden set is a folder:
 //   golden.json      the manifest (golden_manifest.h): what was flown and per recorded frame the
 //                    checksums of its colour and needbuffer with its RMSE, SSIM and WSSIM
 //   frameNNNN.png    each recorded frame's colour, small, for people to look at

@@ -1,6 +1,6 @@
 #pragma once
-// The on-disk layout of a virtual-texture file, versions 1 and 2 (DESIGN section 2). All integers
-// are little-endian. Sections follow each other without gaps, in this order:
+// The on-disk layout of a virtual-texture file, versions 1 and 2 (docs/design.md section 2). All
+// integers are little-endian. Sections follow each other without gaps, in this order:
 //
 //   offset            size                      what
 //   0                 128                       header (below)

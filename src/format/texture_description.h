@@ -1,5 +1,5 @@
 #pragma once
-// What a virtual texture is: page size, border, levels and texel format (DESIGN section 2).
+// What a virtual texture is: page size, border, levels and texel format (docs/design.md section 2).
 //
 // A stored page is the page's P x P texels surrounded by B texels of its neighbours on every side,
 // (P + 2B)^2 texels in rows of increasing t, each texel `channels` components of the pixel format:

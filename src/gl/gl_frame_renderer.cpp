@@ -149,7 +149,8 @@ void GlFrameRenderer::submit(const ClipSpaceMesh& mesh, const RenderSettings& se
   const glm::uvec4 clearNeed = needClearValue(settings.need8);
   glClearNamedFramebufferfv(framebuffer_.get(), GL_COLOR, 0, clearColor);
   // The integer needbuffer is cleared as a texture: Mesa 22.3's softpipe loses a framebuffer
-  // clear of an integer attachment when depth is cleared and drawn after it (README, softpipe).
+  // clear of an integer attachment when depth is cleared and drawn after it
+  // (docs/precision-models.md, softpipe).
   if (settings.need8) {
     const glm::u8vec4 narrow(clearNeed);
     glClearTexImage(targets_[1].get(), 0, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, &narrow.x);

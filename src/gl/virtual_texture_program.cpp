@@ -5,7 +5,8 @@
 namespace vt {
 
 std::string virtualTextureVertexSource() {
-  // Clip-space positions come from the CPU, computed once for both renderers (DESIGN section 3).
+  // Clip-space positions come from the CPU, computed once for both renderers (docs/design.md
+  // section 3).
   return R"(#version 450 core
 layout(location = 0) in vec4 aClipPosition;
 layout(location = 1) in vec2 aUV;
@@ -31,7 +32,7 @@ uniform int uFinestLevel;
 //   |               |L-2|
 //   +---------------+---+ ...
 // (A mipmapped texture fetched at level L - m would do the same, but Mesa 22.3's softpipe fetches
-// one level for a whole 2x2 quad: README, softpipe.)
+// one level for a whole 2x2 quad: docs/precision-models.md, softpipe.)
 uvec4 vtFetchIndirection(ivec2 page, int level) {
   ivec2 origin = (level == uFinestLevel)
                      ? ivec2(0, 0)

@@ -1,8 +1,8 @@
 #pragma once
-// The oracle's arithmetic as independent choices (DESIGN section 3, "An implementation is a point
-// in a space of choices"). Each step a GL implementation may compute in more than one conforming
-// way is a family below; an implementation is one member of each family. The oracle draws any
-// point of this space (reference/triangle_setup.h, reference/shader_math.h,
+// The oracle's arithmetic as independent choices (docs/design.md section 3, "An implementation is a
+// point in a space of choices"). Each step a GL implementation may compute in more than one
+// conforming way is a family below; an implementation is one member of each family. The oracle
+// draws any point of this space (reference/triangle_setup.h, reference/shader_math.h,
 // reference/linear_filter.h), `vt calibrate` measures each family from its own probes
 // (src/calibrate/), and the named points of implementations read from their source or measured
 // bit for bit are data in one file (arithmetic_points.cpp).
@@ -10,39 +10,39 @@
 // The choices are values, not template parameters: a calibrated point is any combination, known
 // only at run time. Each per-pixel function takes the one choice it needs.
 //
-// Families and their members, with where each member comes from:
+// Families and their members, with where each member comes from ("rule N": the rules of llvmpipe's
+// arithmetic in docs/design.md section 7):
 //
 //   viewport       window x, y, z of the mesh's vertices as fma(ndc, half, half) or as a product
-//                  and a sum (vertices made by the clipper are never fused: DESIGN 7, rule 5)
-//   coverage       snapped edge functions (DESIGN 7, rules 2 and 4): sub-pixel bits 1-16, the
+//                  and a sum (vertices made by the clipper are never fused: rule 5)
+//   coverage       snapped edge functions (rules 2 and 4): sub-pixel bits 1-16, the
 //                  rounding of (X - 0.5) * 2^bits, and which edges own a centre on them (left or
 //                  right, bottom or top: the four rules GL 4.5 section 14.6.1 allows); or float
 //                  scanline spans over unsnapped vertices with truncated span ends
 //                  (reference/softpipe-arithmetic.md, 2.3)
-//   plane setup    the attribute planes from the first vertex of the oriented triangle (DESIGN 7,
-//                  rule 3), or from the lowest vertex over the y-sorted edges
-//                  (softpipe-arithmetic.md, 3.1)
+//   plane setup    the attribute planes from the first vertex of the oriented triangle (rule 3),
+//                  or from the lowest vertex over the y-sorted edges (softpipe-arithmetic.md, 3.1)
 //   plane eval     at integer pixel coordinates fused (fma(dady, y, fma(dadx, x, a0))), the same
 //                  unfused, or at the quad's even corner stepped to its other pixels by + dadx
 //                  and + dady (softpipe-arithmetic.md, 3.2)
 //   perspective    s/w and t/w times the reciprocal of the 1/w plane, or divided by it
-//   depth          a + 0.0 offset term and a clamp to [0, 1] (DESIGN 7, rule 7) or neither; Z24
+//   depth          a + 0.0 offset term and a clamp to [0, 1] (rule 7) or neither; Z24
 //                  stored as round-half-even(z * (2^24 - 1)) or truncated (unsigned)(z * ...)
 //   derivatives    fine: the differences within the pixel's quad row and column, helpers
 //                  included (the shader asks for dFdxFine and dFdyFine; coarse derivatives would
 //                  break GLSL 4.50 section 8.13.1, so they are not a member)
 //   log2           a degree-4 minimax polynomial in (m - 1) / (m + 1) evaluated with fused
-//                  multiply-adds (DESIGN 7, rule 8) or with products and sums, the C library's
+//                  multiply-adds (rule 8) or with products and sums, the C library's
 //                  log2f, or logf(x) * 1.442695f (softpipe-arithmetic.md, 5.2)
 //   GL_LINEAR      weights on 8 bits with fixed-point lerps a + ((f * (b - a) + 128) >> 8)
-//                  (DESIGN 7, rule 9) or with the product floored, a + ((f * (b - a)) >> 8)
+//                  (rule 9) or with the product floored, a + ((f * (b - a)) >> 8)
 //                  (a multiply-high without rounding), or float weights with lerps a + (b - a) * w
 //                  rounded per operation or fma(w, b - a, a); the texel position u * size - 0.5 as
 //                  a product and a difference or one fma or corner weights on fixed-point positions
 //                  with the result as unorm16 (the parameters of Filter: coordinate bits, position
 //                  rounding, weight bits, how the corner product rounds, the output's precision;
 //                  measured on a GPU)
-//   texel values   texelFetch of unorm8 k as k * (1 / 255) (DESIGN 7, rule 9) or k / 255
+//   texel values   texelFetch of unorm8 k as k * (1 / 255) (rule 9) or k / 255
 //   precision      each float operation rounded to float (SSE arithmetic), or expressions
 //                  evaluated in extended precision and rounded once (an x87 code generator):
 //                  measured, not emulated (the oracle computes the first)
@@ -173,8 +173,8 @@ inline constexpr EnumNames<UnormConversion, 2> kUnormConversionNames = {
      {UnormConversion::kDivided, "divided"}}};
 
 // The framebuffer's conversion of a float colour x in [0, 1] to unorm8: rounded to nearest even
-// (x * 255 in float, DESIGN section 7), or quantized first: x truncated to `bits` fractional bits,
-// then k = floor(x 2^bits) scaled to (255 k + bias) >> bits.
+// (x * 255 in float, docs/design.md section 7), or quantized first: x truncated to `bits`
+// fractional bits, then k = floor(x 2^bits) scaled to (255 k + bias) >> bits.
 enum class ColourConversionRule { kNearest, kQuantized };
 inline constexpr EnumNames<ColourConversionRule, 2> kColourConversionRuleNames = {
     {{ColourConversionRule::kNearest, "nearest"}, {ColourConversionRule::kQuantized, "quantized"}}};

@@ -5,7 +5,7 @@
 //
 //   exact     IEEE float in the order the source states it: no fused multiply-add, denormals
 //             kept, log2 from the C library. The reference for golden images.
-//   llvmpipe  Mesa 22.3 llvmpipe on x86-64 with FMA (DESIGN section 7, measured).
+//   llvmpipe  Mesa 22.3 llvmpipe on x86-64 with FMA (docs/design.md section 7, measured).
 //   softpipe  Mesa 22.3 softpipe (reference/softpipe-arithmetic.md, read from its source and
 //             confirmed by emulation).
 

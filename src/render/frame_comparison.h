@@ -1,6 +1,7 @@
 #pragma once
 // Compares a frame another renderer drew with the oracle's frame of the same inputs, pixel by
-// pixel, under the precision model the oracle rendered with (DESIGN section 3, "Exactness").
+// pixel, under the precision model the oracle rendered with (docs/design.md section 3,
+// "Exactness").
 //
 // A pixel is
 //   identical    needbuffer and colour agree bit for bit with the oracle's own value;

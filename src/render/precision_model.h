@@ -1,14 +1,14 @@
 #pragma once
 // Precision models: within which limits a GL implementation may compute differently from the
-// oracle's own arithmetic (DESIGN section 3, "Exactness"). The oracle computes one value per pixel
-// with its arithmetic (a point of the space of choices, arithmetic.h) and, under a model that
-// leaves any parameter free, the set of every value a conforming implementation could produce there
-// (result_set.h). Each parameter says where its value comes from; no width in the oracle is a bare
-// number.
+// oracle's own arithmetic (docs/design.md section 3, "Exactness"). The oracle computes one value
+// per pixel with its arithmetic (a point of the space of choices, arithmetic.h) and, under a model
+// that leaves any parameter free, the set of every value a conforming implementation could produce
+// there (result_set.h). Each parameter says where its value comes from; no width in the oracle is a
+// bare number.
 //
 // Shipped models:
-//   llvmpipe  Mesa 22.3 llvmpipe on x86-64 with FMA, every parameter pinned (DESIGN section 7):
-//             every set is one value, the comparison is bit for bit.
+//   llvmpipe  Mesa 22.3 llvmpipe on x86-64 with FMA, every parameter pinned (docs/design.md
+//             section 7): every set is one value, the comparison is bit for bit.
 //   softpipe  Mesa 22.3 softpipe (reference/softpipe-arithmetic.md, read from its source and
 //             confirmed by emulation): every parameter pinned but the denormal mode, which
 //             softpipe changes between batches; each set holds the value with denormals flushed

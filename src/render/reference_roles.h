@@ -1,6 +1,6 @@
 #pragma once
 // The roles only the CPU oracle plays, as the evaluation, the goldens and the retexturing tool ask
-// for them (ARCHITECTURE.md, "Renderers to the loop"). A GL context draws what a cache state
+// for them (docs/architecture.md, "Renderers to the loop"). A GL context draws what a cache state
 // holds, one frame at a time, on its own thread; these draw on any thread without a context:
 //   ResidentRenderer   a texture with every stored page resident (on a sparse texture a missing
 //                      page's nearest stored ancestor): reference images, the first frame's

@@ -1,6 +1,6 @@
 #pragma once
-// Per-pixel result sets (DESIGN section 3, "Exactness"): under a precision model that leaves a
-// parameter free, everything a conforming implementation could produce at a pixel.
+// Per-pixel result sets (docs/design.md section 3, "Exactness"): under a precision model that
+// leaves a parameter free, everything a conforming implementation could produce at a pixel.
 //
 // A pixel's set is a list of alternatives, one per triangle that may own the pixel (and one with
 // no triangle where the pixel may stay empty). The oracle builds them

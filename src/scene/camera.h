@@ -1,6 +1,6 @@
 #pragma once
 // A pinhole camera and the one place where world positions become clip-space positions, for both
-// renderers (DESIGN section 3: computed once on the CPU, handed to the oracle and to GL).
+// renderers (docs/design.md section 3: computed once on the CPU, handed to the oracle and to GL).
 // OpenGL conventions: view space looks down -z, clip z in [-w, w], window y up.
 
 #include <glm/glm.hpp>

@@ -1,5 +1,5 @@
 #pragma once
-// Camera paths for flythroughs (thesis 4.1.2, DESIGN section 5): keyframes (frame number,
+// Camera paths for flythroughs (thesis 4.1.2, docs/design.md section 5): keyframes (frame number,
 // position, orientation, optional field of view) and named motions over frame ranges.
 //
 // The JSON form:

@@ -1,7 +1,7 @@
 #pragma once
 // What both renderers draw: triangles of clip-space vertices with virtual texture coordinates,
-// computed once on the CPU (DESIGN section 3) and handed to the oracle and, unchanged, to the GL
-// vertex shader. Draw order is the order of the triangles.
+// computed once on the CPU (docs/design.md section 3) and handed to the oracle and, unchanged, to
+// the GL vertex shader. Draw order is the order of the triangles.
 
 #include <cstdint>
 #include <glm/glm.hpp>

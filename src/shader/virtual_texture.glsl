@@ -1,6 +1,7 @@
-// The per-fragment logic of virtual texturing (thesis 3.2.3 and appendix B, DESIGN section 3),
-// written once in the common subset of GLSL 4.50 and C++20 with GLM. The GL renderer compiles it
-// in its fragment shader; the CPU oracle includes it verbatim inside a class (shader/shader_cpp.h).
+// The per-fragment logic of virtual texturing (thesis 3.2.3 and appendix B, docs/design.md section
+// 3), written once in the common subset of GLSL 4.50 and C++20 with GLM. The GL renderer compiles
+// it in its fragment shader; the CPU oracle includes it verbatim inside a class
+// (shader/shader_cpp.h).
 //
 // The backend around it provides:
 //   uvec4 vtFetchIndirection(ivec2 page, int level)  entry (fx, fy, i, 0) of page (px, py, m):

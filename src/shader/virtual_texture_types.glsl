@@ -1,6 +1,6 @@
-// Types of the virtual-texture shader logic (DESIGN section 3), in the common subset of GLSL 4.50
-// and C++20 with GLM: this file is compiled by the GL driver and, verbatim, by the C++ compiler
-// (shader/shader_cpp.h includes it at namespace scope).
+// Types of the virtual-texture shader logic (docs/design.md section 3), in the common subset of
+// GLSL 4.50 and C++20 with GLM: this file is compiled by the GL driver and, verbatim, by the C++
+// compiler (shader/shader_cpp.h includes it at namespace scope).
 //
 // Values that differ from fragment to fragment have their own type names, so that the C++ build
 // can give them one value per fragment or one SIMD lane per fragment (shader/shader_cpp.h,

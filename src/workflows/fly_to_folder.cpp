@@ -31,7 +31,7 @@ FlightResult flyToFolder(const VirtualTextureReader& reader, const FlyRequest& r
                                     : context.autoModel(&note).value_or(exactModel()).arithmetic;
   if (!note.empty()) err << "vt fly: " << note << "\n";
   // Reference images: every page resident, drawn by the oracle at the screen's resolution
-  // (DESIGN section 5).
+  // (docs/design.md section 5).
   std::unique_ptr<const ResidentRenderer> everything;
   if (request.quality) {
     everything = makeResidentRenderer(reader);

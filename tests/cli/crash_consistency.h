@@ -1,7 +1,7 @@
 #pragma once
-// Crash consistency of a command that writes one output, a file or a folder of files (README,
-// "Hardening"): the command is killed with SIGKILL at random moments, and after each kill its
-// output path must hold the previous complete output byte for byte (nothing, when there was
+// Crash consistency of a command that writes one output, a file or a folder of files
+// (docs/hardening.md): the command is killed with SIGKILL at random moments, and after each kill
+// its output path must hold the previous complete output byte for byte (nothing, when there was
 // none) or the complete new output, never a partial one; for a folder, every file of it together
 // (never some files new and some old or missing). What the killed command leaves beside it must
 // carry the temporary name (".<output name>.tmp-XXXXXX...", common/posix_file.h) and, for a

@@ -1,4 +1,4 @@
-// Calibration on implementations the oracle was not written for (README, "Precision models"):
+// Calibration on implementations the oracle was not written for (docs/precision-models.md):
 // Mesa's llvmpipe with options that change its arithmetic while staying conformant, and with
 // options that break a rule. No code or data of the project names these variants: each is a
 // process of its own with the option set before the driver loads, `vt calibrate` measures it

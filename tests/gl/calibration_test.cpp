@@ -1,9 +1,9 @@
 // `vt calibrate` on the implementations this machine has. On llvmpipe the probes must rediscover
-// DESIGN section 7 on their own: the calibrated model equals the hand-written `llvmpipe` model in
-// every parameter, and the crosscheck under it is bit-exact. On softpipe they must rediscover what
-// reference/softpipe-arithmetic.md read from Mesa's source: the calibrated model equals the
-// hand-written `softpipe` model, and the crosscheck under it is bit-exact too. A calibration is
-// deterministic.
+// docs/design.md section 7 on their own: the calibrated model equals the hand-written `llvmpipe`
+// model in every parameter, and the crosscheck under it is bit-exact. On softpipe they must
+// rediscover what reference/softpipe-arithmetic.md read from Mesa's source: the calibrated model
+// equals the hand-written `softpipe` model, and the crosscheck under it is bit-exact too. A
+// calibration is deterministic.
 
 #include "calibrate/calibration.h"
 

@@ -131,7 +131,7 @@ TEST(CaptureCrosscheck, GlCapturesMatchTheOracleAndOneChangedNeedPixelIsReported
 // The measurement of how tight each model's verdict is: GL captures of a flight with k/255
 // added to the red channel of the lower left quarter of every frame (where red + k <= 255). Under
 // llvmpipe's pinned model every changed pixel is unexplained from k = 1; gl45's colour intervals
-// admit some of them (printed per k; README, the vt crosscheck item).
+// admit some of them (printed per k; docs/precision-models.md, "Soundness and sharpness").
 TEST(CaptureCrosscheck, RedRaisedInAQuarterOfEachFrameIsFlaggedAtEveryPixelUnderLlvmpipe) {
   test::ScratchDirectory dir;
   writeSyntheticTexture(

@@ -202,7 +202,7 @@ TEST(CrosscheckCommand, LlvmpipeLiesInsideEveryGl45Set) {
   EXPECT_LT(summary["totals"]["identical"].get<uint64_t>(),
             summary["totals"]["pixels"].get<uint64_t>());
   // How much: every frame's covered pixels admit more than one colour on average, at most the
-  // whole range (the terrain's sets admit every colour: README, the vt crosscheck item).
+  // whole range (the terrain's sets admit every colour: docs/precision-models.md).
   for (const nlohmann::json& record : summary["frames"]) {
     const double width = record["mean_color_width"].get<double>();
     EXPECT_GT(width, 0.0) << record["scene"] << " " << record["mode"];

@@ -51,7 +51,8 @@ TEST(GoldenBackend, TheGlPathPassesTheOracleGoldensOfASmallFlight) {
   EXPECT_EQ(checked.exitCode, 0) << checked.out << checked.err;
   EXPECT_THAT(checked.out, HasSubstr("6 of 6 frames pass"));
 
-  // softpipe differs from llvmpipe (no vertex snapping, float filter weights: README), so its
+  // softpipe differs from llvmpipe (no vertex snapping, float filter weights:
+  // docs/precision-models.md), so its
   // frames are not the golden images; under gl45 each recorded frame is judged against the
   // oracle's result sets for the cache state it was drawn from, and nothing is unexplained.
   ::setenv("GALLIUM_DRIVER", "softpipe", 1);

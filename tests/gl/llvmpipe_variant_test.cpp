@@ -3,7 +3,7 @@
 // process of its own with the variable set. LP_PERF=no_depth draws without the depth test (GL 4.5
 // core, section 17.3.6), LP_PERF=no_linear samples GL_LINEAR as GL_NEAREST (section 8.14.2).
 // Each must fail the check under the pinned llvmpipe model and under gl45, and the same command
-// without the variable must pass (README, "Planted bugs").
+// without the variable must pass (docs/precision-models.md, "Implementation variants").
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -96,13 +96,13 @@ TEST_F(LlvmpipeVariant, WithoutTheDepthTestTheDepthScenesFail) {
                    frame["mode"].get<std::string>());
       // The panel drawn before the wall and the box's back faces (occluders), one quad's hidden
       // half (crossing): thousands of the 64,000 pixels painted by what lies behind (measured:
-      // README, "Planted bugs").
+      // docs/precision-models.md, "Implementation variants").
       EXPECT_GT(unexplained(frame), 1000u);
       // Under gl45 a painted pixel is explained by depth only where the depth intervals of the
       // two surfaces overlap: the oracle bounds each over vertices moved by 1/16 pixel (4
       // sub-pixel bits) and 84 units of 2^-23, which leaves a band of a few pixels along the
-      // box's silhouette and the intersection line (README, "Planted bugs": 3 to 4 decided
-      // pixels for each one left open on both scenes). Most painted pixels must be decided.
+      // box's silhouette and the intersection line (3 to 4 decided pixels for each one left
+      // open on both scenes). Most painted pixels must be decided.
       EXPECT_LE(explainedBy(frame, "depth") * 2, unexplained(frame));
     }
   }

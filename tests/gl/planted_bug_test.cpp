@@ -2,9 +2,10 @@
 // textual change of the shader source made here, never in the shipped shader), drawn on llvmpipe
 // and judged by the oracle. Under the pinned llvmpipe model every bug must be caught, with the
 // right parameter named; under gl45 every bug the specification forbids must be caught, and the
-// ones it allows are listed (README, "Planted bugs"). The same bugs drawn on llvmpipe generated
-// without FMA (GALLIUM_OVERRIDE_CPU_CAPS=sse4.1, an implementation no code of the oracle names)
-// must be caught under the model `vt calibrate` measures there, as under llvmpipe's.
+// ones it allows are listed (docs/precision-models.md, "Planted bugs"). The same bugs drawn on
+// llvmpipe generated without FMA (GALLIUM_OVERRIDE_CPU_CAPS=sse4.1, an implementation no code of
+// the oracle names) must be caught under the model `vt calibrate` measures there, as under
+// llvmpipe's.
 
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
@@ -34,7 +35,7 @@ struct PlantedBug {
   const char* find;     // in the real fragment shader source, exactly once
   const char* replace;  // the bug
   int reason;           // the parameter the llvmpipe model must name (ResultReason bit)
-  bool allowedByGl45;   // whether gl45 may let it pass, and why (README)
+  bool allowedByGl45;   // whether gl45 may let it pass, and why (docs/precision-models.md)
 };
 
 // clang-format off

@@ -1,8 +1,8 @@
 // Two places where Mesa's softpipe breaks the OpenGL 4.5 rules, each as the smallest draw that
 // shows it, run on llvmpipe (which follows the rule) and on softpipe (which does not), with the
 // form the GL path uses instead (src/gl/gl_frame_renderer.cpp), correct on both. These are why
-// `vt crosscheck` on softpipe left pixels unexplained before the GL path avoided them (README,
-// "Precision models and result sets").
+// `vt crosscheck` on softpipe left pixels unexplained before the GL path avoided them
+// (docs/precision-models.md, "Soundness and sharpness").
 //
 // 1. texelFetch(sampler, P, lod) reads level `lod` of each fragment (GLSL 4.50, section 8.9.2:
 //    "Use integer texture coordinate P to lookup a single texel from sampler. The level-of-detail
@@ -171,7 +171,7 @@ TEST(SoftpipeRules, SoftpipeFetchesTheQuadsFirstLevelForAllFour) {
   const HeadlessContext context;
   ASSERT_EQ(context.renderer(), "softpipe");
   // In every quad the two fragments whose level differs from the first fragment's read wrong:
-  // half of the pixels. Should softpipe be fixed, this fails and the README must say so.
+  // half of the pixels. Should softpipe be fixed, this fails and docs/ must say so.
   EXPECT_EQ(texelFetchLevelErrors(), kSize * kSize / 2);
 }
 

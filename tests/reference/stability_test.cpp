@@ -1,7 +1,7 @@
 // The numerical stability suite: stiff and extreme cases, each with its expected result derived
 // from first principles (geometry in double precision, or the formulas' limits), the measured
 // result of the oracle, and the bound between them. Every case prints one line
-// "stability | case | expected | measured | bound" that the README's table reproduces.
+// "stability | case | expected | measured | bound" that docs/stability.md's table reproduces.
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The shared shader logic, compiled as C++, against values derived by hand from the thesis's
-// formulas and DESIGN section 3.
+// formulas and docs/design.md section 3.
 
 #include <gtest/gtest.h>
 

@@ -20,7 +20,7 @@
 
 namespace vt::oracle {
 
-// The precision model the oracle judges under (DESIGN section 3, "Exactness"): within which
+// The precision model the oracle judges under (docs/design.md section 3, "Exactness"): within which
 // limits the other implementation may compute differently from the oracle.
 //   exact     IEEE float in source order, every parameter pinned: golden images, bit for bit
 //   llvmpipe  Mesa's llvmpipe on x86-64 with FMA, every parameter pinned: bit for bit
