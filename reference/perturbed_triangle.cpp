@@ -7,7 +7,6 @@
 namespace vt::reference {
 
 using perturbed_detail::grown;
-using perturbed_detail::kDoubleSlack;
 using perturbed_detail::slack;
 
 PerturbedTriangle::PerturbedTriangle(const SetupTriangle& t, double radius) : radius_(radius) {

@@ -161,7 +161,7 @@ class PerturbedTriangle {
   std::array<AffinePlane, 3> lambda_;
   std::array<double, 3> cornerX_{}, cornerY_{};
   AffinePlane z_, oneOverW_;
-  double radius_ = 0, shrink_ = 1;  // shrink_ = 1 / (1 - r G)
+  double radius_ = 0, shrink_ = 1;      // shrink_ = 1 / (1 - r G)
   std::array<double, 2> stepRadius_{};  // rho1 per axis
   bool bounded_ = false;
 };
@@ -170,10 +170,8 @@ class PerturbedTriangle {
 // their intervals travel through the stack, a stall on every call).
 namespace perturbed_detail {
 
-// The rounding of a double evaluation, absolute, from the magnitudes of its terms (far below every
-// radius the bounds carry).
-inline constexpr double kDoubleSlack = 0x1p-40;
-
+// The rounding of a double evaluation, absolute, from the magnitudes of its terms (kDoubleSlack of
+// them: far below every radius the bounds carry).
 inline double slack(const AffinePlane& p, const WindowBox& box) {
   return kDoubleSlack * (std::fabs(p.a0) + std::fabs(p.ax) * box.x.magnitude() +
                          std::fabs(p.ay) * box.y.magnitude());
@@ -201,7 +199,7 @@ inline WindowBox grown(const WindowBox& box, double by) {
 }
 
 [[gnu::always_inline]] inline Interval PerturbedTriangle::affineOver(const AffinePlane& p,
-                                                                  const WindowBox& box) const {
+                                                                     const WindowBox& box) const {
   // Each variable once: interval evaluation of an affine function is exact.
   const Interval v = Interval::point(p.a0) + box.x * p.ax + box.y * p.ay;
   return widen(v, 0, perturbed_detail::slack(p, box));
