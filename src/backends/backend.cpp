@@ -2,7 +2,6 @@
 
 #include <stdexcept>
 
-#include "calibrate/fingerprint.h"
 #include "gl/gl_frame_renderer.h"
 #include "gl/headless_context.h"
 #include "reference/oracle_frame_renderer.h"
@@ -31,16 +30,6 @@ std::string BackendContext::version() const { return gl_ ? gl_->version() : ""; 
 std::string BackendContext::captureName(const RenderSettings& settings) const {
   return gl_ ? gl_->renderer()
              : std::string(kOracleRenderer) + " (" + arithmeticLabel(settings.arithmetic) + ")";
-}
-
-std::optional<PrecisionModel> BackendContext::autoModel(std::string* note) const {
-  note->clear();
-  if (!gl_) return std::nullopt;
-  return calibrate::autoModel(gl_->renderer(), note);
-}
-
-std::string BackendContext::fingerprintedPoint() const {
-  return gl_ ? calibrate::fingerprintedPoint().value_or("") : "";
 }
 
 std::unique_ptr<FrameRenderer> makeFrameRenderer(Backend backend, const CacheState& cache) {

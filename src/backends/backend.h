@@ -4,7 +4,6 @@
 // asks for the roles only the oracle plays through render/reference_roles.h.
 
 #include <memory>
-#include <optional>
 #include <string>
 
 #include "format/virtual_texture_reader.h"
@@ -44,14 +43,10 @@ class BackendContext {
   // judged under auto.
   std::string captureName(const RenderSettings& settings) const;
 
-  // What `auto` means for the implementation that draws, the verifier's one resolution
-  // (calibrate/fingerprint.h, autoModel): a measured or shipped model whose fingerprint
-  // reproduces on this context, else gl45, with one line in `note` saying why. None for the
-  // oracle, which draws whatever arithmetic it is given: the caller's own default applies.
-  std::optional<PrecisionModel> autoModel(std::string* note) const;
-  // The named point this context's implementation reproduces, recorded in captures; "" where
-  // none does, and for the oracle.
-  std::string fingerprintedPoint() const;
+  // Which backend draws: with a GL context current (kGl) or none (kOracle). What `auto` means
+  // for a GL context is resolved above this factory, which links no calibration
+  // (workflows/auto_model.h).
+  Backend backend() const { return gl_ ? Backend::kGl : Backend::kOracle; }
 
  private:
   std::unique_ptr<HeadlessContext> gl_;

@@ -5,17 +5,18 @@
 #include "common/error.h"
 #include "render/precision_model.h"
 #include "render/precision_model_file.h"
+#include "workflows/auto_model.h"
 
 namespace vt {
 
 GoldenCheck checkGoldenHere(const GoldenCheckRequest& request, std::ostream& out,
                             std::ostream& err) {
   const BackendContext context(request.backend);
-  // auto: the model the implementation's fingerprint confirms (BackendContext::autoModel); the
+  // auto: the model the implementation's fingerprint confirms (workflows/auto_model.h); the
   // oracle, which has none, flies in the golden set's own profile.
   std::string note;
   const std::optional<PrecisionModel> model =
-      request.model == "auto" ? context.autoModel(&note)
+      request.model == "auto" ? autoModel(context, &note)
                               : std::optional(resolveModel(request.model, context.renderer()));
   if (!note.empty()) err << "vt golden check: " << note << "\n";
   if (model)

@@ -1,6 +1,6 @@
 #pragma once
 // `vt golden check`'s work as one call: the precision model resolved for the implementation that
-// draws (`auto`: BackendContext::autoModel; a model file from another driver is warned about),
+// draws (`auto`: workflows/auto_model.h; a model file from another driver is warned about),
 // the golden set flown again and compared (eval/golden.h), one line per failed frame and the
 // verdict; InputError naming the golden folder when a frame fails.
 

@@ -8,6 +8,7 @@
 #include "render/arithmetic_points.h"
 #include "shader/needbuffer.h"
 #include "verify/flight_capture.h"
+#include "workflows/auto_model.h"
 
 namespace vt {
 
@@ -23,12 +24,12 @@ FlightResult flyToFolder(const VirtualTextureReader& reader, const FlyRequest& r
   options.link = LinkModel{request.linkLatencySeconds, request.linkMegabytesPerSecond * 1e6};
   options.backend = request.backend;
   const BackendContext context(request.backend);
-  // auto: the model the implementation's fingerprint confirms (BackendContext::autoModel); the
+  // auto: the model the implementation's fingerprint confirms (workflows/auto_model.h); the
   // oracle, which has none, flies in exact arithmetic.
   std::string note;
   options.settings.arithmetic = request.profile != "auto"
                                     ? arithmeticPoint(request.profile)
-                                    : context.autoModel(&note).value_or(exactModel()).arithmetic;
+                                    : autoModel(context, &note).value_or(exactModel()).arithmetic;
   if (!note.empty()) err << "vt fly: " << note << "\n";
   // Reference images: every page resident, drawn by the oracle at the screen's resolution
   // (docs/design.md section 5).
@@ -54,7 +55,7 @@ FlightResult flyToFolder(const VirtualTextureReader& reader, const FlyRequest& r
   if (captureStaging) {
     const std::string renderer = context.captureName(options.settings);
     // The named point this GL implementation reproduces, recorded for `--model auto`.
-    const std::string fingerprint = context.fingerprintedPoint();
+    const std::string fingerprint = fingerprintedPoint(context);
     options.wantsCapture = [&](int frame) { return frame % request.captureEvery == 0; };
     options.capture = [&, renderer, fingerprint](const FlightCaptureView& view) {
       writeFlightCapture(captureStaging->path(), view, reader, options.settings, renderer,

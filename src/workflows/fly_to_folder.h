@@ -25,7 +25,7 @@ struct FlyRequest {
   Viewport screen{320, 200};
   unsigned threads = 0;  // the oracle's (0: every core)
   Backend backend = Backend::kOracle;
-  std::string profile = "auto";    // a point's name, or auto (BackendContext::autoModel)
+  std::string profile = "auto";    // a point's name, or auto (workflows/auto_model.h)
   bool threadedStreaming = false;  // a streaming thread in real time over the link
   double linkLatencySeconds = 0, linkMegabytesPerSecond = 0;
   bool quality = false;  // RMSE, SSIM and WSSIM per frame
