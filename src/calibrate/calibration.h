@@ -1,6 +1,6 @@
 #pragma once
 // `vt calibrate`: measures the OpenGL implementation behind the current context, family by family
-// (render/arithmetic.h), by probe draws (probe_draws.h), and writes the precision model it pins.
+// (render/arithmetic.h), by probe draws (probes/probe_draws.h), and writes the precision model it pins.
 //
 //   shader math    log2, sqrt, texel values, the `precise` lerps, denormals (shader_math_fit.h)
 //   GL_LINEAR      every member of the filter family (filter_fit.h)

@@ -7,7 +7,7 @@
 #include <random>
 #include <string>
 
-#include "calibrate/probe_draws.h"
+#include "probes/probe_draws.h"
 
 namespace vt::calibrate {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "calibrate/probe_draws.h"
+#include "probes/probe_draws.h"
 #include "reference/linear_filter.h"
 
 namespace vt::calibrate {

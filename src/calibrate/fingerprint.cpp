@@ -7,7 +7,7 @@
 #include "calibrate/decoding_fit.h"
 #include "calibrate/filter_fit.h"
 #include "calibrate/float_bits.h"
-#include "calibrate/probe_draws.h"
+#include "probes/probe_draws.h"
 #include "calibrate/probe_texture.h"
 #include "calibrate/raster_fit.h"
 #include "reference/linear_filter.h"

@@ -21,7 +21,7 @@
 // vertices moved within the sub-pixel grid explain is not counted twice.
 
 #include "calibrate/family_fit.h"
-#include "calibrate/probe_draws.h"
+#include "probes/probe_draws.h"
 #include "render/arithmetic.h"
 #include "render/frame.h"
 #include "render/precision_model.h"

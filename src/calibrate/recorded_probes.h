@@ -8,7 +8,7 @@
 
 #include <filesystem>
 
-#include "calibrate/probe_draws.h"
+#include "probes/probe_draws.h"
 
 namespace vt::calibrate {
 

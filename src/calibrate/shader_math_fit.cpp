@@ -6,7 +6,7 @@
 #include <random>
 
 #include "calibrate/float_bits.h"
-#include "calibrate/probe_draws.h"
+#include "probes/probe_draws.h"
 #include "reference/linear_filter.h"
 #include "reference/shader_math.h"
 

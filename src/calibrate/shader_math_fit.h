@@ -1,6 +1,6 @@
 #pragma once
 // The shader-math families of the arithmetic (render/arithmetic.h) fitted from probe draws
-// (probe_draws.h): log2, sqrt, texel values, the `precise` lerps, denormals.
+// (probes/probe_draws.h): log2, sqrt, texel values, the `precise` lerps, denormals.
 //
 //   log2, sqrt   65,536 positive floats of every exponent through log2() and sqrt(): every member
 //                of the log2 family bit for bit; else the residual against the true log2

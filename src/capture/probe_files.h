@@ -6,7 +6,7 @@
 //                            "colour" or "triangles", and the fields below}
 //   probe-NNNN.inputs.f32    shader/colour: four little-endian float32 per pixel ("input_count"
 //                            of them, "width" per row); "body" the fragment code; "clipped",
-//                            "linear" as in calibrate/probe_draws.h
+//                            "linear" as in probes/probe_draws.h
 //   probe-NNNN.texels.rgba8  shader/colour with a texture: "texture_size" [w, h], RGBA8 rows
 //   probe-NNNN.vertices.f32  triangles: six float32 per vertex (x, y, z, w, s, t), "vertex_count"
 //   probe-NNNN.indices.u32   triangles: "index_count" uint32; "viewport" [w, h]; "depth"
@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "calibrate/probe_draws.h"
+#include "probes/probe_draws.h"
 
 namespace vt::capture {
 

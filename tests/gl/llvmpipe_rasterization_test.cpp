@@ -13,7 +13,7 @@
 #include <string>
 
 #include "build/synthetic_texture.h"
-#include "calibrate/probe_draws.h"
+#include "probes/probe_draws.h"
 #include "gl/headless_context.h"
 #include "reference/renderer.h"
 #include "render/arithmetic_points.h"

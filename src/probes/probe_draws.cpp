@@ -1,4 +1,4 @@
-#include "calibrate/probe_draws.h"
+#include "probes/probe_draws.h"
 
 #include <epoxy/gl.h>
 
