@@ -210,6 +210,14 @@ WindowCorner cornerOf(const WindowVertex& v) {
       v.depthTerms};
 }
 
+// The vertex at its snapped position (PlanePositions::kSnapped): X = 1/2 + xf 2^-bits, rounded to
+// float (exact while |xf| < 2^24, positions within 2^(24 - bits) pixels).
+WindowVertex onGrid(WindowVertex v, const Coverage& coverage) {
+  v.x = static_cast<float>(0.5 + std::ldexp(static_cast<double>(v.xf), -coverage.subpixelBits));
+  v.y = static_cast<float>(0.5 + std::ldexp(static_cast<double>(v.yf), -coverage.subpixelBits));
+  return v;
+}
+
 // The planes as `setup` says, from the triangle in draw order (v0, v1, v2) or oriented.
 void setupPlanes(const WindowVertex& v0, const WindowVertex& v1, const WindowVertex& v2,
                  PlaneSetup setup, SetupTriangle& out);
@@ -224,7 +232,11 @@ bool setupEdges(WindowVertex v0, WindowVertex v1, WindowVertex v2, Viewport view
     std::swap(v0, v1);
     std::swap(out.fanNeighbour[0], out.fanNeighbour[1]);  // edge i is opposite corner i
   }
-  setupPlanes(v0, v1, v2, arithmetic.planeSetup, out);
+  if (arithmetic.planePositions == PlanePositions::kSnapped)
+    setupPlanes(onGrid(v0, arithmetic.coverage), onGrid(v1, arithmetic.coverage),
+                onGrid(v2, arithmetic.coverage), arithmetic.planeSetup, out);
+  else
+    setupPlanes(v0, v1, v2, arithmetic.planeSetup, out);
   const Coverage& coverage = arithmetic.coverage;
   out.edges = {edgeOf(v0, v1, coverage), edgeOf(v1, v2, coverage), edgeOf(v2, v0, coverage)};
   out.corners = {cornerOf(v0), cornerOf(v1), cornerOf(v2)};

@@ -15,7 +15,11 @@ std::string describe(const Arithmetic& a) {
                          std::string(nameOf(kSnapRoundingNames, a.coverage.rounding)) + ", " +
                          (a.coverage.leftEdgesIn ? "left" : "right") + " and " +
                          (a.coverage.bottomEdgesIn ? "bottom" : "top") + " edges in");
-  line("plane_setup", std::string(nameOf(kPlaneSetupNames, a.planeSetup)));
+  // The positions are said for the snapped member only, so that the others read as before.
+  line("plane_setup", std::string(nameOf(kPlaneSetupNames, a.planeSetup)) +
+                          (a.planePositions == PlanePositions::kSnapped
+                               ? ", through the positions snapped to the coverage's grid"
+                               : ""));
   line("plane_evaluation", std::string(nameOf(kPlaneEvaluationNames, a.planeEvaluation)));
   line("perspective", std::string(nameOf(kPerspectiveNames, a.perspective)));
   line("depth", std::string(a.depth.offsetAndClamp ? "offset and clamp" : "as interpolated") +

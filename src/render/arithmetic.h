@@ -92,6 +92,14 @@ enum class PlaneSetup { kFirstVertex, kLowestVertex };
 inline constexpr EnumNames<PlaneSetup, 2> kPlaneSetupNames = {
     {{PlaneSetup::kFirstVertex, "first_vertex"}, {PlaneSetup::kLowestVertex, "lowest_vertex"}}};
 
+// The window positions the planes go through: the float positions the viewport transform gives, or
+// those positions snapped to the coverage's sub-pixel grid (X = 1/2 + round((X - 1/2) 2^bits) /
+// 2^bits, the rounding the coverage member says), so that the planes and the edges are of one
+// triangle. Snapped applies to snapped-edge coverage only (scanline spans snap nothing).
+enum class PlanePositions { kUnsnapped, kSnapped };
+inline constexpr EnumNames<PlanePositions, 2> kPlanePositionsNames = {
+    {{PlanePositions::kUnsnapped, "unsnapped"}, {PlanePositions::kSnapped, "snapped"}}};
+
 enum class PlaneEvaluation { kFused, kUnfused, kQuadStepped };
 inline constexpr EnumNames<PlaneEvaluation, 3> kPlaneEvaluationNames = {
     {{PlaneEvaluation::kFused, "fused"},
@@ -190,6 +198,7 @@ struct Arithmetic {
   bool fusedViewport = false;
   Coverage coverage;
   PlaneSetup planeSetup = PlaneSetup::kFirstVertex;
+  PlanePositions planePositions = PlanePositions::kUnsnapped;
   PlaneEvaluation planeEvaluation = PlaneEvaluation::kUnfused;
   Perspective perspective = Perspective::kReciprocalTimes;
   Depth depth;

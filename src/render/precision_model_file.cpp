@@ -124,6 +124,16 @@ Arithmetic readArithmetic(const Fields& f) {
   a.coverage.bottomEdgesIn = coverage.flag("bottom_edges_in");
   coverage.refuseUnread();
   a.planeSetup = f.named("plane_setup", kPlaneSetupNames);
+  // Absent from files written before the member existed, which all set up through the float
+  // positions.
+  if (f.has("plane_positions")) {
+    a.planePositions = f.named("plane_positions", kPlanePositionsNames);
+    if (a.planePositions == PlanePositions::kSnapped &&
+        a.coverage.rule != CoverageRule::kSnappedEdges)
+      throw f.failure("field arithmetic.plane_positions is 'snapped' but the coverage (" +
+                      std::string(nameOf(kCoverageRuleNames, a.coverage.rule)) +
+                      ") snaps no position");
+  }
   a.planeEvaluation = f.named("plane_evaluation", kPlaneEvaluationNames);
   a.perspective = f.named("perspective", kPerspectiveNames);
   const Fields depth = f.object("depth");
@@ -243,6 +253,7 @@ nlohmann::ordered_json arithmeticJson(const Arithmetic& a) {
     filter["position_rounding"] = nameOf(kPositionRoundingNames, a.filter.positionRounding);
     filter["output"] = nameOf(kFilterOutputNames, a.filter.output);
   }
+  if (a.planePositions == PlanePositions::kSnapped) json["plane_positions"] = "snapped";
   if (a.blockDecoding.alpha == PaletteRule::kWeights)
     json["block_decoding"]["alpha_weights"] = a.blockDecoding.alphaWeights;
   if (a.colourConversion.rule != ColourConversionRule::kNearest)

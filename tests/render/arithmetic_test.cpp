@@ -65,6 +65,11 @@ TEST(Arithmetic, DescribesEveryFamily) {
         "log2: polynomial_unfused\n", "filter: float, fused lerp, fused position\n",
         "texel_conversion: divided\n", "denormals: flushed\n"})
     EXPECT_THAT(text, HasSubstr(line));
+  Arithmetic snapped = unnamedPoint();
+  snapped.planePositions = PlanePositions::kSnapped;
+  EXPECT_THAT(describe(snapped),
+              HasSubstr("plane_setup: lowest_vertex, through the positions snapped to the "
+                        "coverage's grid\n"));
 }
 
 TEST(Arithmetic, EveryPointRoundTripsThroughAModelFile) {

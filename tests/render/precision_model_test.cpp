@@ -71,6 +71,7 @@ TEST(PrecisionModelFile, RoundTripsEveryParameter) {
   gpu.decodingPinned = true;
   gpu.arithmetic.blockDecoding = {
       PaletteRule::kNvidia, PaletteRule::kWeights, {1, 2, 3, 4, 5, 6, 7, 8, 9, 4096}};
+  gpu.arithmetic.planePositions = PlanePositions::kSnapped;
   for (const PrecisionModel& m :
        {measured, floored, gpu, llvmpipeModel(), softpipeModel(), exactModel()}) {
     std::ofstream(dir / "m.json") << modelJson(m);
@@ -172,6 +173,12 @@ TEST(PrecisionModelFile, RefusesMalformedFilesNamingTheField) {
   j = good;
   j["sub_texel_bits"] = 0;
   refused(j, "field sub_texel_bits is 0 for a bounded filter");
+  j = nlohmann::json::parse(modelJson(softpipeModel()));  // scanline spans: no grid to snap to
+  j["arithmetic"]["plane_positions"] = "snapped";
+  refused(j, "field arithmetic.plane_positions is 'snapped' but the coverage (scanline_spans) "
+             "snaps no position");
+  j["arithmetic"]["plane_positions"] = "rounded";
+  refused(j, "field arithmetic.plane_positions is 'rounded', not one of unsnapped, snapped");
   refused(nlohmann::json::array(), "not a JSON object");
   std::ofstream(dir / "bad.json") << "{\"format\": ";
   try {
