@@ -286,28 +286,31 @@ struct Combination {
   RasterCounts counts;
 };
 
-}  // namespace
+// The probes of the combined fit, in words, and what memberSummary counts for their families.
+const char* const kRasterProbe =
+    "360 random triangles (slivers, perspective, near-plane clipping, a "
+    "coplanar pair), 60 cut just behind the near plane, three planes to the horizon, two "
+    "pairs of crossing planes and a ground under a triangle, with vertices behind the camera, "
+    "at 160 x 120";
+const char* const kPixelsCounted =
+    " pixels, in coverage, coordinates or depth, with the member's best combination";
 
-RasterFits fitRasterization(const Arithmetic& base) {
-  RasterFits result;
-  GridResult grid = fitGrid();
-  result.subpixelBits = grid.coarsestBits;
+// The oracle's frame of a probe mesh, with debug channels (triangle, coordinates, derivatives).
+Frame oracleFrame(const ClipSpaceMesh& mesh, const reference::ResidentTexture& texture,
+                  Viewport viewport, const Arithmetic& arithmetic, DepthFormat format) {
+  RenderSettings settings;
+  settings.debugChannels = true;
+  settings.viewport = viewport;
+  settings.arithmetic = arithmetic;
+  settings.depthFormat = format;
+  return reference::renderFrame(mesh, texture, settings);
+}
 
-  const ProbeTexture probeTexture(4);
-  const reference::ResidentTexture& texture = probeTexture.texture();
-  const Viewport viewport{160, 120};
-  const auto draw = [&](const ClipSpaceMesh& mesh, const Arithmetic& arithmetic,
-                        DepthFormat format) {
-    RenderSettings settings;
-    settings.debugChannels = true;
-    settings.viewport = viewport;
-    settings.arithmetic = arithmetic;
-    settings.depthFormat = format;
-    return reference::renderFrame(mesh, texture, settings);
-  };
-
+// Every combination of the coverage candidates and the other families' members, on `base`.
+std::vector<Combination> allCombinations(const Arithmetic& base,
+                                         const std::vector<Coverage>& coverages) {
   std::vector<Combination> combinations;
-  for (const Coverage& coverage : grid.candidates)
+  for (const Coverage& coverage : coverages)
     for (const bool fusedViewport : {true, false})
       for (const auto& [setup, setupName] : kPlaneSetupNames)
         for (const auto& [evaluation, evaluationName] : kPlaneEvaluationNames)
@@ -322,6 +325,11 @@ RasterFits fitRasterization(const Arithmetic& base) {
               a.depth.offsetAndClamp = offsetAndClamp;
               combinations.push_back({a, {}});
             }
+  return combinations;
+}
+
+// The meshes of kRasterProbe, in the order they are drawn.
+std::vector<ClipSpaceMesh> rasterProbeMeshes(Viewport viewport) {
   std::vector<ClipSpaceMesh> meshes;
   for (const unsigned seed : {1u, 2u, 3u}) meshes.push_back(randomTriangles(seed, 120));
   meshes.push_back(nearPlaneTriangles(4, 60));
@@ -335,15 +343,28 @@ RasterFits fitRasterization(const Arithmetic& base) {
        {CrossingPlanes{0.5f, 3.0f, 20.0f, 1e-3f}, CrossingPlanes{2.0f, 40.0f, -35.0f, 1e-4f}})
     meshes.push_back(planesBehindTheCamera(view, viewport));
   meshes.push_back(groundUnderATriangleBehindTheCamera());
+  return meshes;
+}
+
+// Draws each mesh on the implementation and counts what every combination misses of it; returns
+// the meshes with their readbacks.
+std::vector<std::pair<ClipSpaceMesh, RasterReadback>> drawAndCompare(
+    const std::vector<ClipSpaceMesh>& meshes, std::vector<Combination>& combinations,
+    const reference::ResidentTexture& texture, Viewport viewport) {
   std::vector<std::pair<ClipSpaceMesh, RasterReadback>> drawn;
   for (const ClipSpaceMesh& mesh : meshes) {
     const RasterReadback gl = drawTriangles(mesh, viewport);
     for (Combination& c : combinations)
-      compareRaster(gl, draw(mesh, c.arithmetic, DepthFormat::kDepth32F), c.counts);
+      compareRaster(gl, oracleFrame(mesh, texture, viewport, c.arithmetic, DepthFormat::kDepth32F),
+                    c.counts);
     drawn.emplace_back(mesh, gl);
   }
+  return drawn;
+}
 
-  // The combination taken: the first that reproduces everything, else the closest.
+// The combination taken: the first that reproduces everything, else the closest (fewest pixels
+// of another triangle, then of other attributes, then of other depth).
+const Combination& closestCombination(const std::vector<Combination>& combinations) {
   const auto closer = [](const RasterCounts& a, const RasterCounts& b) {
     if (a.coverage != b.coverage) return a.coverage < b.coverage;
     if (a.attributes != b.attributes) return a.attributes < b.attributes;
@@ -352,140 +373,147 @@ RasterFits fitRasterization(const Arithmetic& base) {
   size_t taken = 0;
   for (size_t i = 1; i < combinations.size(); ++i)
     if (closer(combinations[i].counts, combinations[taken].counts)) taken = i;
-  const Combination& chosen = combinations[taken];
-  const bool reproduced = chosen.counts.reproduces();
-  result.arithmetic = chosen.arithmetic;
-  result.coveragePinned = chosen.counts.coverage == 0;
+  return combinations[taken];
+}
 
-  // Each family's evidence: per member, the fewest values any combination with it misses.
-  const std::string probe =
-      "360 random triangles (slivers, perspective, near-plane clipping, a "
-      "coplanar pair), 60 cut just behind the near plane, three planes to the horizon, two "
-      "pairs of crossing planes and a ground under a triangle, with vertices behind the camera, "
-      "at 160 x 120";
-  // What memberSummary counts for a rasterization family.
-  const std::string pixelsCounted =
-      " pixels, in coverage, coordinates or depth, with the member's best combination";
-  const auto family = [&](const char* parameter, auto memberOf, auto nameOfMember,
-                          const auto& members) {
-    ParameterFit fit;
-    fit.parameter = parameter;
-    fit.probe = probe;
-    fit.probes = chosen.counts.pixels;
-    std::vector<std::string> reproducing;
-    for (const auto& member : members) {
-      uint64_t fewest = std::numeric_limits<uint64_t>::max();
-      for (const Combination& c : combinations)
-        if (memberOf(c.arithmetic) == member) {
-          fewest = std::min(fewest, c.counts.total());
-          if (c.counts.reproduces()) {
-            const std::string name = nameOfMember(member);
-            if (std::find(reproducing.begin(), reproducing.end(), name) == reproducing.end())
-              reproducing.push_back(name);
-          }
+// One family's evidence: per member, the fewest values any combination with it misses.
+template <typename MemberOf, typename NameOf, typename Members>
+ParameterFit familyFit(const char* parameter, const std::vector<Combination>& combinations,
+                       const Combination& chosen, MemberOf memberOf, NameOf nameOfMember,
+                       const Members& members) {
+  const bool reproduced = chosen.counts.reproduces();
+  ParameterFit fit;
+  fit.parameter = parameter;
+  fit.probe = kRasterProbe;
+  fit.probes = chosen.counts.pixels;
+  std::vector<std::string> reproducing;
+  for (const auto& member : members) {
+    uint64_t fewest = std::numeric_limits<uint64_t>::max();
+    for (const Combination& c : combinations)
+      if (memberOf(c.arithmetic) == member) {
+        fewest = std::min(fewest, c.counts.total());
+        if (c.counts.reproduces()) {
+          const std::string name = nameOfMember(member);
+          if (std::find(reproducing.begin(), reproducing.end(), name) == reproducing.end())
+            reproducing.push_back(name);
         }
-      fit.members.push_back({nameOfMember(member), fewest});
-    }
-    fit.chosen = nameOfMember(memberOf(chosen.arithmetic));
-    fit.consistent = reproducing;
-    fit.pinned = reproduced;
-    fit.mismatches = reproduced ? 0 : chosen.counts.total();
-    if (!reproduced)
-      fit.finding = "no combination of members reproduces every probe; closest " + fit.chosen +
-                    " (" + fit.memberSummary() + pixelsCounted + ")";
-    else if (reproducing.size() == 1)
-      fit.finding = fit.chosen + ", bit for bit (" + fit.memberSummary() + pixelsCounted + ")";
-    else
-      fit.finding = std::to_string(reproducing.size()) +
-                    " members reproduce every probe, which cannot tell them apart; the first, " +
-                    fit.chosen + ", is taken";
-    result.fits.push_back(fit);
-  };
-  std::vector<Coverage> coverages = grid.candidates;
-  family(
-      "coverage", [](const Arithmetic& a) { return a.coverage; },
-      [](const Coverage& c) { return nameOf(c); }, coverages);
+      }
+    fit.members.push_back({nameOfMember(member), fewest});
+  }
+  fit.chosen = nameOfMember(memberOf(chosen.arithmetic));
+  fit.consistent = reproducing;
+  fit.pinned = reproduced;
+  fit.mismatches = reproduced ? 0 : chosen.counts.total();
+  if (!reproduced)
+    fit.finding = "no combination of members reproduces every probe; closest " + fit.chosen + " (" +
+                  fit.memberSummary() + kPixelsCounted + ")";
+  else if (reproducing.size() == 1)
+    fit.finding = fit.chosen + ", bit for bit (" + fit.memberSummary() + kPixelsCounted + ")";
+  else
+    fit.finding = std::to_string(reproducing.size()) +
+                  " members reproduce every probe, which cannot tell them apart; the first, " +
+                  fit.chosen + ", is taken";
+  return fit;
+}
+
+// The values of an EnumNames table, in its order.
+template <typename Table>
+auto valuesOf(const Table& table) {
+  std::vector<std::remove_cvref_t<decltype(table[0].value)>> values;
+  for (const auto& entry : table) values.push_back(entry.value);
+  return values;
+}
+
+// The evidence of every family of the combined fit, with coverage alone's (subpixel_bits) after
+// coverage's.
+void addFamilyFits(RasterFits& result, const GridResult& grid,
+                   const std::vector<Combination>& combinations, const Combination& chosen) {
+  result.fits.push_back(familyFit(
+      "coverage", combinations, chosen, [](const Arithmetic& a) { return a.coverage; },
+      [](const Coverage& c) { return nameOf(c); }, grid.candidates));
   if (!result.coveragePinned) {
     result.fits.back().pinned = false;
     result.fits.back().fromGl45 = grid.coarsestBits == 0;
   }
   result.fits.push_back(grid.fit);
-  family(
-      "viewport", [](const Arithmetic& a) { return a.fusedViewport; },
+  result.fits.push_back(familyFit(
+      "viewport", combinations, chosen, [](const Arithmetic& a) { return a.fusedViewport; },
       [](bool fused) { return std::string(fused ? "fused" : "unfused"); },
-      std::vector<bool>{true, false});
-  const auto names = [](const auto& table) {
-    std::vector<std::remove_cvref_t<decltype(table[0].value)>> values;
-    for (const auto& entry : table) values.push_back(entry.value);
-    return values;
-  };
-  family(
-      "plane_setup", [](const Arithmetic& a) { return a.planeSetup; },
+      std::vector<bool>{true, false}));
+  result.fits.push_back(familyFit(
+      "plane_setup", combinations, chosen, [](const Arithmetic& a) { return a.planeSetup; },
       [](PlaneSetup s) { return std::string(vt::nameOf(kPlaneSetupNames, s)); },
-      names(kPlaneSetupNames));
-  family(
-      "plane_evaluation", [](const Arithmetic& a) { return a.planeEvaluation; },
+      valuesOf(kPlaneSetupNames)));
+  result.fits.push_back(familyFit(
+      "plane_evaluation", combinations, chosen,
+      [](const Arithmetic& a) { return a.planeEvaluation; },
       [](PlaneEvaluation e) { return std::string(vt::nameOf(kPlaneEvaluationNames, e)); },
-      names(kPlaneEvaluationNames));
-  family(
-      "perspective", [](const Arithmetic& a) { return a.perspective; },
+      valuesOf(kPlaneEvaluationNames)));
+  result.fits.push_back(familyFit(
+      "perspective", combinations, chosen, [](const Arithmetic& a) { return a.perspective; },
       [](Perspective p) { return std::string(vt::nameOf(kPerspectiveNames, p)); },
-      names(kPerspectiveNames));
-  family(
-      "depth_offset", [](const Arithmetic& a) { return a.depth.offsetAndClamp; },
+      valuesOf(kPerspectiveNames)));
+  result.fits.push_back(familyFit(
+      "depth_offset", combinations, chosen,
+      [](const Arithmetic& a) { return a.depth.offsetAndClamp; },
       [](bool on) { return std::string(on ? "offset_and_clamp" : "as_interpolated"); },
-      std::vector<bool>{true, false});
+      std::vector<bool>{true, false}));
+}
 
-  // The residuals of the combination taken: none when it reproduces everything; else measured
-  // against the result sets of the model it leaves (render/result_set.h), which already allow
-  // what vertices moved within the sub-pixel grid explain.
-  const RasterCounts& c = chosen.counts;
-  if (!reproduced) {
-    PrecisionModel bounds = gl45Model();
-    bounds.arithmetic = chosen.arithmetic;
-    setCoverageBounds(bounds, result.coveragePinned, grid.coarsestBits);
-    bounds.attributeUlps = bounds.depthUlps = 0;
-    // Attributes: the smallest bound, in the unit the result sets apply it (2^-23 of the terms
-    // the plane evaluation sums, at least of the value: reference/result_set_builder.cpp), under
-    // which every pixel's (s, t) lies in its alternative's interval. Measured in that unit, a
-    // bound found on these probes carries over to other geometry; measured against the value
-    // alone, it overstated what the horizon planes need by orders of magnitude.
-    result.attributeUlps = smallestBound(
-        [&](double ulps) {
-          bounds.attributeUlps = ulps;
-          return setResiduals(bounds, drawn, texture, viewport).attributesOutside == 0;
-        },
-        gl45Model().attributeUlps);
-    bounds.attributeUlps = 0;
-    SetResiduals r = setResiduals(bounds, drawn, texture, viewport);
-    result.unexplainedOwners = r.unexplainedOwners;
-    // A pixel whose triangle no set admits: the smallest whole depth bound that admits every one
-    // (doubling up to gl45's, then halving the interval), or, past that, gl45's own.
-    if (r.unexplainedOwners) {
-      const double gl45 = gl45Model().depthUlps;
-      const auto explains = [&](double ulps) {
-        bounds.depthUlps = ulps;
-        return setResiduals(bounds, drawn, texture, viewport).unexplainedOwners == 0;
-      };
-      if (!explains(gl45)) {
-        // Not even gl45's bound admits them. The depth rule itself is probed on its own
-        // (calibration.h, depth test); these pixels are where the oracle's sets are narrower
-        // than the specification (a limit of the interval arithmetic of
-        // reference/result_set_builder.cpp), so the bound stays gl45's and the finding says so.
-        result.depthUlps = gl45;
-        result.depthBeyondSets = true;
-      } else {
-        result.depthUlps = smallestBound(explains, gl45);
-      }
-    }
+// The residuals of a combination that does not reproduce everything, measured against the result
+// sets of the model it leaves (render/result_set.h), which already allow what vertices moved
+// within the sub-pixel grid explain: result.attributeUlps, unexplainedOwners, depthUlps and
+// depthBeyondSets.
+void boundResiduals(RasterFits& result, const Arithmetic& chosen, int gridBits,
+                    const std::vector<std::pair<ClipSpaceMesh, RasterReadback>>& drawn,
+                    const reference::ResidentTexture& texture, Viewport viewport) {
+  PrecisionModel bounds = gl45Model();
+  bounds.arithmetic = chosen;
+  setCoverageBounds(bounds, result.coveragePinned, gridBits);
+  bounds.attributeUlps = bounds.depthUlps = 0;
+  // Attributes: the smallest bound, in the unit the result sets apply it (2^-23 of the terms
+  // the plane evaluation sums, at least of the value: reference/result_set_builder.cpp), under
+  // which every pixel's (s, t) lies in its alternative's interval. Measured in that unit, a
+  // bound found on these probes carries over to other geometry; measured against the value
+  // alone, it overstated what the horizon planes need by orders of magnitude.
+  result.attributeUlps = smallestBound(
+      [&](double ulps) {
+        bounds.attributeUlps = ulps;
+        return setResiduals(bounds, drawn, texture, viewport).attributesOutside == 0;
+      },
+      gl45Model().attributeUlps);
+  bounds.attributeUlps = 0;
+  SetResiduals r = setResiduals(bounds, drawn, texture, viewport);
+  result.unexplainedOwners = r.unexplainedOwners;
+  // A pixel whose triangle no set admits: the smallest whole depth bound that admits every one
+  // (doubling up to gl45's, then halving the interval), or, past that, gl45's own.
+  if (!r.unexplainedOwners) return;
+  const double gl45 = gl45Model().depthUlps;
+  const auto explains = [&](double ulps) {
+    bounds.depthUlps = ulps;
+    return setResiduals(bounds, drawn, texture, viewport).unexplainedOwners == 0;
+  };
+  if (!explains(gl45)) {
+    // Not even gl45's bound admits them. The depth rule itself is probed on its own
+    // (calibration.h, depth test); these pixels are where the oracle's sets are narrower
+    // than the specification (a limit of the interval arithmetic of
+    // reference/result_set_builder.cpp), so the bound stays gl45's and the finding says so.
+    result.depthUlps = gl45;
+    result.depthBeyondSets = true;
+  } else {
+    result.depthUlps = smallestBound(explains, gl45);
   }
-  result.attributes = {"attributes", probe, c.shared};
-  result.attributes.pinned = c.attributes == 0 && result.coveragePinned;
-  result.attributes.mismatches = c.attributes;
-  result.attributes.unit =
+}
+
+// The attributes' evidence: the combination's mismatches and, beyond the grid, their bound.
+ParameterFit attributesEvidence(const RasterCounts& c, const RasterFits& result) {
+  ParameterFit attributes = {"attributes", kRasterProbe, c.shared};
+  attributes.pinned = c.attributes == 0 && result.coveragePinned;
+  attributes.mismatches = c.attributes;
+  attributes.unit =
       "units of 2^-23 of the terms the plane evaluation sums, beyond the sub-pixel grid";
-  result.attributes.largestResidual = result.attributeUlps;
-  result.attributes.finding =
+  attributes.largestResidual = result.attributeUlps;
+  attributes.finding =
       c.attributes == 0
           ? "texture coordinates and fine derivatives bit for bit"
           : std::to_string(c.attributes) + " of " + std::to_string(c.shared) +
@@ -493,13 +521,18 @@ RasterFits fitRasterization(const Arithmetic& base) {
                 "explains, an error of " +
                 std::to_string(result.attributeUlps) +
                 " units of 2^-23 of the terms the plane evaluation sums admits them all";
-  result.depth = {"depth", probe, c.shared};
-  result.depth.pinned = c.depth == 0 && result.coveragePinned;
-  result.depth.mismatches = c.depth;
-  result.depth.unit =
-      "units of 2^-23 of the depth range or of the terms its evaluation sums, the larger";
-  result.depth.largestResidual = result.depthUlps;
-  result.depth.finding =
+  return attributes;
+}
+
+// The depth's evidence: the combination's mismatches, the pixels the grid does not explain and
+// the depth bound that admits them.
+ParameterFit depthEvidence(const RasterCounts& c, const RasterFits& result) {
+  ParameterFit depth = {"depth", kRasterProbe, c.shared};
+  depth.pinned = c.depth == 0 && result.coveragePinned;
+  depth.mismatches = c.depth;
+  depth.unit = "units of 2^-23 of the depth range or of the terms its evaluation sums, the larger";
+  depth.largestResidual = result.depthUlps;
+  depth.finding =
       c.depth == 0 ? "the stored 32F depth bit for bit"
       : result.unexplainedOwners == 0
           ? std::to_string(c.depth) + " of " + std::to_string(c.shared) +
@@ -515,8 +548,13 @@ RasterFits fitRasterization(const Arithmetic& base) {
                      : "a depth error of " + std::to_string(result.depthUlps) +
                            " units of 2^-23 of the depth range or of the terms its evaluation "
                            "sums, the larger, admits them all");
+  return depth;
+}
 
-  // Z24 under the members taken.
+// Z24 under the members taken: sets result.arithmetic's conversion and z24Pinned; returns the
+// family's evidence.
+ParameterFit fitZ24(RasterFits& result, bool reproduced, const reference::ResidentTexture& texture,
+                    Viewport viewport) {
   const ClipSpaceMesh mesh = randomTriangles(5, 120);
   const RasterReadback gl = drawTriangles(mesh, viewport, DepthFormat::kDepth24);
   ParameterFit z24;
@@ -525,7 +563,7 @@ RasterFits fitRasterization(const Arithmetic& base) {
   for (const auto& [conversion, name] : kZ24ConversionNames) {
     Arithmetic a = result.arithmetic;
     a.depth.z24 = conversion;
-    const Frame oracle = draw(mesh, a, DepthFormat::kDepth24);
+    const Frame oracle = oracleFrame(mesh, texture, viewport, a, DepthFormat::kDepth24);
     uint64_t missed = 0, shared = 0;
     for (size_t i = 0; i < oracle.triangle.size(); ++i) {
       if (gl.triangle[i] != oracle.triangle[i] || gl.triangle[i] < 0) continue;
@@ -541,7 +579,34 @@ RasterFits fitRasterization(const Arithmetic& base) {
   z24.finding = (z24.pinned ? z24.chosen + ", bit for bit"
                             : std::string("not pinned: either of the two nearest values")) +
                 " (" + z24.memberSummary() + " depths)";
-  result.fits.push_back(z24);
+  return z24;
+}
+
+}  // namespace
+
+RasterFits fitRasterization(const Arithmetic& base) {
+  RasterFits result;
+  const GridResult grid = fitGrid();
+  result.subpixelBits = grid.coarsestBits;
+
+  const ProbeTexture probeTexture(4);
+  const reference::ResidentTexture& texture = probeTexture.texture();
+  const Viewport viewport{160, 120};
+  std::vector<Combination> combinations = allCombinations(base, grid.candidates);
+  const auto drawn = drawAndCompare(rasterProbeMeshes(viewport), combinations, texture, viewport);
+
+  const Combination& chosen = closestCombination(combinations);
+  const bool reproduced = chosen.counts.reproduces();
+  result.arithmetic = chosen.arithmetic;
+  result.coveragePinned = chosen.counts.coverage == 0;
+  addFamilyFits(result, grid, combinations, chosen);
+
+  // The residuals of the combination taken: none when it reproduces everything.
+  if (!reproduced)
+    boundResiduals(result, chosen.arithmetic, grid.coarsestBits, drawn, texture, viewport);
+  result.attributes = attributesEvidence(chosen.counts, result);
+  result.depth = depthEvidence(chosen.counts, result);
+  result.fits.push_back(fitZ24(result, reproduced, texture, viewport));
   return result;
 }
 
