@@ -174,10 +174,9 @@ uint64_t parseIdentity(Fields& fields, const std::string& key) {
   return value;
 }
 
-Capture parseManifest(const json& root, const fs::path& manifest) {
-  const fs::path folder = manifest.parent_path();
-  Capture capture;
-  Fields top(root, manifest, "manifest");
+// What the manifest says of itself: its format and version, the renderer, and the model that
+// judges it (a file, relative to the manifest's folder, or a shipped pinned model's name).
+void parseHeader(Fields& top, const fs::path& folder, Capture& capture) {
   if (top.text("format") != "vt-capture") throw top.fail("\"format\" is not \"vt-capture\"");
   const uint64_t version = top.count("version", 1000);
   if (version != kCaptureVersion)
@@ -195,21 +194,27 @@ Capture parseManifest(const json& root, const fs::path& manifest) {
       throw top.fail("\"fingerprint\" is not a shipped pinned model (" +
                      vt::joinedArithmeticPointNames() + ")");
   }
+}
 
+void parseTexture(Fields& top, const fs::path& manifest, Capture& capture) {
   Fields texture(top.at("texture", json::value_t::object), manifest, "\"texture\"");
   const fs::path textureFile = texture.text("file");
-  capture.texture = textureFile.is_absolute() ? textureFile : folder / textureFile;
+  capture.texture = textureFile.is_absolute() ? textureFile : manifest.parent_path() / textureFile;
   capture.textureIdentity = parseIdentity(texture, "identity");
   texture.noOthers();
+}
 
+Viewport parseViewport(Fields& top, const fs::path& manifest) {
   Fields viewport(top.at("viewport", json::value_t::object), manifest, "\"viewport\"");
-  capture.scene.viewport = {static_cast<int>(viewport.count("width", kMaxViewportSide)),
-                            static_cast<int>(viewport.count("height", kMaxViewportSide))};
+  const Viewport v = {static_cast<int>(viewport.count("width", kMaxViewportSide)),
+                      static_cast<int>(viewport.count("height", kMaxViewportSide))};
   viewport.noOthers();
-  const Viewport v = capture.scene.viewport;
   if (v.width < 1 || v.height < 1) throw viewport.fail("has no pixels");
-  const auto pixels = static_cast<uint64_t>(v.width) * static_cast<uint64_t>(v.height);
+  return v;
+}
 
+// How the renderer encoded its needbuffer and sampled the cache.
+void parseConventions(Fields& top, Capture& capture) {
   capture.needEncoding =
       parseName<NeedEncoding>(top, "needbuffer_encoding",
                               {{"need32", NeedEncoding::k32Bit}, {"need8", NeedEncoding::k8Bit}});
@@ -218,22 +223,25 @@ Capture parseManifest(const json& root, const fs::path& manifest) {
   capture.sampling = parseName<Sampling>(
       top, "sampling",
       {{"texel_fetch", Sampling::kTexelFetch}, {"hardware_linear", Sampling::kHardwareLinear}});
+}
 
-  // Geometry: clip-space vertices and, optionally, indices.
+// Geometry: clip-space vertices and, optionally, indices.
+void parseGeometry(Fields& top, const fs::path& manifest, Scene& scene) {
+  const fs::path folder = manifest.parent_path();
   Fields geometry(top.at("geometry", json::value_t::object), manifest, "\"geometry\"");
   const uint64_t vertexCount = geometry.count("vertex_count", kMaxMapVertices);
   const std::vector<std::byte> vertices =
       readDataFile(folder, geometry.text("vertices"), vertexCount * sizeof(ClipVertex), manifest);
-  capture.scene.vertices.resize(vertexCount);
-  std::memcpy(capture.scene.vertices.data(), vertices.data(), vertices.size());
+  scene.vertices.resize(vertexCount);
+  std::memcpy(scene.vertices.data(), vertices.data(), vertices.size());
   if (geometry.has("indices")) {
     const uint64_t indexCount = geometry.count("index_count", kMaxMapIndices);
     const std::vector<std::byte> indices =
         readDataFile(folder, geometry.text("indices"), indexCount * 4, manifest);
-    capture.scene.indices.resize(indexCount);
-    std::memcpy(capture.scene.indices.data(), indices.data(), indices.size());
+    scene.indices.resize(indexCount);
+    std::memcpy(scene.indices.data(), indices.data(), indices.size());
     if (indexCount % 3 != 0) throw geometry.fail("\"index_count\" is not a multiple of 3");
-    for (const uint32_t index : capture.scene.indices)
+    for (const uint32_t index : scene.indices)
       if (index >= vertexCount)
         throw geometry.fail("index " + std::to_string(index) + " names no vertex (there are " +
                             std::to_string(vertexCount) + ")");
@@ -241,37 +249,45 @@ Capture parseManifest(const json& root, const fs::path& manifest) {
     throw geometry.fail("\"vertex_count\" without indices is not a multiple of 3");
   }
   geometry.noOthers();
+}
 
-  // The cache state.
+// One resident page, [level, px, py, frame_x, frame_y].
+ResidentPage parseResidentPage(const Fields& cache, const json& page) {
+  if (!page.is_array() || page.size() != 5 ||
+      !std::all_of(page.begin(), page.end(), [](const json& n) { return n.is_number_unsigned(); }))
+    throw cache.fail("page " + page.dump() + " is not [level, px, py, frame_x, frame_y]");
+  const auto number = [&](size_t k) {
+    const uint64_t n = page[k].get<uint64_t>();
+    if (n > UINT32_MAX) throw cache.fail("page " + page.dump() + " has a number above 2^32");
+    return static_cast<uint32_t>(n);
+  };
+  return {number(0), number(1), number(2), number(3), number(4)};
+}
+
+// The cache state: every page resident, or the cache's frames and the pages they hold.
+void parseCache(Fields& top, const fs::path& manifest, CacheState& state) {
   Fields cache(top.at("cache", json::value_t::object), manifest, "\"cache\"");
-  capture.cache.allResident = cache.at("all_resident", json::value_t::boolean).get<bool>();
-  if (!capture.cache.allResident) {
-    capture.cache.framesX = static_cast<uint32_t>(cache.count("frames_x", kMaxCacheSideTexels));
-    capture.cache.framesY = static_cast<uint32_t>(cache.count("frames_y", kMaxCacheSideTexels));
-    if (capture.cache.framesX == 0 || capture.cache.framesY == 0) throw cache.fail("has no frames");
+  state.allResident = cache.at("all_resident", json::value_t::boolean).get<bool>();
+  if (!state.allResident) {
+    state.framesX = static_cast<uint32_t>(cache.count("frames_x", kMaxCacheSideTexels));
+    state.framesY = static_cast<uint32_t>(cache.count("frames_y", kMaxCacheSideTexels));
+    if (state.framesX == 0 || state.framesY == 0) throw cache.fail("has no frames");
     const json& pages = cache.at("pages", json::value_t::array);
-    if (pages.size() > uint64_t{capture.cache.framesX} * capture.cache.framesY)
+    if (pages.size() > uint64_t{state.framesX} * state.framesY)
       throw cache.fail("lists " + std::to_string(pages.size()) + " pages for " +
-                       std::to_string(uint64_t{capture.cache.framesX} * capture.cache.framesY) +
-                       " frames");
-    for (const json& page : pages) {
-      if (!page.is_array() || page.size() != 5 ||
-          !std::all_of(page.begin(), page.end(),
-                       [](const json& n) { return n.is_number_unsigned(); }))
-        throw cache.fail("page " + page.dump() + " is not [level, px, py, frame_x, frame_y]");
-      const auto number = [&](size_t k) {
-        const uint64_t n = page[k].get<uint64_t>();
-        if (n > UINT32_MAX) throw cache.fail("page " + page.dump() + " has a number above 2^32");
-        return static_cast<uint32_t>(n);
-      };
-      capture.cache.pages.push_back({number(0), number(1), number(2), number(3), number(4)});
-    }
+                       std::to_string(uint64_t{state.framesX} * state.framesY) + " frames");
+    for (const json& page : pages) state.pages.push_back(parseResidentPage(cache, page));
   } else if (cache.has("pages")) {
     throw cache.fail("lists pages but says all pages are resident");
   }
   cache.noOthers();
+}
 
-  // The frame: colour and needbuffer.
+// The frame: colour and needbuffer.
+void readFrame(Fields& top, const fs::path& manifest, Capture& capture) {
+  const fs::path folder = manifest.parent_path();
+  const Viewport v = capture.scene.viewport;
+  const auto pixels = static_cast<uint64_t>(v.width) * static_cast<uint64_t>(v.height);
   capture.color = readRgbaImage(folder, top.text("color"), v, manifest);
   const std::string needFile = top.text("needbuffer");
   if (capture.needEncoding == NeedEncoding::k8Bit) {
@@ -283,6 +299,19 @@ Capture parseManifest(const json& root, const fs::path& manifest) {
     std::memcpy(rows.data(), bytes.data(), bytes.size());
     capture.need = flipRows<uint32_t>(rows, static_cast<size_t>(v.height));
   }
+}
+
+// The manifest's fields in the order they are checked, so the first problem is the one named.
+Capture parseManifest(const json& root, const fs::path& manifest) {
+  Capture capture;
+  Fields top(root, manifest, "manifest");
+  parseHeader(top, manifest.parent_path(), capture);
+  parseTexture(top, manifest, capture);
+  capture.scene.viewport = parseViewport(top, manifest);
+  parseConventions(top, capture);
+  parseGeometry(top, manifest, capture.scene);
+  parseCache(top, manifest, capture.cache);
+  readFrame(top, manifest, capture);
   top.noOthers();
   return capture;
 }
