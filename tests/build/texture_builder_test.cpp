@@ -21,6 +21,7 @@ namespace vt {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
 
 struct Level {
   uint64_t side = 0;
@@ -175,7 +176,9 @@ TEST_F(TextureBuilder, SparseLayoutStoresOnlyTouchedPages) {
   EXPECT_FALSE(reader.contains(PageId{2, 0, 4}));
   EXPECT_TRUE(reader.contains(PageId{14, 13, 4}));
   EXPECT_FALSE(reader.contains(PageId{5, 5, 4}));
-  EXPECT_THROW(reader.readPage(PageId{5, 5, 4}), InputError);
+  const std::string refusal =
+      (dir_ / "built.vt").string() + ": page 170 (level 4, x 5, y 5) is not stored in this texture";
+  EXPECT_THAT([&] { reader.readPage(PageId{5, 5, 4}); }, ThrowsMessage<InputError>(refusal));
 }
 
 TEST_F(TextureBuilder, SparseTentSkipsOnlyBackgroundTexels) {

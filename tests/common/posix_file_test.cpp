@@ -88,7 +88,9 @@ TEST(TemporaryFolder, RefusesFoldersThatAreNotAPreviousOutput) {
   }
   EXPECT_TRUE(std::filesystem::exists(dir / "home" / "thesis.tex"));
   writeFileAtomically(dir / "file", "x");
-  EXPECT_THROW(TemporaryFolder::requireReplaceable(dir / "file", "summary.json"), InputError);
+  EXPECT_THAT([&] { TemporaryFolder::requireReplaceable(dir / "file", "summary.json"); },
+              ::testing::ThrowsMessage<InputError>((dir / "file").string() +
+                                                   ": is a file, not a folder for the output"));
   std::filesystem::create_directories(dir / "empty");
   TemporaryFolder::requireReplaceable(dir / "empty", "summary.json");  // an empty folder is fine
 }

@@ -19,6 +19,7 @@ namespace vt {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
 
 TextureDescription smallDescription() {
   return {.pageSize = 16, .border = 2, .levelCount = 4, .channels = 4};
@@ -294,7 +295,9 @@ TEST(VirtualTextureFile, AssembledLevelDropsBordersAndLeavesAbsentPagesBlack) {
               std::to_integer<int>(page[((7 + 2) * 20 + (5 + 2)) * 4 + c]));
   // Page (0, 0) of level 3 is not stored.
   EXPECT_EQ(texel(1, 1, 3), 0);
-  EXPECT_THROW(assembleLevel(reader, 4), InputError);
+  EXPECT_THAT([&] { assembleLevel(reader, 4); },
+              ThrowsMessage<InputError>((dir / "t.vt").string() +
+                                        ": level 4 does not exist (levels 0..3)"));
 }
 
 }  // namespace

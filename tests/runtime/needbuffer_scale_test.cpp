@@ -3,6 +3,7 @@
 
 #include "runtime/needbuffer_scale.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <set>
@@ -11,6 +12,9 @@
 namespace vt {
 namespace {
 
+using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
+
 TEST(NeedbufferScale, ViewportShrinksByPowersOfTwoAndNeverToNothing) {
   EXPECT_EQ(reducedViewport({640, 360}, 0).width, 640);
   EXPECT_EQ(reducedViewport({640, 360}, 2).width, 160);
@@ -18,7 +22,9 @@ TEST(NeedbufferScale, ViewportShrinksByPowersOfTwoAndNeverToNothing) {
   EXPECT_EQ(reducedViewport({5, 3}, 3).width, 1);
   EXPECT_EQ(reducedViewport({5, 3}, 3).height, 1);
   EXPECT_EQ(parseNeedScale("4"), 2);
-  EXPECT_THROW(parseNeedScale("3"), std::invalid_argument);
+  // The refusal names the value of --need-scale it could not read.
+  EXPECT_THAT([] { parseNeedScale("3"); },
+              ThrowsMessage<std::invalid_argument>(HasSubstr("needbuffer scale '3' is not ")));
 }
 
 TEST(NeedbufferScale, JitterVisitsEveryScreenPixelOfAReducedPixel) {

@@ -2,12 +2,16 @@
 
 #include "runtime/page_priority.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <map>
 
 namespace vt {
 namespace {
+
+using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
 
 using glm::uvec4;
 
@@ -157,8 +161,12 @@ TEST_F(PagePriority, RandomIsDeterministicPerSeedAndUnknownFactorsAreRejected) {
     EXPECT_GE(r.priority, 0.0);
     EXPECT_LT(r.priority, 1.0);
   }
-  EXPECT_THROW(Heuristic::parse("pixelsum*speed"), std::invalid_argument);
-  EXPECT_THROW(parseAncestorStrategy("sideways"), std::invalid_argument);
+  // Each refusal names the part of --heuristic or --ancestors it could not read.
+  EXPECT_THAT([] { Heuristic::parse("pixelsum*speed"); },
+              ThrowsMessage<std::invalid_argument>(HasSubstr("heuristic: 'speed' is not one of ")));
+  EXPECT_THAT([] { parseAncestorStrategy("sideways"); },
+              ThrowsMessage<std::invalid_argument>(
+                  HasSubstr("ancestor strategy 'sideways' is not one of ")));
 }
 
 TEST_F(PagePriority, ResidentPagesAreNotRequested) {

@@ -383,12 +383,18 @@ TEST(BezierPatch, TrianglesCoverTheGridWithOneWinding) {
 
 TEST(BezierPatch, RejectsBadArguments) {
   const ControlGrid grid = controlGrid(3, 3, [](int i, int j) { return glm::vec3(i, j, 0); });
-  EXPECT_THROW(tessellate(grid, 3, 3, 0), std::invalid_argument);
-  EXPECT_THROW(tessellatePatch(grid.positions, grid.st, 2, 4, 4), std::invalid_argument);
-  EXPECT_THROW(tessellatePatch(grid.positions, grid.st, 1, 9, 4), std::invalid_argument);
-  EXPECT_THROW(tessellatePatch(grid.positions, grid.st, 3, 5, 4), std::invalid_argument);
-  EXPECT_THROW(tessellatePatch(grid.positions, std::span(grid.st).first(8), 3, 3, 4),
-               std::invalid_argument);
+  // Each refusal names what was wrong with the patch the map stores, or with the level.
+  using Refusal = std::invalid_argument;
+  EXPECT_THAT([&] { tessellate(grid, 3, 3, 0); },
+              ThrowsMessage<Refusal>("patch tessellation level must be at least 1"));
+  EXPECT_THAT([&] { tessellatePatch(grid.positions, grid.st, 2, 4, 4); },
+              ThrowsMessage<Refusal>(HasSubstr("patch control grid 2 x 4 is not (2n+1) x (2m+1)")));
+  EXPECT_THAT([&] { tessellatePatch(grid.positions, grid.st, 1, 9, 4); },
+              ThrowsMessage<Refusal>(HasSubstr("patch control grid 1 x 9 is not (2n+1) x (2m+1)")));
+  EXPECT_THAT([&] { tessellatePatch(grid.positions, grid.st, 3, 5, 4); },
+              ThrowsMessage<Refusal>("patch has 9 positions and 9 st for 15 control points"));
+  EXPECT_THAT([&] { tessellatePatch(grid.positions, std::span(grid.st).first(8), 3, 3, 4); },
+              ThrowsMessage<Refusal>("patch has 9 positions and 8 st for 9 control points"));
 }
 
 // ---------------------------------------------------------------------------------------------

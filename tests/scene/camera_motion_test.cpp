@@ -1,11 +1,15 @@
 #include "scene/camera_motion.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 namespace vt {
 namespace {
+
+using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
 
 Camera at(glm::vec3 position, glm::vec3 target) {
   Camera camera;
@@ -47,8 +51,11 @@ TEST(CameraMotion, HotSpotMovesTowardsTheTurn) {
   EXPECT_GT(sliding.x, 0.0f);  // part of the way, in proportion to the turn
   EXPECT_LT(sliding.x, 100.0f);
   EXPECT_EQ(sliding.y, 50.0f);
-  EXPECT_THROW(parseLookAhead("far"), std::invalid_argument);
-  EXPECT_THROW(parseHotSpotMode("wobbly"), std::invalid_argument);
+  // Each refusal names the value of --lookahead or --hot-spot it could not read.
+  EXPECT_THAT([] { parseLookAhead("far"); },
+              ThrowsMessage<std::invalid_argument>(HasSubstr("lookahead 'far' is not one of ")));
+  EXPECT_THAT([] { parseHotSpotMode("wobbly"); },
+              ThrowsMessage<std::invalid_argument>(HasSubstr("hot spot 'wobbly' is not one of ")));
 }
 
 }  // namespace
