@@ -5,6 +5,7 @@
 #include <glm/glm.hpp>
 #include <optional>
 #include <random>
+#include <span>
 #include <string>
 
 #include "probes/probe_draws.h"
@@ -159,13 +160,12 @@ std::vector<BlockTexel> decodeProbe(PixelFormat format, BlockDecoding decoding) 
   return texels;
 }
 
-DecodingFit fitBlockDecoding() {
-  DecodingFit fit;
-  const PixelFormat formats[] = {PixelFormat::kBc1, PixelFormat::kBc3};
-  std::vector<std::vector<glm::vec4>> measured;
-  for (const PixelFormat format : formats) measured.push_back(drawDecodingProbe(format));
+namespace {
 
-  // Every member against every texel; the alpha rules on BC3's alpha only.
+// Every rule member against every texel, the alpha rules on BC3's alpha only: fit.colour,
+// fit.alpha and the rules they choose.
+void fitPaletteRules(DecodingFit& fit, std::span<const PixelFormat, 2> formats,
+                     const std::vector<std::vector<glm::vec4>>& measured) {
   std::vector<MemberResult> colours, alphas;
   std::vector<PaletteRule> colourRules, alphaRules;  // the rule of each member, in order
   constexpr uint64_t kTexels = uint64_t{kDecodingProbeSide} * kDecodingProbeSide;
@@ -206,35 +206,40 @@ DecodingFit fitBlockDecoding() {
                            alphaProbes, alphas};
   fit.decoding.colour = colourRules[fit.colour.choose()];
   fit.decoding.alpha = alphaRules[fit.alpha.choose()];
-  std::string weightsFinding;
-  if (!fit.alpha.pinned) {
-    // No rule reproduces the alpha: the weights member, where the measured values allow one
-    // weight per step.
-    const std::optional<std::vector<uint8_t>> table = denseAlphaTable();
-    const WeightRanges ranges = alphaWeightRanges(measured[1], table);
-    weightsFinding = std::string(table ? "the dense alpha table (every end-point pair, " +
-                                             std::to_string(ranges.samples) + " values)"
-                                       : "the probe's alpha") +
-                     " allows weights " + ranges.text();
-    if (ranges.consistent() && ranges.unique()) {
-      BlockDecoding weights{PaletteRule::kNearest, PaletteRule::kWeights, {}};
-      for (size_t i = 0; i < weights.alphaWeights.size(); ++i)
-        weights.alphaWeights[i] = static_cast<uint16_t>(ranges.lo[i]);
-      // The weights must reproduce the probe too (the table may come from another draw).
-      const std::vector<BlockTexel> expected = decodeProbe(PixelFormat::kBc3, weights);
-      uint64_t misses = 0;
-      for (size_t i = 0; i < expected.size(); ++i)
-        misses += unorm8Of(measured[1][i][3]) != expected[i][3];
-      fit.alpha.members.push_back({"weights", misses});
-      if (misses == 0) {
-        fit.alpha.choose();
-        fit.decoding.alpha = PaletteRule::kWeights;
-        fit.decoding.alphaWeights = weights.alphaWeights;
-      }
-    }
-  }
+}
 
-  // Every channel against what any conforming decoder may return there.
+// No rule reproduces the alpha: the weights member, where the measured values allow one weight
+// per step, taken when it reproduces the BC3 probe. Returns what the values allow, in words.
+std::string fitAlphaWeights(DecodingFit& fit, const std::vector<glm::vec4>& measuredBc3) {
+  const std::optional<std::vector<uint8_t>> table = denseAlphaTable();
+  const WeightRanges ranges = alphaWeightRanges(measuredBc3, table);
+  const std::string weightsFinding =
+      std::string(table ? "the dense alpha table (every end-point pair, " +
+                              std::to_string(ranges.samples) + " values)"
+                        : "the probe's alpha") +
+      " allows weights " + ranges.text();
+  if (!ranges.consistent() || !ranges.unique()) return weightsFinding;
+  BlockDecoding weights{PaletteRule::kNearest, PaletteRule::kWeights, {}};
+  for (size_t i = 0; i < weights.alphaWeights.size(); ++i)
+    weights.alphaWeights[i] = static_cast<uint16_t>(ranges.lo[i]);
+  // The weights must reproduce the probe too (the table may come from another draw).
+  const std::vector<BlockTexel> expected = decodeProbe(PixelFormat::kBc3, weights);
+  uint64_t misses = 0;
+  for (size_t i = 0; i < expected.size(); ++i)
+    misses += unorm8Of(measuredBc3[i][3]) != expected[i][3];
+  fit.alpha.members.push_back({"weights", misses});
+  if (misses == 0) {
+    fit.alpha.choose();
+    fit.decoding.alpha = PaletteRule::kWeights;
+    fit.decoding.alphaWeights = weights.alphaWeights;
+  }
+  return weightsFinding;
+}
+
+// Every channel against what any conforming decoder may return there: the channels outside.
+uint64_t channelsOutsideRange(std::span<const PixelFormat, 2> formats,
+                              const std::vector<std::vector<glm::vec4>>& measured) {
+  uint64_t outside = 0;
   for (size_t f = 0; f < 2; ++f) {
     const std::vector<std::byte> blocks = decodingProbeBlocks(formats[f]);
     const size_t bytes = blockBytes(formats[f]);
@@ -246,10 +251,24 @@ DecodingFit fitBlockDecoding() {
         const glm::vec4 v = measured[f][size_t(y) * kDecodingProbeSide + size_t(x)];
         for (int c = 0; c < 4; ++c) {
           const int k = unorm8Of(v[c]);
-          fit.outsideRange += k < range[0][size_t(c)] || k > range[1][size_t(c)];
+          outside += k < range[0][size_t(c)] || k > range[1][size_t(c)];
         }
       }
   }
+  return outside;
+}
+
+}  // namespace
+
+DecodingFit fitBlockDecoding() {
+  DecodingFit fit;
+  const PixelFormat formats[] = {PixelFormat::kBc1, PixelFormat::kBc3};
+  std::vector<std::vector<glm::vec4>> measured;
+  for (const PixelFormat format : formats) measured.push_back(drawDecodingProbe(format));
+
+  fitPaletteRules(fit, formats, measured);
+  const std::string weightsFinding = fit.alpha.pinned ? "" : fitAlphaWeights(fit, measured[1]);
+  fit.outsideRange = channelsOutsideRange(formats, measured);
   for (ParameterFit* part : {&fit.colour, &fit.alpha}) {
     part->unit = "channels beyond every known decoder and the specification's fraction";
     part->largestResidual = part->pinned ? 0 : static_cast<double>(fit.outsideRange);

@@ -80,11 +80,15 @@ std::array<std::byte, kHeaderBytes> encodeHeader(const FileHeader& header) {
   return bytes;
 }
 
-FileHeader decodeHeader(std::span<const std::byte> bytes, uint64_t fileBytes,
-                        const std::filesystem::path& path) {
-  const auto fail = [&](const std::string& field, const std::string& problem) {
-    throw InputError(path, fieldError(field, problem));
-  };
+namespace {
+
+[[noreturn]] void failField(const std::filesystem::path& path, const std::string& field,
+                            const std::string& problem) {
+  throw InputError(path, fieldError(field, problem));
+}
+
+// The size, the magic number and the header's own version and size: returns the version.
+uint32_t readPreamble(std::span<const std::byte> bytes, const std::filesystem::path& path) {
   if (bytes.size() < kHeaderBytes)
     throw InputError(path, "truncated: " + std::to_string(bytes.size()) +
                                " bytes, a virtual-texture header needs " +
@@ -94,46 +98,63 @@ FileHeader decodeHeader(std::span<const std::byte> bytes, uint64_t fileBytes,
     throw InputError(path, "not a virtual-texture file (wrong magic number)");
   const uint32_t version = loadU32(p + kVersion);
   if (version < 1 || version > kFileVersion)
-    fail("version", std::to_string(version) + " is not supported (this build reads versions 1 to " +
-                        std::to_string(kFileVersion) + ")");
+    failField(path, "version",
+              std::to_string(version) + " is not supported (this build reads versions 1 to " +
+                  std::to_string(kFileVersion) + ")");
   if (const uint32_t size = loadU32(p + kHeaderBytesField); size != kHeaderBytes)
-    fail("header_bytes", std::to_string(size) + " is not " + std::to_string(kHeaderBytes));
+    failField(path, "header_bytes",
+              std::to_string(size) + " is not " + std::to_string(kHeaderBytes));
+  return version;
+}
 
-  FileHeader header;
-  TextureDescription& d = header.description;
+// The texture's description, valid and of a format the file's version may hold.
+TextureDescription readDescription(const std::byte* p, uint32_t version,
+                                   const std::filesystem::path& path) {
+  TextureDescription d;
   d.pageSize = loadU32(p + kPageSize);
   d.border = loadU32(p + kBorder);
   d.levelCount = loadU32(p + kLevelCount);
   d.channels = loadU32(p + kChannels);
   d.format = static_cast<PixelFormat>(loadU32(p + kPixelFormat));
   d.colorSpace = static_cast<ColorSpace>(loadU32(p + kColorSpace));
-  if (const auto problem = findProblem(d)) fail(problem->field, problem->problem);
+  if (const auto problem = findProblem(d)) failField(path, problem->field, problem->problem);
   if (version < fileVersionOf(d.format))
-    fail("pixel_format", toString(d.format) + " needs version " +
-                             std::to_string(fileVersionOf(d.format)) + ", the file is version " +
-                             std::to_string(version));
+    failField(path, "pixel_format",
+              toString(d.format) + " needs version " + std::to_string(fileVersionOf(d.format)) +
+                  ", the file is version " + std::to_string(version));
+  return d;
+}
 
+// The flags and the stored page count, which a dense texture fixes and a sparse one bounds.
+void readPageCount(const std::byte* p, FileHeader& header, const std::filesystem::path& path) {
+  const TextureDescription& d = header.description;
   const uint32_t flags = loadU32(p + kFlags);
-  if ((flags & ~kFlagSparse) != 0) fail("flags", "unknown bits set in " + std::to_string(flags));
+  if ((flags & ~kFlagSparse) != 0)
+    failField(path, "flags", "unknown bits set in " + std::to_string(flags));
   header.sparse = (flags & kFlagSparse) != 0;
 
   header.storedPageCount = loadU64(p + kStoredPageCount);
   const uint64_t total = d.totalPages();
   if (header.sparse && (header.storedPageCount < 1 || header.storedPageCount > total))
-    fail("stored_page_count", std::to_string(header.storedPageCount) + " is outside [1, " +
-                                  std::to_string(total) + "] for a sparse texture of " +
-                                  std::to_string(d.levelCount) + " levels");
+    failField(path, "stored_page_count",
+              std::to_string(header.storedPageCount) + " is outside [1, " + std::to_string(total) +
+                  "] for a sparse texture of " + std::to_string(d.levelCount) + " levels");
   if (!header.sparse && header.storedPageCount != total)
-    fail("stored_page_count", std::to_string(header.storedPageCount) + " is not the " +
-                                  std::to_string(total) + " pages of a dense texture of " +
-                                  std::to_string(d.levelCount) + " levels");
+    failField(path, "stored_page_count",
+              std::to_string(header.storedPageCount) + " is not the " + std::to_string(total) +
+                  " pages of a dense texture of " + std::to_string(d.levelCount) + " levels");
 
   // Before any size is derived from the count: the reader's tables hold 20 bytes per page.
   if (header.storedPageCount > kMaxStoredPages)
     throw limitError(path, "header field stored_page_count", header.storedPageCount,
                      kMaxStoredPages, " pages");
+}
 
-  // Every section must lie exactly where the description and the page count put it.
+// Every section must lie exactly where the description and the page count put it, and the file
+// must end where the last one does.
+void readLayout(const std::byte* p, FileHeader& header, uint64_t fileBytes,
+                const std::filesystem::path& path) {
+  const TextureDescription& d = header.description;
   const FileLayout expected = layoutFor(d, header.sparse, header.storedPageCount);
   FileLayout& layout = header.layout;
   layout.indexOffset = loadU64(p + kIndexOffset);
@@ -141,28 +162,30 @@ FileHeader decodeHeader(std::span<const std::byte> bytes, uint64_t fileBytes,
   layout.checksumOffset = loadU64(p + kChecksumOffset);
   layout.dataOffset = loadU64(p + kDataOffset);
   layout.fileBytes = loadU64(p + kFileBytes);
+  const std::string pages = std::to_string(header.storedPageCount);
   if (layout.indexOffset != expected.indexOffset)
-    fail("index_offset",
-         std::to_string(layout.indexOffset) + " is not " + std::to_string(expected.indexOffset));
+    failField(
+        path, "index_offset",
+        std::to_string(layout.indexOffset) + " is not " + std::to_string(expected.indexOffset));
   if (layout.noiseOffset != expected.noiseOffset)
-    fail("noise_offset",
-         "the sparse index between index_offset and noise_offset is " +
-             std::to_string(static_cast<int64_t>(layout.noiseOffset - layout.indexOffset)) +
-             " bytes, " + std::to_string(header.storedPageCount) + " stored pages need " +
-             std::to_string(expected.noiseOffset - expected.indexOffset));
+    failField(path, "noise_offset",
+              "the sparse index between index_offset and noise_offset is " +
+                  std::to_string(static_cast<int64_t>(layout.noiseOffset - layout.indexOffset)) +
+                  " bytes, " + pages + " stored pages need " +
+                  std::to_string(expected.noiseOffset - expected.indexOffset));
   if (layout.checksumOffset != expected.checksumOffset)
-    fail("checksum_offset", std::to_string(layout.checksumOffset) + " is not " +
-                                std::to_string(expected.checksumOffset) + " (after " +
-                                std::to_string(header.storedPageCount) + " NoiseValues)");
+    failField(path, "checksum_offset",
+              std::to_string(layout.checksumOffset) + " is not " +
+                  std::to_string(expected.checksumOffset) + " (after " + pages + " NoiseValues)");
   if (layout.dataOffset != expected.dataOffset)
-    fail("data_offset", std::to_string(layout.dataOffset) + " is not " +
-                            std::to_string(expected.dataOffset) + " (after " +
-                            std::to_string(header.storedPageCount) + " page checksums)");
+    failField(path, "data_offset",
+              std::to_string(layout.dataOffset) + " is not " + std::to_string(expected.dataOffset) +
+                  " (after " + pages + " page checksums)");
   if (layout.fileBytes != expected.fileBytes)
-    fail("file_bytes", std::to_string(layout.fileBytes) + " is not the " +
-                           std::to_string(expected.fileBytes) + " bytes that " +
-                           std::to_string(header.storedPageCount) + " pages of " +
-                           std::to_string(d.storedPageBytes()) + " bytes need");
+    failField(path, "file_bytes",
+              std::to_string(layout.fileBytes) + " is not the " +
+                  std::to_string(expected.fileBytes) + " bytes that " + pages + " pages of " +
+                  std::to_string(d.storedPageBytes()) + " bytes need");
   if (fileBytes < layout.fileBytes)
     throw InputError(path, "truncated: the header declares " + std::to_string(layout.fileBytes) +
                                " bytes, the file has " + std::to_string(fileBytes));
@@ -170,16 +193,28 @@ FileHeader decodeHeader(std::span<const std::byte> bytes, uint64_t fileBytes,
     throw InputError(path, std::to_string(fileBytes - layout.fileBytes) +
                                " unexpected bytes after the last page (the header declares " +
                                std::to_string(layout.fileBytes) + ")");
+}
+
+}  // namespace
+
+FileHeader decodeHeader(std::span<const std::byte> bytes, uint64_t fileBytes,
+                        const std::filesystem::path& path) {
+  const uint32_t version = readPreamble(bytes, path);
+  const std::byte* p = bytes.data();
+  FileHeader header;
+  header.description = readDescription(p, version, path);
+  readPageCount(p, header, path);
+  readLayout(p, header, fileBytes, path);
 
   const auto isZero = [&](size_t offset, size_t size) {
     return std::all_of(p + offset, p + offset + size,
                        [](std::byte b) { return b == std::byte{0}; });
   };
   if (!isZero(kReserved0, 4) || !isZero(kReserved1, 16))
-    fail("reserved", "reserved bytes are not zero");
+    failField(path, "reserved", "reserved bytes are not zero");
   header.tablesChecksum = loadU64(p + kTablesChecksum);
   if (loadU64(p + kHeaderChecksum) != headerChecksum(bytes.first<kHeaderBytes>()))
-    fail("header_checksum", "does not match the header (the header is corrupted)");
+    failField(path, "header_checksum", "does not match the header (the header is corrupted)");
   return header;
 }
 

@@ -249,8 +249,49 @@ ClipSpaceMesh randomTriangles(unsigned seed, int triangles) {
   return mesh;
 }
 
-RasterReadback drawTrianglesHere(const ClipSpaceMesh& mesh, Viewport viewport,
-                                 DepthFormat format) {
+namespace {
+
+// The mesh's vertices and indices in buffers, bound to attributes 0 (clip position) and 1 (uv)
+// of a vertex array; `names` deletes them.
+GLuint meshVertexArray(const ClipSpaceMesh& mesh, Names& names) {
+  GLuint array = 0, buffer[2] = {0, 0};
+  glCreateVertexArrays(1, &array);
+  names.arrays.push_back(array);
+  glCreateBuffers(2, buffer);
+  names.buffers.assign(buffer, buffer + 2);
+  glNamedBufferData(buffer[0], static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(ClipVertex)),
+                    mesh.vertices.data(), GL_STATIC_DRAW);
+  glNamedBufferData(buffer[1], static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(uint32_t)),
+                    mesh.indices.data(), GL_STATIC_DRAW);
+  glVertexArrayVertexBuffer(array, 0, buffer[0], 0, sizeof(ClipVertex));
+  glVertexArrayElementBuffer(array, buffer[1]);
+  glEnableVertexArrayAttrib(array, 0);
+  glEnableVertexArrayAttrib(array, 1);
+  glVertexArrayAttribFormat(array, 0, 4, GL_FLOAT, GL_FALSE, offsetof(ClipVertex, position));
+  glVertexArrayAttribFormat(array, 1, 2, GL_FLOAT, GL_FALSE, offsetof(ClipVertex, uv));
+  glVertexArrayAttribBinding(array, 0, 0);
+  glVertexArrayAttribBinding(array, 1, 0);
+  return array;
+}
+
+// The depth texture's values, one per pixel of `out`.
+void readDepth(GLuint depth, bool z24, std::vector<float>& out) {
+  const size_t pixels = out.size();
+  const auto bytes = [&](size_t element) { return static_cast<GLsizei>(pixels * element); };
+  if (z24) {
+    // The stored integer d in the top 24 bits of a 32-bit unorm, returned as the oracle keeps
+    // it: d / (2^24 - 1) in float (reference/visibility.h, PixelHit::depth).
+    std::vector<uint32_t> stored(pixels);
+    glGetTextureImage(depth, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, bytes(4), stored.data());
+    for (size_t i = 0; i < pixels; ++i) out[i] = static_cast<float>(stored[i] >> 8) / 16777215.0f;
+  } else {
+    glGetTextureImage(depth, 0, GL_DEPTH_COMPONENT, GL_FLOAT, bytes(4), out.data());
+  }
+}
+
+}  // namespace
+
+RasterReadback drawTrianglesHere(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format) {
   static const char* kVertex = R"(#version 450 core
 layout(location = 0) in vec4 aClipPosition;
 layout(location = 1) in vec2 aUV;
@@ -299,23 +340,7 @@ void main() {
   glClearNamedFramebufferfv(framebuffer, GL_COLOR, 2, zeros);
   glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &one);
 
-  GLuint array = 0, buffer[2] = {0, 0};
-  glCreateVertexArrays(1, &array);
-  names.arrays.push_back(array);
-  glCreateBuffers(2, buffer);
-  names.buffers.assign(buffer, buffer + 2);
-  glNamedBufferData(buffer[0], static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(ClipVertex)),
-                    mesh.vertices.data(), GL_STATIC_DRAW);
-  glNamedBufferData(buffer[1], static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(uint32_t)),
-                    mesh.indices.data(), GL_STATIC_DRAW);
-  glVertexArrayVertexBuffer(array, 0, buffer[0], 0, sizeof(ClipVertex));
-  glVertexArrayElementBuffer(array, buffer[1]);
-  glEnableVertexArrayAttrib(array, 0);
-  glEnableVertexArrayAttrib(array, 1);
-  glVertexArrayAttribFormat(array, 0, 4, GL_FLOAT, GL_FALSE, offsetof(ClipVertex, position));
-  glVertexArrayAttribFormat(array, 1, 2, GL_FLOAT, GL_FALSE, offsetof(ClipVertex, uv));
-  glVertexArrayAttribBinding(array, 0, 0);
-  glVertexArrayAttribBinding(array, 1, 0);
+  const GLuint array = meshVertexArray(mesh, names);
 
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glViewport(0, 0, width, height);
@@ -337,16 +362,7 @@ void main() {
   glGetTextureImage(triangles, 0, GL_RGBA, GL_FLOAT, bytes(16), triangle.data());
   glGetTextureImage(uvs, 0, GL_RGBA, GL_FLOAT, bytes(16), uv.data());
   glGetTextureImage(derivatives, 0, GL_RGBA, GL_FLOAT, bytes(16), result.derivatives.data());
-  if (z24) {
-    // The stored integer d in the top 24 bits of a 32-bit unorm, returned as the oracle keeps
-    // it: d / (2^24 - 1) in float (reference/visibility.h, PixelHit::depth).
-    std::vector<uint32_t> stored(pixels);
-    glGetTextureImage(depth, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, bytes(4), stored.data());
-    for (size_t i = 0; i < pixels; ++i)
-      result.depth[i] = static_cast<float>(stored[i] >> 8) / 16777215.0f;
-  } else {
-    glGetTextureImage(depth, 0, GL_DEPTH_COMPONENT, GL_FLOAT, bytes(4), result.depth.data());
-  }
+  readDepth(depth, z24, result.depth);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glUseProgram(0);
   requireNoError("triangles");

@@ -72,25 +72,9 @@ std::optional<glm::i64vec2> repetitionShift(const TexturedScene& scene, const Pl
   return glm::i64vec2(*shift);
 }
 
-}  // namespace
-
-Chart faceChart(const TexturedScene& scene, uint32_t face, uint32_t margin) {
-  const TexelBounds bounds = faceTexelBounds(scene, scene.faces[face]);
-  Chart chart{.texture = scene.faces[face].texture, .faces = {face}, .offsets = {{0, 0}}};
-  chart.x0 = static_cast<int64_t>(std::floor(bounds.u0)) - margin;
-  chart.y0 = static_cast<int64_t>(std::floor(bounds.v0)) - margin;
-  chart.x1 = std::max(static_cast<int64_t>(std::ceil(bounds.u1)) + margin, chart.x0 + 1);
-  chart.y1 = std::max(static_cast<int64_t>(std::ceil(bounds.v1)) + margin, chart.y0 + 1);
-  return chart;
-}
-
-std::vector<Chart> buildCharts(const TexturedScene& scene, const ChartOptions& options) {
+// Candidate pairs: faces of one texture that share a vertex position.
+std::set<std::pair<uint32_t, uint32_t>> candidatePairs(const TexturedScene& scene) {
   const auto faceCount = static_cast<uint32_t>(scene.faces.size());
-  std::vector<Chart> charts;
-  charts.reserve(faceCount);
-  for (uint32_t f = 0; f < faceCount; ++f) charts.push_back(faceChart(scene, f, options.margin));
-
-  // Candidate pairs: faces of one texture that share a vertex position.
   std::map<PositionBits, std::vector<uint32_t>> facesAt;
   for (uint32_t f = 0; f < faceCount; ++f) {
     const TexturedFace& face = scene.faces[f];
@@ -113,8 +97,12 @@ std::vector<Chart> buildCharts(const TexturedScene& scene, const ChartOptions& o
       for (size_t j = i + 1; j < faces.size(); ++j)
         if (faces[i] != faces[j] && scene.faces[faces[i]].texture == scene.faces[faces[j]].texture)
           pairs.emplace(std::min(faces[i], faces[j]), std::max(faces[i], faces[j]));
+  return pairs;
+}
 
-  // Each pair checks the vertices of its second face (repetitionShift).
+// Each pair checks the vertices of its second face (repetitionShift): refused above the limit.
+void requireFewVertexChecks(const TexturedScene& scene,
+                            const std::set<std::pair<uint32_t, uint32_t>>& pairs) {
   uint64_t checks = 0;
   for (const auto& pair : pairs) checks += scene.faces[pair.second].indexCount;
   if (checks > kMaxChartVertexChecks)
@@ -122,38 +110,83 @@ std::vector<Chart> buildCharts(const TexturedScene& scene, const ChartOptions& o
                      "checking whether the faces of " + std::to_string(pairs.size()) +
                          " pairs lie in one plane with one texture map",
                      checks, kMaxChartVertexChecks, " vertices");
-  std::vector<PlaneMapping> mappings;
-  mappings.reserve(faceCount);
-  for (const TexturedFace& face : scene.faces) mappings.push_back(planeMapping(scene, face));
+}
 
-  // Charts joined as a forest: each chart points to the chart it joined, with the shift from its
-  // space into that one's, so a join copies no faces. A face's chart is its root (chart f starts
-  // as face f alone) and its offset the sum of the shifts on the way; lookups shorten the way.
-  // A chart's faces are a list, in the order they joined: a root's list starts at its own face.
-  std::vector<uint32_t> joined(faceCount);
-  std::iota(joined.begin(), joined.end(), 0u);
-  std::vector<glm::i64vec2> shiftTo(faceCount, glm::i64vec2(0));
-  constexpr uint32_t kEnd = UINT32_MAX;
-  std::vector<uint32_t> nextFace(faceCount, kEnd), lastFace(faceCount);
-  std::iota(lastFace.begin(), lastFace.end(), 0u);
-  const auto chartOf = [&](uint32_t face) {
+// Charts joined as a forest: each chart points to the chart it joined, with the shift from its
+// space into that one's, so a join copies no faces. A face's chart is its root (chart f starts
+// as face f alone) and its offset the sum of the shifts on the way; lookups shorten the way.
+// A chart's faces are a list, in the order they joined: a root's list starts at its own face.
+class ChartForest {
+ public:
+  static constexpr uint32_t kEnd = UINT32_MAX;
+
+  explicit ChartForest(uint32_t faceCount)
+      : joined_(faceCount),
+        shiftTo_(faceCount, glm::i64vec2(0)),
+        nextFace_(faceCount, kEnd),
+        lastFace_(faceCount) {
+    std::iota(joined_.begin(), joined_.end(), 0u);
+    std::iota(lastFace_.begin(), lastFace_.end(), 0u);
+  }
+
+  // The root of `face`'s chart and the face's offset in it.
+  std::pair<uint32_t, glm::i64vec2> chartOf(uint32_t face) {
     glm::i64vec2 offset(0);
     uint32_t root = face;
-    for (; joined[root] != root; root = joined[root]) offset += shiftTo[root];
+    for (; joined_[root] != root; root = joined_[root]) offset += shiftTo_[root];
     glm::i64vec2 remaining = offset;
-    for (uint32_t c = face; joined[c] != c;) {
-      const uint32_t up = joined[c];
-      const glm::i64vec2 step = shiftTo[c];
-      joined[c] = root;
-      shiftTo[c] = remaining;
+    for (uint32_t c = face; joined_[c] != c;) {
+      const uint32_t up = joined_[c];
+      const glm::i64vec2 step = shiftTo_[c];
+      joined_[c] = root;
+      shiftTo_[c] = remaining;
       remaining -= step;
       c = up;
     }
     return std::pair{root, offset};
-  };
+  }
+
+  // Root b joins root a, its space moved by `move` into a's.
+  void join(uint32_t a, uint32_t b, glm::i64vec2 move) {
+    joined_[b] = a;
+    shiftTo_[b] = move;
+    nextFace_[lastFace_[a]] = b;
+    lastFace_[a] = lastFace_[b];
+  }
+
+  bool isRoot(uint32_t c) const { return joined_[c] == c; }
+  uint32_t nextFace(uint32_t face) const { return nextFace_[face]; }
+
+ private:
+  std::vector<uint32_t> joined_;
+  std::vector<glm::i64vec2> shiftTo_;
+  std::vector<uint32_t> nextFace_, lastFace_;
+};
+
+// Chart b moved by `move` into chart a's space, joined with a, unless the union would be wider or
+// taller than maxSide or waste more than `slack` of the two charts' area.
+std::optional<Chart> mergedIfCompact(const Chart& a, const Chart& b, glm::i64vec2 move,
+                                     const ChartOptions& options) {
+  Chart merged;
+  merged.texture = a.texture;
+  merged.x0 = std::min(a.x0, b.x0 + move.x);
+  merged.y0 = std::min(a.y0, b.y0 + move.y);
+  merged.x1 = std::max(a.x1, b.x1 + move.x);
+  merged.y1 = std::max(a.y1, b.y1 + move.y);
+  if (merged.width() > options.maxSide || merged.height() > options.maxSide ||
+      double(area(merged)) > (1.0 + options.slack) * double(area(a) + area(b)))
+    return std::nullopt;
+  return merged;
+}
+
+// Joins the charts of each pair whose faces repeat one texture map, where the union is compact.
+void joinRepeatingPairs(const TexturedScene& scene, const ChartOptions& options,
+                        const std::set<std::pair<uint32_t, uint32_t>>& pairs,
+                        const std::vector<PlaneMapping>& mappings, std::vector<Chart>& charts,
+                        ChartForest& forest) {
   for (const auto& [p, q] : pairs) {
-    const auto [a, offsetP] = chartOf(p);
-    const auto [b, offsetQ] = chartOf(q);
+    const auto [a, offsetP] = forest.chartOf(p);
+    const auto [b, offsetQ] = forest.chartOf(q);
     if (a == b) continue;
     const auto shift = repetitionShift(scene, mappings[p], scene.faces[q]);
     if (!shift) continue;
@@ -161,35 +194,58 @@ std::vector<Chart> buildCharts(const TexturedScene& scene, const ChartOptions& o
     const SourceTexture& texture = scene.textures[scene.faces[p].texture];
     const glm::i64vec2 move =
         *shift * glm::i64vec2(texture.width, texture.height) + offsetP - offsetQ;
-    Chart merged;
-    merged.texture = charts[a].texture;
-    merged.x0 = std::min(charts[a].x0, charts[b].x0 + move.x);
-    merged.y0 = std::min(charts[a].y0, charts[b].y0 + move.y);
-    merged.x1 = std::max(charts[a].x1, charts[b].x1 + move.x);
-    merged.y1 = std::max(charts[a].y1, charts[b].y1 + move.y);
-    if (merged.width() > options.maxSide || merged.height() > options.maxSide ||
-        double(area(merged)) > (1.0 + options.slack) * double(area(charts[a]) + area(charts[b])))
-      continue;
-    charts[a].x0 = merged.x0, charts[a].y0 = merged.y0;
-    charts[a].x1 = merged.x1, charts[a].y1 = merged.y1;
-    joined[b] = a;
-    shiftTo[b] = move;
-    nextFace[lastFace[a]] = b;
-    lastFace[a] = lastFace[b];
+    const std::optional<Chart> merged = mergedIfCompact(charts[a], charts[b], move, options);
+    if (!merged) continue;
+    charts[a].x0 = merged->x0, charts[a].y0 = merged->y0;
+    charts[a].x1 = merged->x1, charts[a].y1 = merged->y1;
+    forest.join(a, b, move);
   }
+}
 
+// The root charts, each with its faces in the order they joined and their offsets.
+std::vector<Chart> rootCharts(std::vector<Chart>& charts, ChartForest& forest) {
+  const auto faceCount = static_cast<uint32_t>(charts.size());
   std::vector<Chart> result;
   for (uint32_t c = 0; c < faceCount; ++c) {
-    if (joined[c] != c) continue;
+    if (!forest.isRoot(c)) continue;
     Chart& chart = result.emplace_back(std::move(charts[c]));
     chart.faces.clear();
     chart.offsets.clear();
-    for (uint32_t face = c; face != kEnd; face = nextFace[face]) {
+    for (uint32_t face = c; face != ChartForest::kEnd; face = forest.nextFace(face)) {
       chart.faces.push_back(face);
-      chart.offsets.push_back(chartOf(face).second);
+      chart.offsets.push_back(forest.chartOf(face).second);
     }
   }
   return result;
+}
+
+}  // namespace
+
+Chart faceChart(const TexturedScene& scene, uint32_t face, uint32_t margin) {
+  const TexelBounds bounds = faceTexelBounds(scene, scene.faces[face]);
+  Chart chart{.texture = scene.faces[face].texture, .faces = {face}, .offsets = {{0, 0}}};
+  chart.x0 = static_cast<int64_t>(std::floor(bounds.u0)) - margin;
+  chart.y0 = static_cast<int64_t>(std::floor(bounds.v0)) - margin;
+  chart.x1 = std::max(static_cast<int64_t>(std::ceil(bounds.u1)) + margin, chart.x0 + 1);
+  chart.y1 = std::max(static_cast<int64_t>(std::ceil(bounds.v1)) + margin, chart.y0 + 1);
+  return chart;
+}
+
+std::vector<Chart> buildCharts(const TexturedScene& scene, const ChartOptions& options) {
+  const auto faceCount = static_cast<uint32_t>(scene.faces.size());
+  std::vector<Chart> charts;
+  charts.reserve(faceCount);
+  for (uint32_t f = 0; f < faceCount; ++f) charts.push_back(faceChart(scene, f, options.margin));
+
+  const std::set<std::pair<uint32_t, uint32_t>> pairs = candidatePairs(scene);
+  requireFewVertexChecks(scene, pairs);
+  std::vector<PlaneMapping> mappings;
+  mappings.reserve(faceCount);
+  for (const TexturedFace& face : scene.faces) mappings.push_back(planeMapping(scene, face));
+
+  ChartForest forest(faceCount);
+  joinRepeatingPairs(scene, options, pairs, mappings, charts, forest);
+  return rootCharts(charts, forest);
 }
 
 }  // namespace vt

@@ -73,6 +73,83 @@ JudgingModel judgingModel(const std::string& option, const oracle::Capture& capt
   return {{}, oracle::Profile::kGl45, "unverified"};
 }
 
+using TextureCache = std::map<std::filesystem::path, std::unique_ptr<oracle::Texture>>;
+
+// Warns where a model file was measured on another renderer than the capture's.
+void warnOfAnotherRenderer(const std::filesystem::path& manifest, const JudgingModel& judge,
+                           const oracle::Capture& capture) {
+  if (judge.file.empty()) return;
+  const PrecisionModel model = readModelFile(judge.file);
+  if (!model.renderer.empty() && model.renderer != capture.renderer)
+    std::cerr << "vt crosscheck: " << manifest.string() << ": warning: precision model '"
+              << model.name << "' was measured on " << model.renderer
+              << ", the capture was drawn by " << capture.renderer << "\n";
+}
+
+// One capture's entry in summary.json: what it is, what judged it and the verdict.
+nlohmann::json frameJson(const std::filesystem::path& manifest, const oracle::Capture& capture,
+                         const JudgingModel& judge, const oracle::Comparison& c,
+                         const SetWidths& widths) {
+  nlohmann::json mismatches = nlohmann::json::array();
+  for (const oracle::PixelDifference& d : c.mismatches)
+    mismatches.push_back(pixelJson(d, capture.scene.viewport.height));
+  nlohmann::json frame = {{"capture", manifest.filename().string()},
+                          {"renderer", capture.renderer},
+                          {"model", c.model},
+                          {"model_file", judge.file.empty() ? nlohmann::json(nullptr)
+                                                            : nlohmann::json(judge.file.string())},
+                          {"model_from", judge.from},
+                          {"needbuffer_encoding", oracle::toString(capture.needEncoding)},
+                          {"filtering", oracle::toString(capture.filtering)},
+                          {"sampling", oracle::toString(capture.sampling)}};
+  frame.update(comparisonJson(c, widths));
+  frame["unexplained_pixels"] = mismatches;
+  return frame;
+}
+
+// Reads and judges one capture: its difference images into `folder`, its entry into `frames`,
+// its counts into `totals` and its verdict into `testCase`. Throws where it cannot be read.
+void judgeCapture(const std::filesystem::path& manifest, const CapturesCheckOptions& options,
+                  const std::filesystem::path& folder, TextureCache& textures,
+                  nlohmann::json& frames, ComparisonTotals& totals, JUnitCase& testCase) {
+  const std::string name = manifest.stem().string();
+  const oracle::Capture capture = oracle::readCapture(manifest);
+  std::unique_ptr<oracle::Texture>& texture = textures[capture.texture];
+  if (!texture) texture = std::make_unique<oracle::Texture>(oracle::Texture::open(capture.texture));
+  const JudgingModel judge = judgingModel(options.profile, capture);
+  const oracle::SetScope scope =
+      options.allSets ? oracle::SetScope::kEveryPixel : oracle::SetScope::kDiffering;
+  warnOfAnotherRenderer(manifest, judge, capture);
+  const oracle::CaptureCheck check =
+      judge.file.empty()
+          ? oracle::checkCapture(capture, *texture, judge.profile, options.threads, scope)
+          : oracle::checkCapture(capture, *texture, judge.file, options.threads, scope);
+  const oracle::Comparison& c = check.comparison;
+  const SetWidths widths = verdictWidths(check.oracle);
+  const oracle::Viewport v = capture.scene.viewport;
+  writeComparisonImages(folder, name, v, c);
+  frames.push_back(frameJson(manifest, capture, judge, c, widths));
+  totals.add(c, widths);
+  printComparison(name, c.model, c, widths);
+  testCase.properties = widthProperties(c, widths);
+  if (!c.passed()) {
+    testCase.outcome = JUnitCase::Outcome::kFailed;
+    testCase.message = std::to_string(c.unexplained) + " unexplained pixels under " + c.model +
+                       " (" + std::to_string(c.needMismatched) + " in the needbuffer)";
+    for (size_t k = 0; k < c.mismatches.size() && k < 20; ++k)
+      testCase.details.append(pixelLine(c.mismatches[k], v.height)).append("\n");
+  }
+}
+
+// A capture that could not be read or judged: named by the capture, unless the reader named it
+// (or its data file) already.
+std::string unreadableMessage(const std::filesystem::path& manifest, const std::exception& e) {
+  std::string message = e.what();
+  if (!message.starts_with((manifest.parent_path() / manifest.stem()).string()))
+    message = std::string(manifest.string()).append(": ").append(e.what());
+  return message;
+}
+
 }  // namespace
 
 CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options) {
@@ -82,7 +159,7 @@ CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options) {
   TemporaryFolder staging(options.output, "summary.json");
   const std::filesystem::path& folder = staging.path();
 
-  std::map<std::filesystem::path, std::unique_ptr<oracle::Texture>> textures;
+  TextureCache textures;
   std::vector<JUnitCase> cases;
   nlohmann::json frames = nlohmann::json::array();
   CapturesCheck check;
@@ -92,63 +169,12 @@ CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options) {
   std::printf("crosscheck of %zu captures in %s\n", manifests.size(),
               options.captures.string().c_str());
   for (const std::filesystem::path& manifest : manifests) {
-    const std::string name = manifest.stem().string();
     const auto start = Clock::now();
-    JUnitCase testCase{name, 0.0, JUnitCase::Outcome::kPassed, "", "", {}};
+    JUnitCase testCase{manifest.stem().string(), 0.0, JUnitCase::Outcome::kPassed, "", "", {}};
     try {
-      const oracle::Capture capture = oracle::readCapture(manifest);
-      std::unique_ptr<oracle::Texture>& texture = textures[capture.texture];
-      if (!texture)
-        texture = std::make_unique<oracle::Texture>(oracle::Texture::open(capture.texture));
-      const JudgingModel judge = judgingModel(options.profile, capture);
-      const oracle::SetScope scope =
-          options.allSets ? oracle::SetScope::kEveryPixel : oracle::SetScope::kDiffering;
-      if (!judge.file.empty()) {
-        const PrecisionModel model = readModelFile(judge.file);
-        if (!model.renderer.empty() && model.renderer != capture.renderer)
-          std::cerr << "vt crosscheck: " << manifest.string() << ": warning: precision model '"
-                    << model.name << "' was measured on " << model.renderer
-                    << ", the capture was drawn by " << capture.renderer << "\n";
-      }
-      const oracle::CaptureCheck check =
-          judge.file.empty()
-              ? oracle::checkCapture(capture, *texture, judge.profile, options.threads, scope)
-              : oracle::checkCapture(capture, *texture, judge.file, options.threads, scope);
-      const oracle::Comparison& c = check.comparison;
-      const SetWidths widths = verdictWidths(check.oracle);
-      const oracle::Viewport v = capture.scene.viewport;
-      writeComparisonImages(folder, name, v, c);
-      nlohmann::json mismatches = nlohmann::json::array();
-      for (const oracle::PixelDifference& d : c.mismatches)
-        mismatches.push_back(pixelJson(d, v.height));
-      nlohmann::json frame = {
-          {"capture", manifest.filename().string()},
-          {"renderer", capture.renderer},
-          {"model", c.model},
-          {"model_file",
-           judge.file.empty() ? nlohmann::json(nullptr) : nlohmann::json(judge.file.string())},
-          {"model_from", judge.from},
-          {"needbuffer_encoding", oracle::toString(capture.needEncoding)},
-          {"filtering", oracle::toString(capture.filtering)},
-          {"sampling", oracle::toString(capture.sampling)}};
-      frame.update(comparisonJson(c, widths));
-      frame["unexplained_pixels"] = mismatches;
-      frames.push_back(frame);
-      totals.add(c, widths);
-      printComparison(name, c.model, c, widths);
-      testCase.properties = widthProperties(c, widths);
-      if (!c.passed()) {
-        testCase.outcome = JUnitCase::Outcome::kFailed;
-        testCase.message = std::to_string(c.unexplained) + " unexplained pixels under " + c.model +
-                           " (" + std::to_string(c.needMismatched) + " in the needbuffer)";
-        for (size_t k = 0; k < c.mismatches.size() && k < 20; ++k)
-          testCase.details.append(pixelLine(c.mismatches[k], v.height)).append("\n");
-      }
+      judgeCapture(manifest, options, folder, textures, frames, totals, testCase);
     } catch (const std::exception& e) {
-      // Named by the capture, unless the reader named it (or its data file) already.
-      std::string message = e.what();
-      if (!message.starts_with((manifest.parent_path() / manifest.stem()).string()))
-        message = std::string(manifest.string()).append(": ").append(e.what());
+      const std::string message = unreadableMessage(manifest, e);
       ++errors;
       testCase.outcome = JUnitCase::Outcome::kError;
       testCase.message = message;

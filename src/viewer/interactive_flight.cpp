@@ -40,6 +40,40 @@ FlyInput readInput(WindowContext& window, glm::dvec2& lastCursor) {
   return input;
 }
 
+// The HUD's four lines: the frame and its time, the pages needed and missing, those requested
+// and streamed (and streamed in all), and the cache's fill.
+std::vector<std::string> hudLines(int frame, double frameMs, bool recording,
+                                  const FrameStatistics& statistics, uint64_t streamedTotal,
+                                  uint32_t capacity) {
+  char lines[4][96];
+  std::snprintf(lines[0], sizeof lines[0], "FRAME %d  %.1f MS%s", frame, frameMs,
+                recording ? "  REC" : "");
+  std::snprintf(lines[1], sizeof lines[1], "PAGES NEEDED %llu  MISSING %llu",
+                static_cast<unsigned long long>(statistics.neededPages),
+                static_cast<unsigned long long>(statistics.misses));
+  std::snprintf(lines[2], sizeof lines[2], "REQUESTED %llu  STREAMED %llu (%llu)",
+                static_cast<unsigned long long>(statistics.requested),
+                static_cast<unsigned long long>(statistics.streamed),
+                static_cast<unsigned long long>(streamedTotal));
+  std::snprintf(lines[3], sizeof lines[3], "RESIDENT %llu / %u  %.0f%%",
+                static_cast<unsigned long long>(statistics.resident), capacity,
+                100.0 * static_cast<double>(statistics.resident) / capacity);
+  return {lines[0], lines[1], lines[2], lines[3]};
+}
+
+// The window's back buffer as an image file.
+void writeScreenshot(glm::ivec2 windowSize, const std::filesystem::path& file) {
+  Frame shot;  // rows bottom to top, as GL reads them
+  shot.viewport = {windowSize.x, windowSize.y};
+  shot.color.resize(size_t(windowSize.x) * size_t(windowSize.y) * 4);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);  // the window's, not the renderer's target
+  glReadBuffer(GL_BACK);
+  glReadPixels(0, 0, windowSize.x, windowSize.y, GL_RGBA, GL_UNSIGNED_BYTE, shot.color.data());
+  const std::vector<uint8_t> rows = colorImage(shot);
+  writeImage8(file, static_cast<uint32_t>(windowSize.x), static_cast<uint32_t>(windowSize.y), 4,
+              std::as_bytes(std::span(rows)));
+}
+
 }  // namespace
 
 void flyInteractively(WindowContext& window, const VirtualTextureReader& reader,
@@ -109,35 +143,13 @@ void flyInteractively(WindowContext& window, const VirtualTextureReader& reader,
     streamedTotal += statistics.streamed;
 
     gl.present(windowSize);
-    char lines[4][96];
-    std::snprintf(lines[0], sizeof lines[0], "FRAME %d  %.1f MS%s", frame, frameMs,
-                  recording ? "  REC" : "");
-    std::snprintf(lines[1], sizeof lines[1], "PAGES NEEDED %llu  MISSING %llu",
-                  static_cast<unsigned long long>(statistics.neededPages),
-                  static_cast<unsigned long long>(statistics.misses));
-    std::snprintf(lines[2], sizeof lines[2], "REQUESTED %llu  STREAMED %llu (%llu)",
-                  static_cast<unsigned long long>(statistics.requested),
-                  static_cast<unsigned long long>(statistics.streamed),
-                  static_cast<unsigned long long>(streamedTotal));
     const uint32_t side = cacheFramesFor(configuration, reader.description());
-    const uint32_t capacity = side * side;
-    std::snprintf(lines[3], sizeof lines[3], "RESIDENT %llu / %u  %.0f%%",
-                  static_cast<unsigned long long>(statistics.resident), capacity,
-                  100.0 * static_cast<double>(statistics.resident) / capacity);
-    hud.draw(renderHudText({lines[0], lines[1], lines[2], lines[3]}, 2), windowSize);
+    hud.draw(renderHudText(
+                 hudLines(frame, frameMs, recording, statistics, streamedTotal, side * side), 2),
+             windowSize);
 
     const bool lastFrame = request.maxFrames > 0 && frame + 1 >= request.maxFrames;
-    if (lastFrame && !request.screenshot.empty()) {
-      Frame shot;  // rows bottom to top, as GL reads them
-      shot.viewport = {windowSize.x, windowSize.y};
-      shot.color.resize(size_t(windowSize.x) * size_t(windowSize.y) * 4);
-      glBindFramebuffer(GL_FRAMEBUFFER, 0);  // the window's, not the renderer's target
-      glReadBuffer(GL_BACK);
-      glReadPixels(0, 0, windowSize.x, windowSize.y, GL_RGBA, GL_UNSIGNED_BYTE, shot.color.data());
-      const std::vector<uint8_t> rows = colorImage(shot);
-      writeImage8(request.screenshot, static_cast<uint32_t>(windowSize.x),
-                  static_cast<uint32_t>(windowSize.y), 4, std::as_bytes(std::span(rows)));
-    }
+    if (lastFrame && !request.screenshot.empty()) writeScreenshot(windowSize, request.screenshot);
     window.swapAndPoll();
     frameMs = 1000.0 * std::chrono::duration<double>(Clock::now() - now).count();
     if (lastFrame) window.close();
