@@ -49,6 +49,10 @@ cat >"$textures/sparse.json" <<'EOF'
 EOF
 "$vt" build "$textures/checker.png" -o "$textures/checker.vt" --page-size 16 --border 1 -q >/dev/null
 "$vt" build "$textures/sparse.json" -o "$textures/sparse.vt" -q >/dev/null
+# The block formats' pages (bc1 dense, bc3 sparse with alpha), which the vt_file target decodes.
+"$vt" build "$textures/checker.png" -o "$textures/checker-bc1.vt" --page-size 16 --border 2 \
+  --format bc1 -q >/dev/null
+"$vt" build "$textures/sparse.json" -o "$textures/sparse-bc3.vt" --format bc3 -q >/dev/null
 python3 scripts/fuzz-seeds.py "$openarena" "$folder/inputs/q3" "$textures" "$seeds"
 # The stored regression inputs seed their targets too.
 for target in "${targets[@]}"; do
