@@ -6,7 +6,8 @@
 BASEOA is the folder of OpenArena's .pk3 archives (scripts/fetch-openarena.sh), RETEXTURED the
 output folder of `vt retexture q3dm6ish`, TEXTURES a folder of small `vt build` outputs (*.vt,
 *.json). Writes OUT/<target>/<seed> for each target of tests/fuzz/fuzz_targets.h; every seed is
-at most MAX_SEED bytes.
+at most MAX_SEED bytes. The files the project ships (data/) seed the model, probe and
+configuration targets.
 """
 
 import io
@@ -14,6 +15,7 @@ import json
 import os
 import struct
 import sys
+import tarfile
 import zipfile
 
 MAX_SEED = 200 * 1024  # each seed's cap; most are cut smaller, for more executions a second
@@ -21,6 +23,11 @@ LUMPS = 17
 ENTITIES, SHADERS, VERTICES, INDICES, SURFACES = 0, 1, 10, 11, 13
 SHADER_SIZE, VERTEX_SIZE, SURFACE_SIZE = 72, 44, 104
 POLYGON, PATCH = 1, 2
+
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data")
+PROBE_SEPARATOR = b"\n#vt-fuzz-file "  # tests/fuzz/fuzz_targets.h: kProbeFileSeparator
+PROBE_PIXELS = 48  # pixels (inputs, or viewport texels) a probe seed keeps
 
 
 def write(out, target, name, data):
@@ -285,6 +292,80 @@ def vt_file_seeds(out, textures):
                 write(out, "vt_file", name, f.read())
 
 
+def precision_model_seeds(out):
+    """The measured model the project ships; the named models are stored regression inputs
+    (tests/fuzz/regressions/precision_model/), which scripts/fuzz.sh adds."""
+    with open(os.path.join(DATA, "gpus", "nvidia-h100", "model.json"), "rb") as f:
+        write(out, "precision_model", "nvidia-h100.json", f.read())
+
+
+def probe_seed(request, files):
+    """One draw as the probe_folder target reads it (fuzz_targets.h): the request, then each
+    data file after a separator line naming it."""
+    seed = json.dumps(request, indent=1).encode()
+    for name, data in files.items():
+        seed += PROBE_SEPARATOR + name.encode() + b"\n" + data
+    return seed
+
+
+def cut_probe(request, files):
+    """The draw cut to at most PROBE_PIXELS inputs or viewport pixels, its counts adjusted."""
+    request, files = dict(request), dict(files)
+    if request["kind"] == "triangles":
+        width, height = request["viewport"]
+        width, height = min(width, 8), min(height, PROBE_PIXELS // 8)
+        request["viewport"] = [width, height]
+        files["result"] = files["result"][:width * height * 32]  # int32 and 7 float32 a pixel
+        return request, files
+    width = min(request["width"], 16)
+    count = min(request["input_count"], PROBE_PIXELS) // width * width
+    request.update(width=width, input_count=count)
+    files["inputs.f32"] = files["inputs.f32"][:count * 16]
+    files["result"] = files["result"][:count * (16 if request["kind"] == "shader" else 4)]
+    return request, files
+
+
+def probe_folder_seeds(out):
+    """Each kind of draw from the H100's recorded probes (data/gpus/nvidia-h100/probes.tar.gz),
+    small ones whole and the rest cut, renumbered as draw 0; the first with the folder's
+    probes.json."""
+    with tarfile.open(os.path.join(DATA, "gpus", "nvidia-h100", "probes.tar.gz")) as archive:
+        members = {os.path.basename(m.name): m for m in archive.getmembers() if m.isfile()}
+        read = lambda name: archive.extractfile(members[name]).read()
+        description = read("probes.json")
+        kept = set()
+        for name in sorted(members):
+            if not (name.startswith("probe-") and name.endswith(".json")):
+                continue
+            stem = name[:-len(".json")]
+            request = json.loads(read(name))
+            kind = (request["kind"], request.get("block_format"), "texels" in request,
+                    request.get("depth"))
+            if kind in kept or request.get("vertex_count", 0) > 64:
+                continue
+            kept.add(kind)
+            files = {m[len(stem) + 1:]: read(m) for m in members
+                     if m.startswith(stem + ".") and m != name}
+            request, files = cut_probe(request, files)
+            for key in ("inputs", "texels", "blocks", "vertices", "indices"):
+                if key in request:  # named by the draw's index, which becomes 0
+                    request[key] = request[key].replace(stem, "probe-0000")
+            if len(kept) == 1:
+                files["probes.json"] = description
+            seed = probe_seed(request, files)
+            if len(seed) <= MAX_SEED // 8:
+                write(out, "probe_folder", stem + ".probe", seed)
+
+
+def config_seeds(out):
+    """The configurations files of chapter 4's runs (data/chapter4/)."""
+    folder = os.path.join(DATA, "chapter4")
+    for name in sorted(os.listdir(folder)):
+        if name.endswith(".json"):
+            with open(os.path.join(folder, name), "rb") as f:
+                write(out, "config", name, f.read())
+
+
 def main():
     if len(sys.argv) != 5:
         raise SystemExit(__doc__)
@@ -296,6 +377,9 @@ def main():
     camera_path_seeds(out, retextured)
     needbuffer_seeds(out)
     vt_file_seeds(out, textures)
+    precision_model_seeds(out)
+    probe_folder_seeds(out)
+    config_seeds(out)
 
 
 if __name__ == "__main__":

@@ -2,10 +2,11 @@
 # Fuzzing (docs/hardening.md): builds the libFuzzer programs of tests/fuzz with clang in
 # build-fuzz (-fsanitize=fuzzer,address,undefined), makes their seed corpora from real files
 # (scripts/fuzz-seeds.py: OpenArena's q3dm6ish and what `vt retexture` and `vt build` make of
-# it), runs every program for VT_FUZZ_SECONDS (60) seconds, two at a time, and prints for each
-# the executions and the coverage libFuzzer reached. Fails on any crash, hang, out-of-memory, leak
-# or sanitizer report; the input that caused it stays in build-fuzz/crashes/<target>/, to be kept
-# as tests/fuzz/regressions/<target>/<name> once the parser is fixed.
+# it, and the models, probes and configurations under data/), runs every program for
+# VT_FUZZ_SECONDS (60) seconds, two at a time, and prints for each the executions and the
+# coverage libFuzzer reached. Fails on any crash, hang, out-of-memory, leak or sanitizer report;
+# the input that caused it stays in build-fuzz/crashes/<target>/, to be kept as
+# tests/fuzz/regressions/<target>/<name> once the parser is fixed.
 #   scripts/fuzz.sh [TARGET...]          (default: every target of tests/fuzz/CMakeLists.txt)
 # Needs the Release `vt` (VT_EXECUTABLE, default build/src/vt) for the seeds; scripts/test.sh
 # runs this after its Release suite.
@@ -16,7 +17,8 @@ seconds=${VT_FUZZ_SECONDS:-60}
 parallel=${VT_FUZZ_PARALLEL:-2}
 vt=${VT_EXECUTABLE:-build/src/vt}
 folder=build-fuzz
-all_targets=(vt_file bsp pk3 obj layout camera_path needbuffer capture)
+all_targets=(vt_file bsp pk3 obj layout camera_path needbuffer capture precision_model probe_folder
+  config)
 targets=("${@:-${all_targets[@]}}")
 [[ -x "$vt" ]] || { echo "fuzz: $vt is missing: build the Release vt first" >&2; exit 1; }
 openarena=${VT_OPENARENA_DIR:-$(bash scripts/fetch-openarena.sh)}
@@ -85,7 +87,7 @@ done
 wait
 
 failed=0
-printf '%-12s %12s %10s %8s %8s %8s  %s\n' target executions exec/s cov ft corpus result
+printf '%-16s %12s %10s %8s %8s %8s  %s\n' target executions exec/s cov ft corpus result
 for target in "${targets[@]}"; do
   log=$logs/$target.log
   executions=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
@@ -97,7 +99,7 @@ for target in "${targets[@]}"; do
     result="FAILED: $(ls "$folder/crashes/$target" | head -1) (log $log)"
     failed=1
   fi
-  printf '%-12s %12s %10s %8s %8s %8s  %s\n' "$target" "${executions:-?}" "$rate" \
+  printf '%-16s %12s %10s %8s %8s %8s  %s\n' "$target" "${executions:-?}" "$rate" \
     "$(field cov)" "$(field ft)" "$(ls "$folder/corpus/$target" | wc -l)" "$result"
 done
 echo "fuzz: build $((built - start)) s, seeds and runs $((SECONDS - built)) s"

@@ -62,7 +62,11 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
                                                   const FlightConfiguration& defaults) {
   if (!object.is_object()) throw std::invalid_argument("a configuration must be a JSON object");
   FlightConfiguration c = defaults;
-  for (const auto& [key, value] : object.items()) {
+  for (const auto& item : object.items()) {
+    // Named, not structured bindings: the lambdas below capture them, which clang before 16
+    // (the fuzz build's) refuses for bindings.
+    const std::string& key = item.key();
+    const nlohmann::json& value = item.value();
     const auto text = [&] {
       if (!value.is_string()) throw std::invalid_argument("'" + key + "' must be a string");
       return value.get<std::string>();

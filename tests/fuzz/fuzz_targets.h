@@ -49,6 +49,22 @@ void needBuffer(Input input);
 // drawn and compared by the oracle.
 void captureManifest(Input input);
 
+// A precision-model file (render/precision_model_file.h), and, when it reads, the file modelJson
+// writes of it read back to the same modelJson: a model survives being written.
+void precisionModel(Input input);
+// A calibration probe folder (capture/probe_files.h) as `vt calibrate --probes` and `vt-capture
+// probes` read it: probes.json, the request probe-0000.json, its data files and its result. The
+// text before the first kProbeFileSeparator line is probe-0000.json; each such line names the
+// file the bytes after it are written to ("probes.json", or the part of a data file's name after
+// "probe-0000.": "inputs.f32", "result", ...). A request that reads must be written and read back
+// the same, and its result written back byte for byte.
+void probeFolder(Input input);
+inline constexpr const char* kProbeFileSeparator = "#vt-fuzz-file ";
+// A configurations file of `vt eval --configs` (eval/configurations_file.h), the same text as one
+// configuration of `--config` (eval/flight_configuration.h), and each configuration that reads
+// written (toJson) and read back the same.
+void configurationFile(Input input);
+
 struct Target {
   const char* name;  // the folder of its regression inputs and the program fuzz_<name>
   void (*run)(Input);
@@ -63,6 +79,9 @@ inline constexpr Target kTargets[] = {
     {"camera_path", &cameraPath},
     {"needbuffer", &needBuffer},
     {"capture", &captureManifest},
+    {"precision_model", &precisionModel},
+    {"probe_folder", &probeFolder},
+    {"config", &configurationFile},
 };
 
 }  // namespace vt::fuzz
