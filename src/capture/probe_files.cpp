@@ -1,5 +1,6 @@
 #include "capture/probe_files.h"
 
+#include <array>
 #include <bit>
 #include <cstdio>
 #include <cstring>
@@ -59,13 +60,33 @@ std::vector<T> readArray(const std::filesystem::path& file, size_t count, const 
   return values;
 }
 
+// A whole number from lo to hi. A fraction, a negative number or a float (1e30 would not convert
+// to an integer: undefined behaviour) is refused with the field named.
+size_t wholeNumber(const nlohmann::json& value, const std::string& field, size_t lo, size_t hi,
+                   const std::filesystem::path& file) {
+  if (!value.is_number_unsigned())
+    throw InputError(file, "field " + field + " is not a whole number from " + std::to_string(lo) +
+                               " to " + std::to_string(hi));
+  const uint64_t v = value.get<uint64_t>();
+  if (v < lo || v > hi)
+    throw InputError(file, "field " + field + ": " + std::to_string(v) + " is not from " +
+                               std::to_string(lo) + " to " + std::to_string(hi));
+  return static_cast<size_t>(v);
+}
+
 size_t sizeField(const nlohmann::json& j, const char* key, size_t lo, size_t hi,
                  const std::filesystem::path& file) {
-  const uint64_t v = j.at(key).get<uint64_t>();
-  if (v < lo || v > hi)
-    throw InputError(file, std::string("field ") + key + ": " + std::to_string(v) +
-                               " is not from " + std::to_string(lo) + " to " + std::to_string(hi));
-  return static_cast<size_t>(v);
+  return wholeNumber(j.at(key), key, lo, hi, file);
+}
+
+// A [width, height] field ("viewport", "texture_size"), each from lo to hi.
+std::array<size_t, 2> sideField(const nlohmann::json& j, const char* key, size_t lo, size_t hi,
+                                const std::filesystem::path& file) {
+  const nlohmann::json& pair = j.at(key);
+  if (!pair.is_array() || pair.size() != 2)
+    throw InputError(file, std::string("field ") + key + " is not [width, height]");
+  return {wholeNumber(pair[0], std::string(key) + "[0]", lo, hi, file),
+          wholeNumber(pair[1], std::string(key) + "[1]", lo, hi, file)};
 }
 
 struct RasterPixel {
@@ -151,11 +172,8 @@ ProbeRequest readProbeRequest(const std::filesystem::path& folder, size_t index)
       const size_t vertexCount = sizeField(j, "vertex_count", 0, kMaxVertices, file);
       const size_t indexCount = sizeField(j, "index_count", 0, 3 * kMaxVertices, file);
       if (indexCount % 3) throw InputError(file, "index_count is not a multiple of 3");
-      r.viewport = {static_cast<int>(j.at("viewport").at(0).get<uint32_t>()),
-                    static_cast<int>(j.at("viewport").at(1).get<uint32_t>())};
-      if (r.viewport.width < 1 || r.viewport.width > kMaxSide || r.viewport.height < 1 ||
-          r.viewport.height > kMaxSide)
-        throw InputError(file, "viewport is not from 1 x 1 to 4096 x 4096");
+      const auto [width, height] = sideField(j, "viewport", 1, kMaxSide, file);
+      r.viewport = {static_cast<int>(width), static_cast<int>(height)};
       const std::string depth = j.at("depth").get<std::string>();
       if (depth != "depth24" && depth != "depth32f")
         throw InputError(file, "depth '" + depth + "' is not depth24 or depth32f");
@@ -184,10 +202,7 @@ ProbeRequest readProbeRequest(const std::filesystem::path& folder, size_t index)
     p.linear = j.at("linear").get<bool>();
     p.clipped = j.at("clipped").get<bool>();
     if (j.contains("texels")) {
-      const size_t w = j.at("texture_size").at(0).get<uint32_t>();
-      const size_t h = j.at("texture_size").at(1).get<uint32_t>();
-      if (w < 1 || h < 1 || w > kMaxSide || h > kMaxSide)
-        throw InputError(file, "texture_size is not from 1 x 1 to 4096 x 4096");
+      const auto [w, h] = sideField(j, "texture_size", 1, kMaxSide, file);
       p.textureSize = {static_cast<int>(w), static_cast<int>(h)};
       p.texels = readArray<glm::u8vec4>(folder / (name + ".texels.rgba8"), w * h, "texels");
     }
@@ -197,9 +212,8 @@ ProbeRequest readProbeRequest(const std::filesystem::path& folder, size_t index)
       if (format != "bc1" && format != "bc3")
         throw InputError(file, "block_format '" + format + "' is not bc1 or bc3");
       p.blockFormat = format == "bc1" ? PixelFormat::kBc1 : PixelFormat::kBc3;
-      const size_t w = j.at("texture_size").at(0).get<uint32_t>();
-      const size_t h = j.at("texture_size").at(1).get<uint32_t>();
-      if (w < 4 || h < 4 || w > kMaxSide || h > kMaxSide || w % 4 || h % 4)
+      const auto [w, h] = sideField(j, "texture_size", 4, kMaxSide, file);
+      if (w % 4 || h % 4)
         throw InputError(file, "texture_size is not whole blocks from 4 x 4 to 4096 x 4096");
       p.textureSize = {static_cast<int>(w), static_cast<int>(h)};
       p.blocks = readArray<std::byte>(folder / (name + ".blocks." + format),
