@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -96,8 +97,11 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
     } else if (key == "noise_skipping") {
       c.noiseSkipping = flag();
     } else if (key == "noise_threshold") {
-      if (!value.is_number() || !std::isfinite(value.get<double>()))
-        throw std::invalid_argument("'noise_threshold' must be a finite number");
+      // Finite as the float it is kept in: 1e300 would become infinity, which the written
+      // configuration (summary.json) could not hold.
+      if (!value.is_number() || !std::isfinite(value.get<double>()) ||
+          std::abs(value.get<double>()) > std::numeric_limits<float>::max())
+        throw std::invalid_argument("'noise_threshold' must be a finite number (a float)");
       c.noiseThreshold = value.get<float>();
     } else if (key == "lookahead") {
       c.lookAhead = parseLookAhead(text());

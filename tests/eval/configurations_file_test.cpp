@@ -128,6 +128,9 @@ TEST(ConfigurationsFile, RefusesEachMistakeWithItsMessage) {
       "figure 'x.png': measure 'psnr' is not ssim, wssim or rmse");
   EXPECT_THAT(configurationsError(R"({"defaults": {"budget": -1}, "configurations": [{}]})"),
               HasSubstr("'budget' must be a whole number from 0 to 1048576"));
+  // Finite as a double, infinite as the float it is kept in (fuzz_config's round trip).
+  EXPECT_EQ(configurationsError(R"({"configurations": [{"noise_threshold": 1e300}]})"),
+            "configuration 1: 'noise_threshold' must be a finite number (a float)");
   // No configurations key.
   EXPECT_THAT(configurationsError(R"({"defaults": {}})"), HasSubstr("json: "));
 }
