@@ -19,8 +19,10 @@
 // py grows with the texture's t coordinate (row 0 holds t in [0, 2^-m)), so page rows follow
 // texel rows in memory. All arithmetic is 64-bit; every function is exact for m <= kMaxLevel.
 
+#include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -66,6 +68,18 @@ constexpr PageId fromRelativeIndex(uint64_t relative, uint32_t level) {
 // p_abs = p_rel^m + (4^m - 1) / 3 (thesis 3.1.1.1).
 constexpr uint64_t absoluteIndex(PageId page) {
   return relativeIndex(page) + firstPageOfLevel(page.level);
+}
+
+// The page column (or row) of level m under a texture coordinate s: floor(s * 2^m) (thesis
+// 3.2.3.1), clamped to [0, 2^m - 1] so that s = 1.0 falls in the last page, and 0 for NaN. It
+// mirrors the shader's vtPageAt (shader/virtual_texture.glsl) for every float s: there s * 2^m is
+// a float product by a power of two, exact unless it overflows to infinity, which clamps to the
+// last page as the exact double product does here. Change one, change both
+// (tests/shader/virtual_texture_shader_test.cpp checks that they agree).
+inline int pageAt(double coordinate, int level) {
+  if (!(coordinate >= 0)) return 0;
+  const int last = (1 << level) - 1;
+  return static_cast<int>(std::min<double>(std::floor(std::ldexp(coordinate, level)), last));
 }
 
 // The level holding absolute page p: the m with (4^m - 1) / 3 <= p < (4^(m+1) - 1) / 3, that is

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "format/page_address.h"
 #include "shader/needbuffer.h"
 
 namespace vt {
@@ -31,20 +32,14 @@ std::optional<PageId> observedPage(glm::uvec4 need, bool need8) {
   return PageId{need.x, need.y, need.z};
 }
 
-int pageOf(float coordinate, int level) {
-  const int last = (1 << level) - 1;
-  const double scaled = std::floor(static_cast<double>(coordinate) * std::ldexp(1.0, level));
-  return static_cast<int>(std::clamp(scaled, 0.0, static_cast<double>(last)));
-}
-
 // Pages by which `page` lies outside the alternative's range at its level (0: inside).
 double pagesOutside(const Alternative& a, const PageId& page) {
   const int m = static_cast<int>(page.level);
   const auto outside = [](int v, int lo, int hi) {
     return v < lo ? lo - v : (v > hi ? v - hi : 0);
   };
-  return std::max(outside(static_cast<int>(page.x), pageOf(a.uvLo.x, m), pageOf(a.uvHi.x, m)),
-                  outside(static_cast<int>(page.y), pageOf(a.uvLo.y, m), pageOf(a.uvHi.y, m)));
+  return std::max(outside(static_cast<int>(page.x), pageAt(a.uvLo.x, m), pageAt(a.uvHi.x, m)),
+                  outside(static_cast<int>(page.y), pageAt(a.uvLo.y, m), pageAt(a.uvHi.y, m)));
 }
 
 double colourOutside(glm::u8vec4 lo, glm::u8vec4 hi, const uint8_t* color) {
@@ -156,8 +151,8 @@ struct PageRange {
 };
 
 PageRange pageRange(const Alternative& a, int level) {
-  return {pageOf(a.uvLo.x, level), pageOf(a.uvHi.x, level), pageOf(a.uvLo.y, level),
-          pageOf(a.uvHi.y, level)};
+  return {pageAt(a.uvLo.x, level), pageAt(a.uvHi.x, level), pageAt(a.uvLo.y, level),
+          pageAt(a.uvHi.y, level)};
 }
 
 // How many pages lie in at least one range: the plane cut at every range's edges into cells, each

@@ -3,9 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
+#include "format/page_address.h"
 #include "shader/shader_cpp.h"
 
 namespace vt::shader {
@@ -93,6 +96,48 @@ TEST(VirtualTextureShader, PagesClampAtTheTexturesEdge) {
   EXPECT_EQ(logic.vtPageAt(vec2(std::numeric_limits<float>::infinity(), 2.0f), 4), ivec2(15, 15));
 }
 
+// The C++ page index the result sets and the crosscheck use (format/page_address.h, pageAt) is
+// the shader's vtPageAt: on every page boundary of a level, a float step either side of it, 0,
+// -0, 1 and the float just below it, negative values, values above 1, infinities, NaN and the
+// smallest denormal, at levels 0 to 15.
+TEST(VirtualTextureShader, TheCppPageIndexIsTheShadersAtEveryEdge) {
+  Logic logic;
+  const float inf = std::numeric_limits<float>::infinity();
+  for (const int level : {0, 1, 2, 3, 5, 8, 11, 15}) {
+    std::vector<float> coordinates = {0.0f,
+                                      -0.0f,
+                                      1.0f,
+                                      std::nextafter(1.0f, 0.0f),
+                                      -1e-30f,
+                                      -0.5f,
+                                      -1.0f,
+                                      -inf,
+                                      1.5f,
+                                      2.0f,
+                                      1e30f,
+                                      inf,
+                                      std::numeric_limits<float>::quiet_NaN(),
+                                      std::numeric_limits<float>::denorm_min()};
+    const int pages = 1 << level;
+    const int step = std::max(1, pages / 64);  // every boundary up to level 6, then 64 of them
+    for (int k = 0; k <= pages; k += step) {
+      const float boundary = std::ldexp(static_cast<float>(k), -level);
+      coordinates.insert(coordinates.end(),
+                         {boundary, std::nextafter(boundary, -inf), std::nextafter(boundary, inf)});
+    }
+    for (const float s : coordinates) {
+      const ivec2 shader = logic.vtPageAt(vec2(s, s), level);
+      EXPECT_EQ(pageAt(s, level), shader.x) << "s = " << s << " at level " << level;
+      EXPECT_EQ(shader.x, shader.y);
+    }
+  }
+  // The page a boundary starts, and the last page for s = 1.0, by hand.
+  EXPECT_EQ(pageAt(0.25f, 2), 1);
+  EXPECT_EQ(pageAt(std::nextafter(0.25f, 0.0f), 2), 0);
+  EXPECT_EQ(pageAt(1.0f, 4), 15);
+  EXPECT_EQ(pageAt(-0.0f, 4), 0);
+}
+
 TEST(VirtualTextureShader, NeedbufferEncodings) {
   Logic logic;
   EXPECT_EQ(logic.vtEncodeNeed32(ivec2(70000, 3), 15), uvec4(70000u, 3u, 15u, 1u));
@@ -131,7 +176,8 @@ TEST(VirtualTextureShader, TrilinearBlendsTheTwoLevelsAroundTheLod) {
   VtParameters p = parameters(16, 1, 3);  // 128 texels at the finest level
   p.trilinear = 1;
   // Derivatives of 2 finest texels per pixel: lod = 3 - 1 = 2 exactly: needs level 2, weight 0.
-  const Logic::VtFragment f = logic.vtShadeFragment(vec2(0.5f, 0.5f), vec2(2.0f / 128, 0), vec2(0, 0), p);
+  const Logic::VtFragment f =
+      logic.vtShadeFragment(vec2(0.5f, 0.5f), vec2(2.0f / 128, 0), vec2(0, 0), p);
   EXPECT_EQ(f.lod, 2.0f);
   EXPECT_EQ(f.neededLevel, 2);
   EXPECT_EQ(f.need, uvec4(2u, 2u, 2u, 1u));
