@@ -15,7 +15,8 @@
 namespace vt {
 namespace {
 
-int bitOf(uint8_t reason) { return std::countr_zero(static_cast<unsigned>(reason)); }
+// A reason's bit number (the index of reasonName, widthUnit and the per-reason counts).
+constexpr int bitOf(uint8_t reason) { return std::countr_zero(static_cast<unsigned>(reason)); }
 
 // The observed needbuffer value as a page, or none for "no geometry". A value that names no page
 // of the texture (a page beyond its level, as a missing clamp of s = 1.0 writes) is still read as
@@ -63,14 +64,14 @@ struct Verdict {
 // nearer than another triangle or none.
 int distanceRank(int reason) {
   switch (reason) {
-    case 4:
-      return 0;  // filter
-    case 2:
-      return 1;  // attributes
-    case 3:
-      return 2;  // lod
+    case bitOf(kReasonFilter):
+      return 0;
+    case bitOf(kReasonAttributes):
+      return 1;
+    case bitOf(kReasonLod):
+      return 2;
     default:
-      return 3;  // coverage, depth
+      return 3;  // kReasonCoverage, kReasonDepth
   }
 }
 
@@ -266,16 +267,16 @@ const char* widthUnit(int reason) {
 
 glm::u8vec3 reasonShade(int reason) {
   switch (reason) {
-    case 0:
-      return {60, 120, 255};  // coverage: blue
-    case 1:
-      return {0, 220, 220};  // depth: cyan
-    case 2:
-      return {0, 200, 0};  // attributes: green
-    case 3:
-      return {255, 220, 0};  // lod: yellow
-    case 4:
-      return {180, 0, 255};  // filter: violet
+    case bitOf(kReasonCoverage):
+      return {60, 120, 255};  // blue
+    case bitOf(kReasonDepth):
+      return {0, 220, 220};  // cyan
+    case bitOf(kReasonAttributes):
+      return {0, 200, 0};  // green
+    case bitOf(kReasonLod):
+      return {255, 220, 0};  // yellow
+    case bitOf(kReasonFilter):
+      return {180, 0, 255};  // violet
     default:
       return {255, 0, 0};  // unexplained: red
   }
