@@ -225,14 +225,16 @@ void setupPlanes(const WindowVertex& v0, const WindowVertex& v1, const WindowVer
 // Coverage by snapped edge functions, and the planes; returns false when the snapped area is zero
 // or no pixel centre of the viewport lies in the snapped bounds.
 bool setupEdges(WindowVertex v0, WindowVertex v1, WindowVertex v2, Viewport viewport,
-                const Arithmetic& arithmetic, SetupTriangle& out) {
+                const Arithmetic& arithmetic, bool clipped, SetupTriangle& out) {
   int64_t area = (v0.xf - v1.xf) * (v2.yf - v0.yf) - (v2.xf - v0.xf) * (v0.yf - v1.yf);
   if (area == 0) return false;
   if (area < 0) {
     std::swap(v0, v1);
     std::swap(out.fanNeighbour[0], out.fanNeighbour[1]);  // edge i is opposite corner i
   }
-  if (arithmetic.planePositions == PlanePositions::kSnapped)
+  // A clipped triangle's planes stay those through the float positions: its corners made by
+  // clipping are no vertex a rasterizer that does not clip ever snaps (PlanePositions).
+  if (arithmetic.planePositions == PlanePositions::kSnapped && !clipped)
     setupPlanes(onGrid(v0, arithmetic.coverage), onGrid(v1, arithmetic.coverage),
                 onGrid(v2, arithmetic.coverage), arithmetic.planeSetup, out);
   else
@@ -473,7 +475,7 @@ void setupPrimitive(const ClipSpaceMesh& mesh, size_t k, Viewport viewport,
     const WindowVertex c = toWindow(polygon[fan ? 0 : 2], viewport, arithmetic);
     if (arithmetic.coverage.rule == CoverageRule::kScanlineSpans
             ? setupSpans(a, b, c, viewport, arithmetic, triangle)
-            : setupEdges(a, b, c, viewport, arithmetic, triangle)) {
+            : setupEdges(a, b, c, viewport, arithmetic, fan, triangle)) {
       // Twice the largest clip error, beyond the quarter pixel the candidates' boxes keep.
       const float reach = 2 * std::max({a.clipError, b.clipError, c.clipError});
       triangle.candidateMargin = reach > 0.25f ? static_cast<int>(std::ceil(reach)) : 0;

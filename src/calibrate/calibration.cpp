@@ -7,9 +7,9 @@
 
 #include "calibrate/decoding_fit.h"
 #include "calibrate/filter_fit.h"
-#include "calibrate/probe_draws.h"
 #include "calibrate/raster_fit.h"
 #include "calibrate/shader_math_fit.h"
+#include "probes/probe_draws.h"
 #include "render/arithmetic_points.h"
 #include "render/precision_model_file.h"
 
@@ -161,12 +161,13 @@ std::vector<std::string> nonConformance(const PrecisionModel& m,
         "unorm values): " +
         colour.finding + "; probe: " + colour.probe);
   if (decoding.outsideRange > 0)
-    lines.push_back("block decoding (EXT_texture_compression_s3tc: the palette's fractions of the "
-                    "end points; no known decoder strays further): " +
-                    std::to_string(decoding.outsideRange) +
-                    " channels beyond every known decoder and the fraction rounded either way; "
-                    "probe: " +
-                    decoding.colour.probe);
+    lines.push_back(
+        "block decoding (EXT_texture_compression_s3tc: the palette's fractions of the "
+        "end points; no known decoder strays further): " +
+        std::to_string(decoding.outsideRange) +
+        " channels beyond every known decoder and the fraction rounded either way; "
+        "probe: " +
+        decoding.colour.probe);
   for (const Gl45Excess& excess : excessesOverGl45(m)) {
     const ParameterFit& measured = fit(excess.parameter);
     lines.push_back(excess.text + "; probe: " + measured.probe + "; measured: " + measured.finding);
@@ -225,8 +226,7 @@ Calibration calibrate() {
   c.fits.insert(c.fits.begin() + 2, raster.attributes);
   c.fits.insert(c.fits.begin() + 3, raster.depth);
   for (const ParameterFit& f : {math.log2, math.sqrt, math.texelConversion, math.lerp, filter.fit,
-                                colour, math.denormals, depthTest, decoding.colour,
-                                decoding.alpha})
+                                colour, math.denormals, depthTest, decoding.colour, decoding.alpha})
     c.fits.push_back(f);
   c.conformance = nonConformance(m, c.fits, decoding);
 

@@ -1,6 +1,7 @@
 #pragma once
 // Comparing an implementation's floats with the oracle's: bit for bit, and in units of 2^-23.
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -11,6 +12,17 @@ inline constexpr double kFloatUlp = 0x1p-23;
 
 inline bool sameBits(float a, float b) {
   return std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b);
+}
+
+// How many floats lie between a and b (0 for +0 and -0), at most `cap`; `cap` for NaN.
+inline double floatsBetween(float a, float b, double cap) {
+  if (std::isnan(a) || std::isnan(b)) return cap;
+  const auto ordered = [](float f) {
+    const int32_t i = std::bit_cast<int32_t>(f);
+    return i >= 0 ? int64_t{i} : -int64_t{i & 0x7fffffff};
+  };
+  const int64_t d = ordered(a) - ordered(b);
+  return std::min(cap, static_cast<double>(d < 0 ? -d : d));
 }
 
 // The distance of `got` from `exact` in units of the float spacing at `exact` (2^(e - 23) for

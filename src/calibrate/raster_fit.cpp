@@ -10,8 +10,8 @@
 
 #include "calibrate/coverage_fit.h"
 #include "calibrate/float_bits.h"
-#include "calibrate/probe_draws.h"
 #include "calibrate/probe_texture.h"
+#include "probes/probe_draws.h"
 #include "reference/renderer.h"
 #include "render/precision_model.h"
 #include "scene/camera.h"
@@ -32,10 +32,18 @@ void compareRaster(const RasterReadback& gl, const Frame& oracle, RasterCounts& 
     if (gl.triangle[i] < 0) continue;
     ++c.shared;
     bool differs = false;
-    for (int k = 0; k < 2; ++k) differs |= !sameBits(gl.uv[i][k], oracle.uv[i][k]);
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < 2; ++k) {
+      differs |= !sameBits(gl.uv[i][k], oracle.uv[i][k]);
+      c.attributeDistance +=
+          floatsBetween(gl.uv[i][k], oracle.uv[i][k], RasterCounts::kDistanceCap);
+    }
+    for (int k = 0; k < 4; ++k) {
       differs |= !sameBits(gl.derivatives[i][k], oracle.derivatives[i][k]);
+      c.attributeDistance +=
+          floatsBetween(gl.derivatives[i][k], oracle.derivatives[i][k], RasterCounts::kDistanceCap);
+    }
     const bool depthDiffers = !sameBits(gl.depth[i], oracle.depth[i]);
+    c.depthDistance += floatsBetween(gl.depth[i], oracle.depth[i], RasterCounts::kDistanceCap);
     c.attributes += differs;
     c.depth += depthDiffers;
     c.differing += differs || depthDiffers;
@@ -313,18 +321,24 @@ std::vector<Combination> allCombinations(const Arithmetic& base,
   for (const Coverage& coverage : coverages)
     for (const bool fusedViewport : {true, false})
       for (const auto& [setup, setupName] : kPlaneSetupNames)
-        for (const auto& [evaluation, evaluationName] : kPlaneEvaluationNames)
-          for (const auto& [perspective, perspectiveName] : kPerspectiveNames)
-            for (const bool offsetAndClamp : {true, false}) {
-              Arithmetic a = base;
-              a.coverage = coverage;
-              a.fusedViewport = fusedViewport;
-              a.planeSetup = setup;
-              a.planeEvaluation = evaluation;
-              a.perspective = perspective;
-              a.depth.offsetAndClamp = offsetAndClamp;
-              combinations.push_back({a, {}});
-            }
+        for (const auto& [positions, positionsName] : kPlanePositionsNames) {
+          // Scanline spans snap no position to set planes up through.
+          if (positions == PlanePositions::kSnapped && coverage.rule != CoverageRule::kSnappedEdges)
+            continue;
+          for (const auto& [evaluation, evaluationName] : kPlaneEvaluationNames)
+            for (const auto& [perspective, perspectiveName] : kPerspectiveNames)
+              for (const bool offsetAndClamp : {true, false}) {
+                Arithmetic a = base;
+                a.coverage = coverage;
+                a.fusedViewport = fusedViewport;
+                a.planeSetup = setup;
+                a.planePositions = positions;
+                a.planeEvaluation = evaluation;
+                a.perspective = perspective;
+                a.depth.offsetAndClamp = offsetAndClamp;
+                combinations.push_back({a, {}});
+              }
+        }
   return combinations;
 }
 
@@ -363,12 +377,14 @@ std::vector<std::pair<ClipSpaceMesh, RasterReadback>> drawAndCompare(
 }
 
 // The combination taken: the first that reproduces everything, else the closest (fewest pixels
-// of another triangle, then of other attributes, then of other depth).
+// of another triangle, then the attributes' and then the depth's distance in floats).
 const Combination& closestCombination(const std::vector<Combination>& combinations) {
   const auto closer = [](const RasterCounts& a, const RasterCounts& b) {
+    if (a.reproduces() != b.reproduces()) return a.reproduces();
     if (a.coverage != b.coverage) return a.coverage < b.coverage;
-    if (a.attributes != b.attributes) return a.attributes < b.attributes;
-    return a.depth < b.depth;
+    if (a.attributeDistance != b.attributeDistance)
+      return a.attributeDistance < b.attributeDistance;
+    return a.depthDistance < b.depthDistance;
   };
   size_t taken = 0;
   for (size_t i = 1; i < combinations.size(); ++i)
@@ -398,7 +414,10 @@ ParameterFit familyFit(const char* parameter, const std::vector<Combination>& co
             reproducing.push_back(name);
         }
       }
-    fit.members.push_back({nameOfMember(member), fewest});
+    // A member no combination draws (snapped plane positions under scanline spans alone) has no
+    // evidence to give.
+    if (fewest != std::numeric_limits<uint64_t>::max())
+      fit.members.push_back({nameOfMember(member), fewest});
   }
   fit.chosen = nameOfMember(memberOf(chosen.arithmetic));
   fit.consistent = reproducing;
@@ -406,7 +425,9 @@ ParameterFit familyFit(const char* parameter, const std::vector<Combination>& co
   fit.mismatches = reproduced ? 0 : chosen.counts.total();
   if (!reproduced)
     fit.finding = "no combination of members reproduces every probe; closest " + fit.chosen + " (" +
-                  fit.memberSummary() + kPixelsCounted + ")";
+                  fit.memberSummary() + kPixelsCounted +
+                  "; the closest combination has the fewest pixels of another triangle, then its "
+                  "coordinates and depth lie the fewest floats from the implementation's)";
   else if (reproducing.size() == 1)
     fit.finding = fit.chosen + ", bit for bit (" + fit.memberSummary() + kPixelsCounted + ")";
   else
@@ -444,6 +465,10 @@ void addFamilyFits(RasterFits& result, const GridResult& grid,
       "plane_setup", combinations, chosen, [](const Arithmetic& a) { return a.planeSetup; },
       [](PlaneSetup s) { return std::string(vt::nameOf(kPlaneSetupNames, s)); },
       valuesOf(kPlaneSetupNames)));
+  result.fits.push_back(familyFit(
+      "plane_positions", combinations, chosen, [](const Arithmetic& a) { return a.planePositions; },
+      [](PlanePositions p) { return std::string(vt::nameOf(kPlanePositionsNames, p)); },
+      valuesOf(kPlanePositionsNames)));
   result.fits.push_back(familyFit(
       "plane_evaluation", combinations, chosen,
       [](const Arithmetic& a) { return a.planeEvaluation; },
@@ -625,6 +650,8 @@ std::string rasterMemberOf(const std::string& family, const Arithmetic& a) {
   if (family == "coverage") return nameOf(a.coverage);
   if (family == "viewport") return a.fusedViewport ? "fused" : "unfused";
   if (family == "plane_setup") return std::string(vt::nameOf(kPlaneSetupNames, a.planeSetup));
+  if (family == "plane_positions")
+    return std::string(vt::nameOf(kPlanePositionsNames, a.planePositions));
   if (family == "plane_evaluation")
     return std::string(vt::nameOf(kPlaneEvaluationNames, a.planeEvaluation));
   if (family == "perspective") return std::string(vt::nameOf(kPerspectiveNames, a.perspective));

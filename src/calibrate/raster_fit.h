@@ -34,6 +34,12 @@ namespace vt::calibrate {
 struct RasterCounts {
   uint64_t pixels = 0, coverage = 0, shared = 0, attributes = 0, depth = 0;
   uint64_t differing = 0;  // pixels that differ in any of coverage, attributes and depth
+  // Over the pixels of the same triangle, the floats between the oracle's values and the
+  // implementation's, each capped at kDistanceCap: (s, t) and the four derivatives, and depth.
+  // Where no combination reproduces a GPU, nearly every pixel differs in some bit under every
+  // member; how far they differ tells the members apart.
+  double attributeDistance = 0, depthDistance = 0;
+  static constexpr double kDistanceCap = 0x1p16;
   bool reproduces() const { return differing == 0; }
   uint64_t total() const { return differing; }
 };
@@ -54,8 +60,8 @@ struct RasterFits {
 };
 
 // The member `a` has of a rasterization family, by the family's name in the evidence
-// ("coverage", "viewport", "plane_setup", "plane_evaluation", "perspective", "depth_offset",
-// "z24"); empty for another name.
+// ("coverage", "viewport", "plane_setup", "plane_positions", "plane_evaluation", "perspective",
+// "depth_offset", "z24"); empty for another name.
 std::string rasterMemberOf(const std::string& family, const Arithmetic& a);
 // A coverage member's name in the evidence, e.g. "8_bits_half_even_left_bottom".
 std::string nameOf(const Coverage& coverage);

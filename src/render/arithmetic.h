@@ -95,7 +95,9 @@ inline constexpr EnumNames<PlaneSetup, 2> kPlaneSetupNames = {
 // The window positions the planes go through: the float positions the viewport transform gives, or
 // those positions snapped to the coverage's sub-pixel grid (X = 1/2 + round((X - 1/2) 2^bits) /
 // 2^bits, the rounding the coverage member says), so that the planes and the edges are of one
-// triangle. Snapped applies to snapped-edge coverage only (scanline spans snap nothing).
+// triangle. Snapped applies to snapped-edge coverage only (scanline spans snap nothing), and to
+// triangles the near or far plane did not clip (the corners clipping makes are no vertex of the
+// mesh; such a triangle keeps the planes through the float positions).
 enum class PlanePositions { kUnsnapped, kSnapped };
 inline constexpr EnumNames<PlanePositions, 2> kPlanePositionsNames = {
     {{PlanePositions::kUnsnapped, "unsnapped"}, {PlanePositions::kSnapped, "snapped"}}};

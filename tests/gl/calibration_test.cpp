@@ -49,8 +49,8 @@ const calibrate::ParameterFit& fitOf(const calibrate::Calibration& c, const std:
 // calibrated arithmetic with those families taken from the point.
 Arithmetic expectSameChoices(const calibrate::Calibration& c, const Arithmetic& want) {
   Arithmetic got = c.model.arithmetic;
-  for (const char* family : {"coverage", "viewport", "plane_setup", "plane_evaluation",
-                             "perspective", "depth_offset", "z24"}) {
+  for (const char* family : {"coverage", "viewport", "plane_setup", "plane_positions",
+                             "plane_evaluation", "perspective", "depth_offset", "z24"}) {
     const calibrate::ParameterFit& fit = fitOf(c, family);
     const std::string wanted = calibrate::rasterMemberOf(family, want);
     EXPECT_TRUE(fit.pinned) << family << ": " << fit.finding;
@@ -70,7 +70,8 @@ Arithmetic expectSameChoices(const calibrate::Calibration& c, const Arithmetic& 
         std::pair{"block_decoding_alpha", want.blockDecoding.alpha}}) {
     const calibrate::ParameterFit& fit = fitOf(c, family);
     EXPECT_TRUE(fit.pinned) << family << ": " << fit.finding;
-    EXPECT_EQ(fit.consistent, std::vector<std::string>{std::string(nameOf(kPaletteRuleNames, member))})
+    EXPECT_EQ(fit.consistent,
+              std::vector<std::string>{std::string(nameOf(kPaletteRuleNames, member))})
         << family << ": " << fit.finding;
   }
   EXPECT_EQ(describe(got), describe(want));
@@ -149,7 +150,7 @@ TEST(Calibration, IsDeterministicAndItsFileReadsBackAsTheModel) {
   test::ScratchDirectory dir;
   std::ofstream(dir / "model.json") << json;
   EXPECT_EQ(readModelFile(dir / "model.json"), first.model);
-  EXPECT_EQ(first.fits.size(), 20u);
+  EXPECT_EQ(first.fits.size(), 21u);  // the families of the evidence, plane_positions included
   for (const calibrate::ParameterFit& fit : first.fits) EXPECT_GT(fit.probes, 0u) << fit.parameter;
 }
 
@@ -266,8 +267,8 @@ void expectCompressedCachesDecodeAsTheImplementation(const std::string& modelNam
     std::ofstream(dir / "wrong.json") << modelJson(wrong);
     const auto totals = [&](const std::string& model, const std::string& out) {
       const auto run = test::runCommand(VT_EXECUTABLE,
-                                        {"crosscheck", (dir / "t.vt").string(), "--size",
-                                         "160x100", "--model", model, "-o", (dir / out).string()},
+                                        {"crosscheck", (dir / "t.vt").string(), "--size", "160x100",
+                                         "--model", model, "-o", (dir / out).string()},
                                         dir.path());
       std::cout << run.out;
       std::ifstream in(dir / out / "summary.json");
