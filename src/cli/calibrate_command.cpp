@@ -7,7 +7,7 @@
 
 #include "cli/commands.h"
 #include "common/output_path.h"
-#include "workflows/calibrate_here.h"
+#include "workflows/calibrate_to_model.h"
 
 namespace vt {
 
@@ -32,10 +32,10 @@ void addCalibrateCommand(CLI::App& app) {
   command->get_option("--probes")->excludes("--record-probes");
   command->callback([options] {
     if (!options->output.empty()) requireOutputFile(options->output, {options->probes});
-    calibrateHere({.output = options->output,
-                   .probes = options->probes,
-                   .recordProbes = options->recordProbes},
-                  std::cout, std::cerr);
+    calibrateToModel({.output = options->output,
+                      .probes = options->probes,
+                      .recordProbes = options->recordProbes},
+                     std::cout, std::cerr);
   });
 }
 

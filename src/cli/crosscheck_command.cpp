@@ -12,7 +12,7 @@
 #include "common/output_path.h"
 #include "common/posix_file.h"
 #include "scene/test_scenes.h"
-#include "workflows/crosscheck_here.h"
+#include "workflows/crosscheck_to_folder.h"
 
 namespace vt {
 
@@ -75,17 +75,17 @@ void addCrosscheckCommand(CLI::App& app) {
       throw CLI::ValidationError("TEXTURE", "needed without --captures");
     if (o->captures.empty() && (o->mesh.empty() != o->path.empty()))
       throw CLI::ValidationError("--mesh/--path", "a flythrough needs both");
-    crosscheckHere({.captures = o->captures,
-                    .texture = o->texture,
-                    .scenes = o->scenes,
-                    .mesh = o->mesh,
-                    .path = o->path,
-                    .every = o->every,
-                    .viewport = parseSize(o->size),
-                    .model = o->profile,
-                    .threads = o->threads,
-                    .allSets = o->allSets,
-                    .output = o->output});
+    crosscheckToFolder({.captures = o->captures,
+                        .texture = o->texture,
+                        .scenes = o->scenes,
+                        .mesh = o->mesh,
+                        .path = o->path,
+                        .every = o->every,
+                        .viewport = parseSize(o->size),
+                        .model = o->profile,
+                        .threads = o->threads,
+                        .allSets = o->allSets,
+                        .output = o->output});
   });
 }
 

@@ -14,7 +14,7 @@
 #include "common/output_path.h"
 #include "eval/golden.h"
 #include "render/arithmetic_points.h"
-#include "workflows/check_golden_here.h"
+#include "workflows/check_golden_set.h"
 
 namespace vt {
 void addGoldenCommand(CLI::App& app) {
@@ -82,14 +82,14 @@ void addGoldenCommand(CLI::App& app) {
       ->capture_default_str();
   check->callback([c] {
     requireOutputFolder(c->output, {c->golden, c->texture, c->mesh, c->path});
-    checkGoldenHere({.golden = c->golden,
-                     .texture = c->texture,
-                     .mesh = c->mesh,
-                     .path = c->path,
-                     .backend = parseBackend(c->backend),
-                     .model = c->model,
-                     .output = c->output},
-                    std::cout, std::cerr);
+    checkGoldenSet({.golden = c->golden,
+                    .texture = c->texture,
+                    .mesh = c->mesh,
+                    .path = c->path,
+                    .backend = parseBackend(c->backend),
+                    .model = c->model,
+                    .output = c->output},
+                   std::cout, std::cerr);
   });
 }
 

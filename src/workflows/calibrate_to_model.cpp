@@ -1,4 +1,4 @@
-#include "workflows/calibrate_here.h"
+#include "workflows/calibrate_to_model.h"
 
 #include <span>
 #include <stdexcept>
@@ -11,8 +11,8 @@
 
 namespace vt {
 
-calibrate::Calibration calibrateHere(const CalibrateRequest& request, std::ostream& out,
-                                     std::ostream& err) {
+calibrate::Calibration calibrateToModel(const CalibrateRequest& request, std::ostream& out,
+                                        std::ostream& err) {
   const calibrate::Calibration calibration = [&] {
     if (!request.probes.empty()) {
       calibrate::RecordedProbeDrawer replay(request.probes);

@@ -20,7 +20,6 @@ struct GoldenCheckRequest {
   std::filesystem::path output;
 };
 
-GoldenCheck checkGoldenHere(const GoldenCheckRequest& request, std::ostream& out,
-                            std::ostream& err);
+GoldenCheck checkGoldenSet(const GoldenCheckRequest& request, std::ostream& out, std::ostream& err);
 
 }  // namespace vt

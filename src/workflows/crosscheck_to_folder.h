@@ -24,6 +24,6 @@ struct CrosscheckRequest {
   std::filesystem::path output;
 };
 
-void crosscheckHere(const CrosscheckRequest& request);
+void crosscheckToFolder(const CrosscheckRequest& request);
 
 }  // namespace vt

@@ -1,4 +1,4 @@
-#include "workflows/crosscheck_here.h"
+#include "workflows/crosscheck_to_folder.h"
 
 #include "common/error.h"
 #include "common/resource_limits.h"
@@ -10,7 +10,7 @@
 
 namespace vt {
 
-void crosscheckHere(const CrosscheckRequest& request) {
+void crosscheckToFolder(const CrosscheckRequest& request) {
   if (!request.captures.empty()) {
     if (!crosscheckCaptures(
              {request.captures, request.output, request.model, request.threads, request.allSets})

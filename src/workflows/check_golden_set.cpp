@@ -1,4 +1,4 @@
-#include "workflows/check_golden_here.h"
+#include "workflows/check_golden_set.h"
 
 #include <optional>
 
@@ -9,8 +9,8 @@
 
 namespace vt {
 
-GoldenCheck checkGoldenHere(const GoldenCheckRequest& request, std::ostream& out,
-                            std::ostream& err) {
+GoldenCheck checkGoldenSet(const GoldenCheckRequest& request, std::ostream& out,
+                           std::ostream& err) {
   const BackendContext context(request.backend);
   // auto: the model the implementation's fingerprint confirms (workflows/auto_model.h); the
   // oracle, which has none, flies in the golden set's own profile.

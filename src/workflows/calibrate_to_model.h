@@ -17,7 +17,7 @@ struct CalibrateRequest {
   std::filesystem::path recordProbes;  // also record every probe draw here
 };
 
-calibrate::Calibration calibrateHere(const CalibrateRequest& request, std::ostream& out,
-                                     std::ostream& err);
+calibrate::Calibration calibrateToModel(const CalibrateRequest& request, std::ostream& out,
+                                        std::ostream& err);
 
 }  // namespace vt
