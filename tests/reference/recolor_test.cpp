@@ -5,6 +5,7 @@
 
 #include "reference/recolor.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -123,7 +124,9 @@ TEST_F(Recolor, RefusesAFrameWithoutDebugChannels) {
   const ClipSpaceMesh mesh = toClipSpace(boxRoom(), boxRoomPath().at(0), settings.viewport);
   const Frame plain = renderFrame(mesh, ResidentTexture(*reader_), settings);
   std::vector<uint8_t> color;
-  EXPECT_THROW(recolor(plain, caches().front(), settings, color), std::invalid_argument);
+  EXPECT_THAT([&] { recolor(plain, caches().front(), settings, color); },
+              ::testing::ThrowsMessage<std::invalid_argument>(
+                  ::testing::HasSubstr("recolor: the frame was not drawn with debug channels")));
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 // block's widths, ResultSetBuilder's OwnBlock) and triangles in front of it (edges, occlusion),
 // textured with detail from a cache where pages fall back to their ancestors.
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -165,10 +166,15 @@ TEST_F(ResultSets, JudgingAFrameBuildsTheSetsOfExactlyThePixelsWhereItDiffers) {
   size_t pixel = 0;
   while (judged.sets.built(pixel)) ++pixel;
   changed[4 * pixel] ^= 1;
-  EXPECT_THROW(compareFrames(judged, changed, other.need, false), std::invalid_argument);
+  EXPECT_THAT([&] { compareFrames(judged, changed, other.need, false); },
+              ::testing::ThrowsMessage<std::invalid_argument>(
+                  ::testing::HasSubstr("the result sets were built against another frame (pixel " +
+                                       std::to_string(pixel) + " differs")));
   // A judged frame of another size is refused before anything is drawn.
   judging.judged.color = std::span(other.color).first(8);
-  EXPECT_THROW(renderFrame(mesh, *cache_, judging), std::invalid_argument);
+  EXPECT_THAT([&] { renderFrame(mesh, *cache_, judging); },
+              ::testing::ThrowsMessage<std::invalid_argument>(
+                  ::testing::HasSubstr("the judged frame is not of the viewport's size")));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "render/frame_comparison.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "shader/needbuffer.h"
@@ -196,7 +197,9 @@ TEST(FrameComparison, RejectsFramesOfDifferentSizes) {
   const Frame oracle = smallFrame();
   const std::vector<uint8_t> color(4);
   const std::vector<glm::uvec4> need(1);
-  EXPECT_THROW(compareFrames(oracle, color, need, false), std::invalid_argument);
+  EXPECT_THAT([&] { compareFrames(oracle, color, need, false); },
+              ::testing::ThrowsMessage<std::invalid_argument>(
+                  ::testing::HasSubstr("compareFrames: frames of different sizes")));
 }
 
 }  // namespace

@@ -36,7 +36,9 @@ TEST(PrecisionModel, ShippedModelsPinWhatTheyMeasureAndGl45LeavesTheSpecificatio
       EXPECT_FALSE(m.sources.at(parameter).empty()) << m.name << " " << parameter;
   }
   EXPECT_EQ(namedModel("gl45"), gl45);
-  EXPECT_THROW(namedModel("nvidia"), std::invalid_argument);
+  EXPECT_THAT([] { namedModel("nvidia"); },
+              ::testing::ThrowsMessage<std::invalid_argument>(
+                  HasSubstr("precision model 'nvidia' is not one of")));
   EXPECT_EQ(namedModel("softpipe"), softpipeModel());
   EXPECT_EQ(modelForRenderer("softpipe").name, "softpipe");
   EXPECT_EQ(modelForRenderer("NVIDIA H100/PCIe/SSE2").name, "gl45");
@@ -175,8 +177,9 @@ TEST(PrecisionModelFile, RefusesMalformedFilesNamingTheField) {
   refused(j, "field sub_texel_bits is 0 for a bounded filter");
   j = nlohmann::json::parse(modelJson(softpipeModel()));  // scanline spans: no grid to snap to
   j["arithmetic"]["plane_positions"] = "snapped";
-  refused(j, "field arithmetic.plane_positions is 'snapped' but the coverage (scanline_spans) "
-             "snaps no position");
+  refused(j,
+          "field arithmetic.plane_positions is 'snapped' but the coverage (scanline_spans) "
+          "snaps no position");
   j["arithmetic"]["plane_positions"] = "rounded";
   refused(j, "field arithmetic.plane_positions is 'rounded', not one of unsnapped, snapped");
   refused(nlohmann::json::array(), "not a JSON object");
@@ -187,7 +190,8 @@ TEST(PrecisionModelFile, RefusesMalformedFilesNamingTheField) {
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("not a precision model"));
   }
-  EXPECT_THROW((void)readModelFile(dir / "missing.json"), InputError);
+  EXPECT_THAT([&] { (void)readModelFile(dir / "missing.json"); },
+              ::testing::ThrowsMessage<InputError>(HasSubstr((dir / "missing.json").string())));
 }
 
 // A field nobody reads would judge under a default the author never chose: each is refused.
