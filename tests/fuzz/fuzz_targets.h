@@ -23,7 +23,7 @@ using Input = std::span<const uint8_t>;
 // read. Its header, table and page checksums are recomputed first, so that mutations reach the
 // fields and the page bytes behind them (the checksum checks have their own tests). Block-
 // compressed pages (bc1, bc3) are decoded under each palette rule (format/block_decoding.h), and
-// every decoded texel must lie in the range decodeTexelRange allows.
+// every decoded texel of the first two must lie in the range decodeTexelRange allows.
 void virtualTextureFile(Input input);
 // A Quake 3 map (scene/bsp_file.h) parsed and made a textured scene (scene/quake3_scene.h), with
 // placeholder textures.
