@@ -33,8 +33,8 @@ struct CoverageHypothesis {
   SnapRounding rounding = SnapRounding::kHalfEven;
   // A centre exactly on an edge belongs to the triangle when the edge is a left edge (the
   // interior to its right; any edge that is not horizontal is left or right) and leftEdgesIn, or
-  // a horizontal bottom edge (the interior above) and bottomEdgesIn. llvmpipe: both (DESIGN
-  // section 7, rule 4).
+  // a horizontal bottom edge (the interior above) and bottomEdgesIn. llvmpipe: both
+  // (docs/design.md section 7, rule 4).
   bool leftEdgesIn = true;
   bool bottomEdgesIn = true;
   bool operator==(const CoverageHypothesis&) const = default;

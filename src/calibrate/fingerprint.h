@@ -1,5 +1,5 @@
 #pragma once
-// `auto` verifies before it trusts (DESIGN section 3): a pinned model is used for an
+// `auto` verifies before it trusts (docs/design.md section 3): a pinned model is used for an
 // implementation only after a fingerprint of it, a handful of probe draws on the current GL
 // context, reproduces the model's arithmetic bit for bit. The renderer's name decides nothing.
 //

@@ -120,8 +120,8 @@ GridResult fitGrid() {
 // Triangles on the near plane: every vertex at z = -w, inside by the clip test, whose window z
 // z * (1 / w) * 0.5 + 0.5 is 0 or, where 1 / w rounds up, just below it; half of them tilted a
 // hair away from the plane. Their pixels' window z is 0 up to rounding: where it goes below 0 a
-// clamp shows, and where it is -0.0 the + 0.0 offset term (DESIGN section 7, rule 7), which the
-// random triangles rarely reach.
+// clamp shows, and where it is -0.0 the + 0.0 offset term (docs/design.md section 7, rule 7),
+// which the random triangles rarely reach.
 ClipSpaceMesh nearPlaneTriangles(unsigned seed, int triangles) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f), wRange(0.3f, 3.0f), hair(0.0f, 1e-6f);
@@ -156,7 +156,7 @@ ClipSpaceMesh withOwnVertices(const ClipSpaceMesh& shared) {
 // the plane evaluation's terms dwarf the values they sum to: what the implementation's
 // interpolation arithmetic does shows here, unmasked by vertex movement. On random triangles an
 // H100's coordinates stayed within what its 8-bit grid explains, and its horizon captures did not
-// (README, "Judging a GPU").
+// (docs/gpus.md).
 struct HorizonView {
   float height;      // camera above the plane
   float yawDegrees;  // about the plane's normal
