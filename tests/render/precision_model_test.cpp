@@ -102,18 +102,24 @@ TEST(PrecisionModelFile, AFileWithoutTheLerpRoundingRoundsToNearest) {
   EXPECT_EQ(readModelFile(dir / "old.json"), llvmpipeModel());
 }
 
+// Writes `json` to `file`; reading it must fail with an error naming the file and `expected`.
+void expectRefused(const std::filesystem::path& file, const nlohmann::json& json,
+                   const std::string& expected) {
+  std::ofstream(file) << json.dump();
+  try {
+    (void)readModelFile(file);
+    ADD_FAILURE() << "accepted: " << expected;
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(file.string()));
+    EXPECT_THAT(e.what(), HasSubstr(expected));
+  }
+}
+
 TEST(PrecisionModelFile, RefusesMalformedFilesNamingTheField) {
   test::ScratchDirectory dir;
   const nlohmann::json good = nlohmann::json::parse(modelJson(gl45Model()));
-  const auto refused = [&](nlohmann::json json, const std::string& expected) {
-    std::ofstream(dir / "bad.json") << json.dump();
-    try {
-      (void)readModelFile(dir / "bad.json");
-      ADD_FAILURE() << "accepted: " << expected;
-    } catch (const InputError& e) {
-      EXPECT_THAT(e.what(), HasSubstr((dir / "bad.json").string()));
-      EXPECT_THAT(e.what(), HasSubstr(expected));
-    }
+  const auto refused = [&](const nlohmann::json& json, const std::string& expected) {
+    expectRefused(dir / "bad.json", json, expected);
   };
   nlohmann::json j = good;
   j.erase("attribute_ulps");
@@ -199,14 +205,7 @@ TEST(PrecisionModelFile, RefusesUnknownAndMistypedFieldsNamingThem) {
   test::ScratchDirectory dir;
   const nlohmann::json good = nlohmann::json::parse(modelJson(gl45Model()));
   const auto refused = [&](const nlohmann::json& json, const std::string& expected) {
-    std::ofstream(dir / "bad.json") << json.dump();
-    try {
-      (void)readModelFile(dir / "bad.json");
-      ADD_FAILURE() << "accepted: " << expected;
-    } catch (const InputError& e) {
-      EXPECT_THAT(e.what(), HasSubstr((dir / "bad.json").string()));
-      EXPECT_THAT(e.what(), HasSubstr(expected));
-    }
+    expectRefused(dir / "bad.json", json, expected);
   };
   nlohmann::json j = good;
   j["attribute_ulp"] = 0;  // misspelt beside the real bound
