@@ -18,7 +18,7 @@ parallel=${VT_FUZZ_PARALLEL:-2}
 vt=${VT_EXECUTABLE:-build/src/vt}
 folder=build-fuzz
 all_targets=(vt_file bsp pk3 obj layout camera_path needbuffer capture precision_model probe_folder
-  config)
+  config shard)
 targets=("${@:-${all_targets[@]}}")
 [[ -x "$vt" ]] || { echo "fuzz: $vt is missing: build the Release vt first" >&2; exit 1; }
 openarena=${VT_OPENARENA_DIR:-$(bash scripts/fetch-openarena.sh)}

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "common/shard.h"
 #include "runtime/heuristic.h"
 
 namespace vt {
@@ -92,6 +93,10 @@ CLI::Validator wholeNumbersIn(long long low, long long high) {
         }
       },
       "INT");
+}
+
+CLI::Validator shardArgument() {
+  return validatorFrom([](const std::string& text) { parseShard(text); }, "I/N");
 }
 
 }  // namespace vt

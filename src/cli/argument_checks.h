@@ -29,6 +29,9 @@ CLI::Validator finiteNumber();
 // A comma-separated list of whole numbers in [low, high].
 CLI::Validator wholeNumbersIn(long long low, long long high);
 
+// A shard of the work, I/N (common/shard.h).
+CLI::Validator shardArgument();
+
 // A validator that reports the std::invalid_argument of `parse(text)` as CLI11's error text.
 template <class Parse>
 CLI::Validator validatorFrom(Parse parse, const char* name) {

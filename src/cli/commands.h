@@ -15,6 +15,7 @@ void addDemoCommand(CLI::App& app);
 void addEvalCommand(CLI::App& app);
 void addExportLevelCommand(CLI::App& app);
 void addGoldenCommand(CLI::App& app);
+void addMergeCommand(CLI::App& app);
 void addFlyCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
 void addRetextureCommand(CLI::App& app);

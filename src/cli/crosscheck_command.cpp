@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "cli/argument_checks.h"
 #include "cli/commands.h"
@@ -19,7 +20,7 @@ namespace vt {
 void addCrosscheckCommand(CLI::App& app) {
   struct Options {
     std::string texture, scenes = "all", size = "320x200", profile = "auto", output = "crosscheck";
-    std::string mesh, path, captures;
+    std::string mesh, path, captures, shard;
     int every = 8;
     unsigned threads = 0;
     bool allSets = false;
@@ -35,6 +36,11 @@ void addCrosscheckCommand(CLI::App& app) {
                    "Compare the captures of this folder (frames another renderer drew, "
                    "reference/validate-your-renderer.md) with the oracle; writes junit.xml too")
       ->check(CLI::ExistingDirectory);
+  command
+      ->add_option("--shard", o->shard,
+                   "With --captures: judge only part I of N (the captures taken in turn) and "
+                   "write shard.json for `vt merge`")
+      ->check(shardArgument());
   command->add_option("--threads", o->threads, "With --captures: oracle threads (0: every core)")
       ->check(workerCount());
   std::string names;
@@ -73,19 +79,23 @@ void addCrosscheckCommand(CLI::App& app) {
       throw CLI::ValidationError("TEXTURE", "--captures takes none: each capture names its own");
     if (o->captures.empty() && o->texture.empty())
       throw CLI::ValidationError("TEXTURE", "needed without --captures");
+    if (o->captures.empty() && !o->shard.empty())
+      throw CLI::ValidationError("--shard", "shards split captures: needs --captures");
     if (o->captures.empty() && (o->mesh.empty() != o->path.empty()))
       throw CLI::ValidationError("--mesh/--path", "a flythrough needs both");
-    crosscheckToFolder({.captures = o->captures,
-                        .texture = o->texture,
-                        .scenes = o->scenes,
-                        .mesh = o->mesh,
-                        .path = o->path,
-                        .every = o->every,
-                        .viewport = parseSize(o->size),
-                        .model = o->profile,
-                        .threads = o->threads,
-                        .allSets = o->allSets,
-                        .output = o->output});
+    crosscheckToFolder(
+        {.captures = o->captures,
+         .texture = o->texture,
+         .scenes = o->scenes,
+         .mesh = o->mesh,
+         .path = o->path,
+         .every = o->every,
+         .viewport = parseSize(o->size),
+         .model = o->profile,
+         .threads = o->threads,
+         .allSets = o->allSets,
+         .shard = o->shard.empty() ? std::nullopt : std::optional(parseShard(o->shard)),
+         .output = o->output});
   });
 }
 

@@ -24,7 +24,7 @@ namespace {
 
 struct EvalOptions {
   FlightSceneArguments scene;
-  std::string configs, output = "eval", title, referenceTexture;
+  std::string configs, output = "eval", title, referenceTexture, shard;
   ConfigurationLists lists;
   std::string hotSpot = "shifted", profile = "exact";
   uint32_t cacheFrames = 16, initialLevels = 3;
@@ -93,6 +93,11 @@ void addRunSettings(CLI::App* command, EvalOptions& o) {
                    "same pages in another format, e.g. the uncompressed texture of a compressed "
                    "one); the summary adds the flown texture's own error against it")
       ->check(CLI::ExistingFile);
+  command
+      ->add_option("--shard", o.shard,
+                   "Fly only part I of N of the configurations (taken in turn) and write "
+                   "shard.json for `vt merge`, which draws the plots")
+      ->check(shardArgument());
   command->add_option("-o,--output", o.output, "Output folder")->capture_default_str();
 }
 
@@ -163,7 +168,8 @@ void runEval(const EvalOptions& o, const CLI::App& command) {
       .arithmetic = arithmeticPoint(o.profile),
       .jobs = o.jobs,
       .output = o.output,
-      .reference = reference.get()};
+      .reference = reference.get(),
+      .shard = o.shard.empty() ? std::nullopt : std::optional(parseShard(o.shard))};
   evaluateToFolder(reader, std::move(request), std::cout);
 }
 

@@ -7,6 +7,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "cli/argument_checks.h"
 #include "cli/commands.h"
 #include "cli/configuration_options.h"
 #include "cli/size_argument.h"
@@ -59,7 +60,7 @@ void addGoldenCommand(CLI::App& app) {
 
   struct Check {
     std::string golden, texture, mesh, path, backend = "oracle", model = "auto",
-                                             output = "golden-check";
+                                             output = "golden-check", shard;
   };
   auto c = std::make_shared<Check>();
   CLI::App* check = golden->add_subcommand("check", "Fly a golden set again and compare");
@@ -78,6 +79,11 @@ void addGoldenCommand(CLI::App& app) {
           "--backend gl a measured or shipped model whose fingerprint reproduces here, else "
           "gl45; with the oracle the golden set's own profile")
       ->capture_default_str();
+  check
+      ->add_option("--shard", c->shard,
+                   "Check only part I of N (a contiguous block of the recorded frames, flown up to "
+                   "its last) and write shard.json for `vt merge`")
+      ->check(shardArgument());
   check->add_option("-o,--output", c->output, "Folder for check.json and difference images")
       ->capture_default_str();
   check->callback([c] {
@@ -88,7 +94,8 @@ void addGoldenCommand(CLI::App& app) {
                     .path = c->path,
                     .backend = parseBackend(c->backend),
                     .model = c->model,
-                    .output = c->output},
+                    .output = c->output,
+                    .shard = c->shard.empty() ? std::nullopt : std::optional(parseShard(c->shard))},
                    std::cout, std::cerr);
   });
 }

@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
   vt::addEvalCommand(app);
   vt::addExportLevelCommand(app);
   vt::addGoldenCommand(app);
+  vt::addMergeCommand(app);
   vt::addFlyCommand(app);
   vt::addRenderCommand(app);
   vt::addRetextureCommand(app);

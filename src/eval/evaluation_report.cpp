@@ -4,11 +4,13 @@
 #include <cmath>
 #include <iomanip>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
 
 #include "common/posix_file.h"
+#include "eval/evaluation_files.h"
 #include "eval/evaluation_plots.h"
 #include "eval/flight_records.h"
 #include "render/arithmetic_points.h"
@@ -29,19 +31,26 @@ std::string cell(std::string text) {
   return text;
 }
 
-std::string framesCsv(const Evaluation& evaluation) {
+// Run r's index among all configurations: r itself, or in a shard the part's.
+size_t runIndex(const EvaluationPart* part, size_t r) { return part ? part->runIndices[r] : r; }
+
+std::string framesCsv(const Evaluation& evaluation, const EvaluationPart* part) {
   std::string csv = flightCsvHeader(true, "configuration,");
   for (size_t r = 0; r < evaluation.runs.size(); ++r)
-    csv += flightCsvRows(evaluation.runs[r].result, true, std::to_string(r) + ",");
+    csv += flightCsvRows(evaluation.runs[r].result, true, std::to_string(runIndex(part, r)) + ",");
   return csv;
 }
 
 // The figures the plotting script draws: SSIM, WSSIM and RMSE of every run, then the
 // description's figures of chosen runs, each by the stem of its file name (basic5.png: basic5.svg
 // and basic5.png).
-nlohmann::json figuresJson(const EvaluationDescription& description, const Evaluation& evaluation) {
+nlohmann::json figuresJson(const EvaluationDescription& description, const Evaluation& evaluation,
+                           const EvaluationPart* part) {
   std::vector<std::string> labels;
-  for (const EvaluationRun& run : evaluation.runs) labels.push_back(run.configuration.label());
+  if (part)
+    for (const FlightConfiguration& c : part->all) labels.push_back(c.label());
+  else
+    for (const EvaluationRun& run : evaluation.runs) labels.push_back(run.configuration.label());
   nlohmann::json figures = nlohmann::json::array();
   for (const auto& [stem, measure, name] :
        {std::tuple{"ssim", "ssim", "SSIM"}, {"wssim", "wssim", "WSSIM"}, {"rmse", "rmse", "RMSE"}})
@@ -63,7 +72,8 @@ nlohmann::json figuresJson(const EvaluationDescription& description, const Evalu
 }
 
 nlohmann::json summaryJson(const EvaluationDescription& description, const CameraPath& path,
-                           const RenderSettings& settings, const Evaluation& evaluation) {
+                           const RenderSettings& settings, const Evaluation& evaluation,
+                           const EvaluationPart* part) {
   nlohmann::json motions = nlohmann::json::array();
   for (const NamedMotion& m : path.motions())
     motions.push_back({{"name", m.name}, {"kind", m.kind}, {"first", m.first}, {"last", m.last}});
@@ -79,7 +89,7 @@ nlohmann::json summaryJson(const EvaluationDescription& description, const Camer
                            {"mean_wssim", q.meanWssim},
                            {"mean_rmse", q.meanRmse}});
     }
-    nlohmann::json entry = {{"index", r},
+    nlohmann::json entry = {{"index", runIndex(part, r)},
                             {"name", run.configuration.label()},
                             {"configuration", run.configuration.toJson()},
                             {"cache_side_frames", run.cacheSide},
@@ -90,19 +100,19 @@ nlohmann::json summaryJson(const EvaluationDescription& description, const Camer
     runs.push_back(entry);
   }
   nlohmann::json summary = {{"title", description.title},
-          {"scene", description.scene},
-          {"texture", description.texture},
-          {"frames", path.frameCount()},
-          {"width", settings.viewport.width},
-          {"height", settings.viewport.height},
-          {"profile", arithmeticLabel(settings.arithmetic)},
-          {"jobs", description.jobs},
-          {"view_seconds", evaluation.viewSeconds},
-          {"recolor_seconds", evaluation.recolorSeconds},
-          {"wall_seconds", evaluation.wallSeconds},
-          {"motions", motions},
-          {"runs", runs},
-          {"figures", figuresJson(description, evaluation)}};
+                            {"scene", description.scene},
+                            {"texture", description.texture},
+                            {"frames", path.frameCount()},
+                            {"width", settings.viewport.width},
+                            {"height", settings.viewport.height},
+                            {"profile", arithmeticLabel(settings.arithmetic)},
+                            {"jobs", description.jobs},
+                            {"view_seconds", evaluation.viewSeconds},
+                            {"recolor_seconds", evaluation.recolorSeconds},
+                            {"wall_seconds", evaluation.wallSeconds},
+                            {"motions", motions},
+                            {"runs", runs},
+                            {"figures", figuresJson(description, evaluation, part)}};
   if (!evaluation.encoding.empty()) {
     // The encoding's own error: the flown texture with every page resident, frame by frame.
     nlohmann::json ssims = nlohmann::json::array(), wssims = nlohmann::json::array();
@@ -125,6 +135,8 @@ nlohmann::json summaryJson(const EvaluationDescription& description, const Camer
   }
   return summary;
 }
+
+}  // namespace
 
 std::string summaryMarkdown(const nlohmann::json& summary) {
   std::ostringstream md;
@@ -180,23 +192,33 @@ std::string summaryMarkdown(const nlohmann::json& summary) {
   return md.str();
 }
 
-}  // namespace
-
-void writeEvaluation(const std::filesystem::path& destination,
-                     const EvaluationDescription& description, const CameraPath& path,
-                     const RenderSettings& settings, const Evaluation& evaluation) {
+void writeEvaluationFiles(const std::filesystem::path& destination, const std::string& csv,
+                          const nlohmann::json& summary, const ShardFile* shard) {
   // Written whole into a temporary folder that then replaces `folder`: a previous evaluation
   // there stays complete until the new one is.
   TemporaryFolder staging(destination, "summary.json");
   const std::filesystem::path& folder = staging.path();
-  writeFileAtomically(folder / "frames.csv", framesCsv(evaluation));
-  const nlohmann::json summary = summaryJson(description, path, settings, evaluation);
+  writeFileAtomically(folder / "frames.csv", csv);
   writeFileAtomically(folder / "summary.json", summary.dump(2) + "\n");
   writeFileAtomically(folder / "summary.md", summaryMarkdown(summary));
-  // Last: the plots read the staged frames.csv and summary.json; a failure there leaves no
-  // output folder.
-  drawEvaluationPlots(folder, destination);
+  if (shard)
+    writeShardFile(folder, *shard);
+  else
+    // Last: the plots read the staged frames.csv and summary.json; a failure there leaves no
+    // output folder.
+    drawEvaluationPlots(folder, destination);
   staging.commit();
+}
+
+void writeEvaluation(const std::filesystem::path& destination,
+                     const EvaluationDescription& description, const CameraPath& path,
+                     const RenderSettings& settings, const Evaluation& evaluation,
+                     const EvaluationPart* part) {
+  const nlohmann::json summary = summaryJson(description, path, settings, evaluation, part);
+  std::optional<ShardFile> shard;
+  if (part) shard = evaluationShard(*part, summary);
+  writeEvaluationFiles(destination, framesCsv(evaluation, part), summary,
+                       shard ? &*shard : nullptr);
 }
 
 }  // namespace vt

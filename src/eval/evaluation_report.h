@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "common/shard.h"
 #include "eval/evaluation.h"
 
 namespace vt {
@@ -39,8 +40,27 @@ struct EvaluationDescription {
   std::string referenceTexture;           // the references' texture, when not the flown one
 };
 
+// The part of an evaluation one shard flew (`vt eval --shard I/N`, common/shard.h: the
+// configurations taken in turn): every configuration of the job, and which of them its runs are.
+struct EvaluationPart {
+  Shard shard;
+  std::vector<FlightConfiguration> all;
+  std::vector<size_t> runIndices;  // of the evaluation's runs in `all`, in order
+};
+
+// With `part`, the runs carry their indices among all configurations (frames.csv, summary.json),
+// the figures name every configuration, and shard.json is written besides for mergeEvaluations.
 void writeEvaluation(const std::filesystem::path& folder, const EvaluationDescription& description,
                      const CameraPath& path, const RenderSettings& settings,
-                     const Evaluation& evaluation);
+                     const Evaluation& evaluation, const EvaluationPart* part = nullptr);
+
+bool isEvaluationShard(const ShardFile& shard);
+
+// The shards of one evaluation (requireCompleteJob's, in order) joined into `output`: frames.csv
+// and the runs of summary.json as one run writes them, summary.md and the plots drawn from them.
+// What the shards measured stays theirs: the runs' times, and for the whole the longest shard's
+// wall and view times and the sum of the recolouring. Throws InputError naming a shard's file
+// when its summary or frames do not hold its runs.
+void mergeEvaluations(const std::vector<ShardFile>& shards, const std::filesystem::path& output);
 
 }  // namespace vt

@@ -39,7 +39,9 @@ FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const Cam
   FrameDrawer drawer(mesh, settings, *renderer);
 
   DrawnPasses drawn;
-  for (int frameNumber = 0; frameNumber < path.frameCount(); ++frameNumber) {
+  const int frames = options.lastFrame < 0 ? path.frameCount()
+                                           : std::min(path.frameCount(), options.lastFrame + 1);
+  for (int frameNumber = 0; frameNumber < frames; ++frameNumber) {
     const FramePlan plan = planFrame(configuration, settings.viewport, path, frameNumber);
     const bool wantsColor =
         options.reference || (options.wantsColor && options.wantsColor(frameNumber));

@@ -93,6 +93,9 @@ struct FlightOptions {
   // Frames to capture and what to do with each; their time counts as quality time, not flight.
   std::function<bool(int frame)> wantsCapture;
   std::function<void(const FlightCaptureView&)> capture;
+  // Flies frames 0 to lastFrame only (a shard of a golden check stops at its last frame); -1:
+  // every frame of the path. The frames flown are those of the whole flight.
+  int lastFrame = -1;
 };
 
 FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const CameraPath& path,

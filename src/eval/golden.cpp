@@ -16,6 +16,7 @@
 #include "common/resource_limits.h"
 #include "eval/flight_records.h"
 #include "eval/golden_manifest.h"
+#include "eval/golden_report.h"
 #include "format/virtual_texture_reader.h"
 #include "render/arithmetic_points.h"
 #include "render/frame_comparison.h"
@@ -64,36 +65,45 @@ struct Recorded {
   std::optional<FrameComparison> judged = std::nullopt;  // under a free model
 };
 
-// Flies `configuration` and keeps every `every`-th frame.
+// The frames a flight records, and the last it flies (-1: the whole path).
+struct RecordedFrames {
+  std::function<bool(int frame)> records;
+  int last = -1;
+};
+
+// Flies `configuration` and keeps the frames `recorded` names.
 std::vector<Recorded> flyAndRecord(const VirtualTextureReader& reader, const Mesh& mesh,
                                    const CameraPath& path, const FlightConfiguration& configuration,
-                                   Viewport viewport, const Arithmetic& profile, int every,
-                                   Backend backend, const PrecisionModel* judge = nullptr) {
+                                   Viewport viewport, const Arithmetic& profile,
+                                   const RecordedFrames& recorded, Backend backend,
+                                   const PrecisionModel* judge = nullptr) {
   FlightOptions options;
   options.settings.viewport = viewport;
   options.settings.arithmetic = profile;
   options.settings.need8 = need8Encodes(reader.description().finestLevel());
   options.backend = backend;
+  options.lastFrame = recorded.last;
+  const std::function<bool(int)>& records = recorded.records;
   const std::unique_ptr<const ResidentRenderer> everything = makeResidentRenderer(reader);
   // Reference images for the recorded frames only, in the flight's arithmetic as every flight's
   // (frame_plan.h): the quality measures what streaming costs, not the arithmetic.
   options.reference = [&](int frame) {
-    return frame % every == 0 ? referenceImage(*everything, mesh, path.at(frame), options.settings)
-                              : std::vector<uint8_t>{};
+    return records(frame) ? referenceImage(*everything, mesh, path.at(frame), options.settings)
+                          : std::vector<uint8_t>{};
   };
-  std::vector<Recorded> recorded;
+  std::vector<Recorded> kept;
   options.observe = [&](const FlightFrameView& view) {
-    if (view.frame % every != 0) return;
-    recorded.push_back({view.frame, std::vector<uint8_t>(view.color.begin(), view.color.end()),
-                        std::vector<glm::uvec4>(view.need.begin(), view.need.end()),
-                        *view.result.quality});
+    if (!records(view.frame)) return;
+    kept.push_back({view.frame, std::vector<uint8_t>(view.color.begin(), view.color.end()),
+                    std::vector<glm::uvec4>(view.need.begin(), view.need.end()),
+                    *view.result.quality});
   };
   // Under a model with free parameters, each recorded frame is drawn again from the cache state
   // it was drawn with (a capture) and judged against the oracle's result sets there.
   std::vector<std::pair<int, FrameComparison>> judged;
   const std::unique_ptr<const CacheRenderer> oracle = makeCacheRenderer();
   if (judge && !judge->pinned()) {
-    options.wantsCapture = [every](int frame) { return frame % every == 0; };
+    options.wantsCapture = records;
     options.capture = [&](const FlightCaptureView& view) {
       RenderSettings settings = options.settings;
       applyModel(settings, *judge);
@@ -103,9 +113,9 @@ std::vector<Recorded> flyAndRecord(const VirtualTextureReader& reader, const Mes
   }
   fly(reader, mesh, path, configuration, options);
   for (auto& [frame, comparison] : judged)
-    for (Recorded& r : recorded)
+    for (Recorded& r : kept)
       if (r.frame == frame) r.judged = std::move(comparison);
-  return recorded;
+  return kept;
 }
 
 }  // namespace
@@ -121,9 +131,9 @@ void generateGolden(const GoldenRequest& request, const std::filesystem::path& d
   // The set is written into a temporary folder that replaces `destination` once complete.
   TemporaryFolder staging(destination, "golden.json");
   const std::filesystem::path& folder = staging.path();
-  const std::vector<Recorded> recorded =
-      flyAndRecord(reader, mesh, path, request.configuration, request.viewport, request.profile,
-                   request.every, Backend::kOracle);
+  const std::vector<Recorded> recorded = flyAndRecord(
+      reader, mesh, path, request.configuration, request.viewport, request.profile,
+      {[every = request.every](int frame) { return frame % every == 0; }}, Backend::kOracle);
   GoldenManifest manifest{.texture = request.texture.filename().string(),
                           .textureIdentity = checksumText(reader.identity()),
                           .mesh = request.mesh.filename().string(),
@@ -215,38 +225,13 @@ GoldenFrameCheck compareWithGolden(const GoldenFrame& expected, const Recorded& 
   return frame;
 }
 
-// check.json.
-void writeCheckReport(const std::filesystem::path& report, const std::filesystem::path& golden,
-                      const GoldenCheck& check) {
-  nlohmann::json frames = nlohmann::json::array();
-  for (const GoldenFrameCheck& frame : check.frames)
-    frames.push_back({{"frame", frame.frame},
-                      {"color_matches", frame.colorMatches},
-                      {"need_matches", frame.needMatches},
-                      {"quality_matches", frame.qualityMatches},
-                      {"pixels_differing", frame.pixelsDiffering},
-                      {"max_color_difference", frame.maxColorDifference},
-                      {"explained", frame.explained},
-                      {"unexplained", frame.unexplained},
-                      {"ambiguous", frame.ambiguous},
-                      {"passed", frame.passed}});
-  writeFileAtomically(report / "check.json",
-                      nlohmann::json{{"golden", golden.string()},
-                                     {"backend", check.backend},
-                                     {"profile", arithmeticLabel(check.profile)},
-                                     {"model", check.model},
-                                     {"passed", check.passed()},
-                                     {"frames", frames}}
-                              .dump(2) +
-                          "\n");
-}
-
 }  // namespace
 
 GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesystem::path& texture,
                         const std::filesystem::path& mesh, const std::filesystem::path& path,
                         Backend backend, const std::optional<PrecisionModel>& model,
-                        const std::filesystem::path& reportFolder) {
+                        const std::filesystem::path& reportFolder,
+                        const std::optional<Shard>& shard) {
   const std::filesystem::path manifestFile = folder / "golden.json";
   const GoldenManifest golden = GoldenManifest::read(manifestFile);
   const Viewport viewport = golden.viewport;
@@ -262,11 +247,20 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
                        static_cast<uint64_t>(viewport.width),
                        static_cast<uint64_t>(viewport.height), 1);
   TemporaryFolder staging(reportFolder, "check.json");  // replaces the report once complete
-  const std::vector<Recorded> recorded =
-      flyAndRecord(reader, loadObjMesh(mesh), cameraPath, golden.configuration, viewport,
-                   check.profile, golden.every, backend, model ? &*model : nullptr);
+  // A shard checks one contiguous block of the recorded frames, and flies up to its last.
+  const auto [first, end] = shard.value_or(Shard{}).block(golden.frames.size());
+  const std::span<const GoldenFrame> mine(golden.frames.data() + first, end - first);
+  const auto inMine = [mine](int frame) {
+    return std::any_of(mine.begin(), mine.end(),
+                       [&](const GoldenFrame& g) { return g.frame == frame; });
+  };
+  std::vector<Recorded> recorded;
+  if (!mine.empty())
+    recorded = flyAndRecord(reader, loadObjMesh(mesh), cameraPath, golden.configuration, viewport,
+                            check.profile, {inMine, mine.back().frame}, backend,
+                            model ? &*model : nullptr);
   const bool exact = !model || model->pinned();
-  for (const GoldenFrame& expected : golden.frames) {
+  for (const GoldenFrame& expected : mine) {
     const auto r = std::find_if(recorded.begin(), recorded.end(),
                                 [&](const Recorded& x) { return x.frame == expected.frame; });
     if (r == recorded.end())
@@ -277,6 +271,8 @@ GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesyst
     check.frames.push_back(compareWithGolden(expected, *r, image, exact, viewport, staging.path()));
   }
   writeCheckReport(staging.path(), folder, check);
+  if (shard)
+    writeGoldenCheckShard(staging.path(), golden, {folder, texture, mesh, path}, *shard, check);
   staging.commit();
   return check;
 }

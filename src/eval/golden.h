@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/shard.h"
 #include "eval/flight.h"
 #include "render/arithmetic_points.h"
 #include "render/precision_model.h"
@@ -56,9 +57,12 @@ struct GoldenCheck {
 // under a model with free parameters (gl45, a model file) each recorded frame is judged by the
 // oracle's result sets for its cache state, and must leave no pixel unexplained. Writes, for each
 // failed frame, frameNNNN.difference.png (colour difference x 16) into `report` with check.json.
+// With `shard`, checks only its contiguous block of the recorded frames, flies no further than the
+// last of them, and writes shard.json besides (eval/golden_report.h).
 GoldenCheck checkGolden(const std::filesystem::path& folder, const std::filesystem::path& texture,
                         const std::filesystem::path& mesh, const std::filesystem::path& path,
                         Backend backend, const std::optional<PrecisionModel>& model,
-                        const std::filesystem::path& report);
+                        const std::filesystem::path& report,
+                        const std::optional<Shard>& shard = std::nullopt);
 
 }  // namespace vt

@@ -68,6 +68,58 @@ void ComparisonTotals::add(const oracle::Comparison& c, const SetWidths& frameWi
   widths.add(frameWidths);
 }
 
+void ComparisonTotals::add(const ComparisonTotals& other) {
+  pixels += other.pixels;
+  identical += other.identical;
+  explained += other.explained;
+  unexplained += other.unexplained;
+  ambiguous += other.ambiguous;
+  setPixels += other.setPixels;
+  judged = judged || other.judged;
+  for (size_t r = 0; r < oracle::kReasons; ++r) {
+    explainedBy[r] += other.explainedBy[r];
+    unexplainedBy[r] += other.unexplainedBy[r];
+    widenBy[r] = std::max(widenBy[r], other.widenBy[r]);
+  }
+  widths.add(other.widths);
+}
+
+nlohmann::json ComparisonTotals::record() const {
+  return {{"pixels", pixels},
+          {"identical", identical},
+          {"explained", explained},
+          {"unexplained", unexplained},
+          {"ambiguous", ambiguous},
+          {"set_pixels", setPixels},
+          {"judged", judged},
+          {"explained_by", explainedBy},
+          {"unexplained_by", unexplainedBy},
+          {"widen_by", widenBy},
+          {"covered", widths.covered},
+          {"color_width_sum", widths.colorWidthSum},
+          {"level_sum", widths.levelSum},
+          {"page_sum", widths.pageSum}};
+}
+
+ComparisonTotals ComparisonTotals::fromRecord(const nlohmann::json& record) {
+  ComparisonTotals totals;
+  record.at("pixels").get_to(totals.pixels);
+  record.at("identical").get_to(totals.identical);
+  record.at("explained").get_to(totals.explained);
+  record.at("unexplained").get_to(totals.unexplained);
+  record.at("ambiguous").get_to(totals.ambiguous);
+  record.at("set_pixels").get_to(totals.setPixels);
+  record.at("judged").get_to(totals.judged);
+  record.at("explained_by").get_to(totals.explainedBy);
+  record.at("unexplained_by").get_to(totals.unexplainedBy);
+  record.at("widen_by").get_to(totals.widenBy);
+  record.at("covered").get_to(totals.widths.covered);
+  record.at("color_width_sum").get_to(totals.widths.colorWidthSum);
+  record.at("level_sum").get_to(totals.widths.levelSum);
+  record.at("page_sum").get_to(totals.widths.pageSum);
+  return totals;
+}
+
 double ComparisonTotals::ambiguousFraction() const { return fraction(ambiguous, setPixels); }
 
 nlohmann::json ComparisonTotals::json() const {

@@ -29,7 +29,15 @@ struct ComparisonTotals {
   SetWidths widths;
 
   void add(const oracle::Comparison& c, const SetWidths& frameWidths);
+  // Another run's totals added, as if its frames had been added here one by one after these
+  // (every sum of doubles is the same sum in the same order when `other` holds one frame).
+  void add(const ComparisonTotals& other);
   double ambiguousFraction() const;
+  // Every count and sum as it is, for a shard's record (common/shard.h); fromRecord reads it back
+  // exactly (doubles are written with 17 digits) and throws nlohmann::json::exception when
+  // malformed.
+  nlohmann::json record() const;
+  static ComparisonTotals fromRecord(const nlohmann::json& record);
   nlohmann::json json() const;
   // "<identical> of <pixels> pixels identical, <explained> explained, <unexplained> unexplained;
   // ambiguous fraction <f>, colour width <w>/255, <l> levels, <p> pages", the four followed by

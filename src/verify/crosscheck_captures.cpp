@@ -7,7 +7,11 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "common/error.h"
+#include "common/input_file.h"
+#include "common/json_text.h"
 #include "common/posix_file.h"
+#include "common/shard.h"
 #include "render/arithmetic_points.h"
 #include "render/precision_model_file.h"
 #include "verify/comparison_report.h"
@@ -107,11 +111,19 @@ nlohmann::json frameJson(const std::filesystem::path& manifest, const oracle::Ca
   return frame;
 }
 
-// Reads and judges one capture: its difference images into `folder`, its entry into `frames`,
-// its counts into `totals` and its verdict into `testCase`. Throws where it cannot be read.
+// One capture's part of the report: its entry in summary.json, its counts and its JUnit case.
+struct CaptureVerdict {
+  nlohmann::json frame;
+  ComparisonTotals totals;  // of this capture alone
+  JUnitCase testCase;
+  bool unreadable = false;
+};
+
+// Reads and judges one capture: its difference images into `folder`, its verdict into `verdict`.
+// Throws where it cannot be read.
 void judgeCapture(const std::filesystem::path& manifest, const CapturesCheckOptions& options,
                   const std::filesystem::path& folder, TextureCache& textures,
-                  nlohmann::json& frames, ComparisonTotals& totals, JUnitCase& testCase) {
+                  CaptureVerdict& verdict) {
   const std::string name = manifest.stem().string();
   const oracle::Capture capture = oracle::readCapture(manifest);
   std::unique_ptr<oracle::Texture>& texture = textures[capture.texture];
@@ -128,9 +140,10 @@ void judgeCapture(const std::filesystem::path& manifest, const CapturesCheckOpti
   const SetWidths widths = verdictWidths(check.oracle);
   const oracle::Viewport v = capture.scene.viewport;
   writeComparisonImages(folder, name, v, c);
-  frames.push_back(frameJson(manifest, capture, judge, c, widths));
-  totals.add(c, widths);
+  verdict.frame = frameJson(manifest, capture, judge, c, widths);
+  verdict.totals.add(c, widths);
   printComparison(name, c.model, c, widths);
+  JUnitCase& testCase = verdict.testCase;
   testCase.properties = widthProperties(c, widths);
   if (!c.passed()) {
     testCase.outcome = JUnitCase::Outcome::kFailed;
@@ -150,6 +163,85 @@ std::string unreadableMessage(const std::filesystem::path& manifest, const std::
   return message;
 }
 
+// Judges one capture, timed; a capture that cannot be read or judged is an error case.
+CaptureVerdict judgeTimed(const std::filesystem::path& manifest,
+                          const CapturesCheckOptions& options, const std::filesystem::path& folder,
+                          TextureCache& textures) {
+  const auto start = Clock::now();
+  CaptureVerdict verdict;
+  verdict.testCase = {manifest.stem().string(), 0.0, JUnitCase::Outcome::kPassed, "", "", {}};
+  try {
+    judgeCapture(manifest, options, folder, textures, verdict);
+  } catch (const std::exception& e) {
+    const std::string message = unreadableMessage(manifest, e);
+    verdict = {{{"capture", manifest.filename().string()}, {"error", message}},
+               {},
+               {manifest.stem().string(), 0.0, JUnitCase::Outcome::kError, message, "", {}},
+               true};
+    std::fflush(stdout);
+    std::cerr << "vt crosscheck: " << message << "\n";
+  }
+  verdict.testCase.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return verdict;
+}
+
+// summary.json and junit.xml of the verdicts, in the captures' order, and the closing line.
+CapturesCheck writeReport(const std::filesystem::path& folder, const std::string& captures,
+                          const std::string& profile, const std::vector<CaptureVerdict>& verdicts) {
+  CapturesCheck check;
+  check.captures = verdicts.size();
+  nlohmann::json frames = nlohmann::json::array();
+  std::vector<JUnitCase> cases;
+  for (const CaptureVerdict& verdict : verdicts) {
+    frames.push_back(verdict.frame);
+    cases.push_back(verdict.testCase);
+    check.totals.add(verdict.totals);
+    check.unreadable += verdict.unreadable;
+  }
+  const bool passed = check.passed();
+  nlohmann::json totalsJson = check.totals.json();
+  totalsJson["captures"] = check.captures;
+  totalsJson["unreadable"] = check.unreadable;
+  const nlohmann::json summary = {{"captures", captures},
+                                  {"model", profile},
+                                  {"frames", frames},
+                                  {"totals", totalsJson},
+                                  {"passed", passed}};
+  writeFileAtomically(folder / "summary.json", summary.dump(2) + "\n");
+  writeJUnitReport(folder / "junit.xml", "vt crosscheck " + captures, cases);
+  std::printf("crosscheck: %s, %zu of %zu captures unreadable: %s\n", check.totals.line().c_str(),
+              check.unreadable, check.captures, passed ? "passed" : "FAILED");
+  std::fflush(stdout);
+  return check;
+}
+
+// A shard's difference image into the merged folder.
+void copyRegularFile(const std::filesystem::path& from, const std::filesystem::path& to) {
+  requireRegularFile(from, "difference image");
+  std::filesystem::copy_file(from, to);
+}
+
+constexpr const char* kCapturesShardCommand = "crosscheck --captures";
+
+nlohmann::json shardInputs(const CapturesCheckOptions& options) {
+  return {{"captures", options.captures.string()},
+          {"model", options.profile},
+          {"all_sets", options.allSets}};
+}
+
+nlohmann::json verdictRecord(const std::string& item, const CaptureVerdict& verdict) {
+  return {{"item", item},
+          {"frame", verdict.frame},
+          {"case", junitCaseRecord(verdict.testCase)},
+          {"totals", verdict.totals.record()},
+          {"unreadable", verdict.unreadable}};
+}
+
+CaptureVerdict verdictFromRecord(const nlohmann::json& record) {
+  return {record.at("frame"), ComparisonTotals::fromRecord(record.at("totals")),
+          junitCaseFromRecord(record.at("case")), record.at("unreadable").get<bool>()};
+}
+
 }  // namespace
 
 CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options) {
@@ -158,48 +250,66 @@ CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options) {
     throw oracle::Error(options.captures.string() + ": no captures (*.json) in the folder");
   TemporaryFolder staging(options.output, "summary.json");
   const std::filesystem::path& folder = staging.path();
+  const Shard part = options.shard.value_or(Shard{});
+  ShardFile shard{{}, kCapturesShardCommand,  part, shardInputs(options),
+                  {}, nlohmann::json::array()};
+  std::vector<std::filesystem::path> mine;
+  for (size_t k = 0; k < manifests.size(); ++k) {
+    shard.items.push_back(manifests[k].filename().string());
+    if (part.holdsInTurn(k)) mine.push_back(manifests[k]);
+  }
+  std::printf("crosscheck of %zu captures in %s%s\n", mine.size(),
+              options.captures.string().c_str(),
+              options.shard ? (", shard " + part.text()).c_str() : "");
 
   TextureCache textures;
-  std::vector<JUnitCase> cases;
-  nlohmann::json frames = nlohmann::json::array();
-  CapturesCheck check;
-  check.captures = manifests.size();
-  ComparisonTotals& totals = check.totals;
-  size_t& errors = check.unreadable;
-  std::printf("crosscheck of %zu captures in %s\n", manifests.size(),
-              options.captures.string().c_str());
-  for (const std::filesystem::path& manifest : manifests) {
-    const auto start = Clock::now();
-    JUnitCase testCase{manifest.stem().string(), 0.0, JUnitCase::Outcome::kPassed, "", "", {}};
-    try {
-      judgeCapture(manifest, options, folder, textures, frames, totals, testCase);
-    } catch (const std::exception& e) {
-      const std::string message = unreadableMessage(manifest, e);
-      ++errors;
-      testCase.outcome = JUnitCase::Outcome::kError;
-      testCase.message = message;
-      frames.push_back({{"capture", manifest.filename().string()}, {"error", message}});
-      std::fflush(stdout);
-      std::cerr << "vt crosscheck: " << message << "\n";
-    }
-    testCase.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    cases.push_back(testCase);
+  std::vector<CaptureVerdict> verdicts;
+  for (const std::filesystem::path& manifest : mine) {
+    verdicts.push_back(judgeTimed(manifest, options, folder, textures));
+    shard.records.push_back(verdictRecord(manifest.filename().string(), verdicts.back()));
   }
+  const CapturesCheck check =
+      writeReport(folder, options.captures.string(), options.profile, verdicts);
+  if (options.shard) writeShardFile(folder, shard);
+  staging.commit();
+  return check;
+}
 
-  const bool passed = check.passed();
-  nlohmann::json totalsJson = totals.json();
-  totalsJson["captures"] = manifests.size();
-  totalsJson["unreadable"] = errors;
-  const nlohmann::json summary = {{"captures", options.captures.string()},
-                                  {"model", options.profile},
-                                  {"frames", frames},
-                                  {"totals", totalsJson},
-                                  {"passed", passed}};
-  writeFileAtomically(folder / "summary.json", summary.dump(2) + "\n");
-  writeJUnitReport(folder / "junit.xml", "vt crosscheck " + options.captures.string(), cases);
-  std::printf("crosscheck: %s, %zu of %zu captures unreadable: %s\n", totals.line().c_str(), errors,
-              manifests.size(), passed ? "passed" : "FAILED");
-  std::fflush(stdout);
+bool isCapturesShard(const ShardFile& shard) { return shard.command == kCapturesShardCommand; }
+
+CapturesCheck mergeCapturesShards(const std::vector<ShardFile>& shards,
+                                  const std::filesystem::path& output) {
+  TemporaryFolder staging(output, "summary.json");
+  std::vector<CaptureVerdict> verdicts;
+  const std::vector<std::string>& items = shards.front().items;
+  std::vector<size_t> next(shards.size(), 0);  // each shard's next record
+  for (size_t k = 0; k < items.size(); ++k) {
+    const ShardFile& shard = shards[k % shards.size()];
+    size_t& position = next[k % shards.size()];
+    try {
+      if (position >= shard.records.size() || shard.records[position].at("item") != items[k])
+        throw InputError(shard.file, "holds no record of " + items[k] + ", which shard " +
+                                         shard.shard.text() + " judges");
+      verdicts.push_back(verdictFromRecord(shard.records[position++]));
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(shard.file, "malformed record of " + items[k] + ": " + jsonErrorText(e));
+    } catch (const std::invalid_argument& e) {
+      throw InputError(shard.file, "malformed record of " + items[k] + ": " + e.what());
+    }
+    if (!verdicts.back().unreadable) {
+      const std::string stem = std::filesystem::path(items[k]).stem().string();
+      for (const char* suffix : {"-color-difference.png", "-classes.png"})
+        copyRegularFile(shard.file.parent_path() / (stem + suffix),
+                        staging.path() / (stem + suffix));
+    }
+  }
+  for (size_t s = 0; s < shards.size(); ++s)
+    if (next[s] != shards[s].records.size())
+      throw InputError(shards[s].file, "holds records of captures that are not its own");
+  const nlohmann::json& inputs = shards.front().inputs;
+  std::printf("merged %zu shards of the crosscheck of %zu captures\n", shards.size(), items.size());
+  const CapturesCheck check = writeReport(staging.path(), inputs.at("captures").get<std::string>(),
+                                          inputs.at("model").get<std::string>(), verdicts);
   staging.commit();
   return check;
 }

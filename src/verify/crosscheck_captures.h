@@ -4,8 +4,10 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 
+#include "common/shard.h"
 #include "verify/comparison_report.h"
 
 namespace vt {
@@ -24,6 +26,9 @@ struct CapturesCheckOptions {
   // Result sets for every pixel, not only where a capture differs: the ambiguous fraction and set
   // widths of whole frames (comparison_report.h), at the sets' full cost.
   bool allSets = false;
+  // Given: judges only the captures this shard takes in turn (common/shard.h) and writes
+  // shard.json besides, for mergeCapturesShards.
+  std::optional<Shard> shard = std::nullopt;
 };
 
 struct CapturesCheck {
@@ -35,5 +40,14 @@ struct CapturesCheck {
 // Prints one line per capture. A capture that cannot be read counts as unreadable and fails the
 // check; a folder without captures throws oracle::Error before anything is written.
 CapturesCheck crosscheckCaptures(const CapturesCheckOptions& options);
+
+// Whether `shard` is a shard of `vt crosscheck --captures`.
+bool isCapturesShard(const ShardFile& shard);
+
+// The shards of one crosscheck (requireCompleteJob's, in order) joined into `output`: the
+// summary.json, junit.xml and difference images one run writes, the cases' times those the shards
+// measured. Throws InputError naming a shard's file when a record is missing or malformed.
+CapturesCheck mergeCapturesShards(const std::vector<ShardFile>& shards,
+                                  const std::filesystem::path& output);
 
 }  // namespace vt

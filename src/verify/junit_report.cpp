@@ -1,6 +1,9 @@
 #include "verify/junit_report.h"
 
+#include <algorithm>
+#include <array>
 #include <cstdio>
+#include <stdexcept>
 
 #include "common/posix_file.h"
 
@@ -33,6 +36,35 @@ std::string escapeXml(const std::string& text) {
     }
   }
   return escaped;
+}
+
+namespace {
+
+constexpr std::array<const char*, 3> kOutcomes = {"passed", "failed", "error"};
+
+}  // namespace
+
+nlohmann::json junitCaseRecord(const JUnitCase& testCase) {
+  return {{"name", testCase.name},
+          {"seconds", testCase.seconds},
+          {"outcome", kOutcomes[static_cast<size_t>(testCase.outcome)]},
+          {"message", testCase.message},
+          {"details", testCase.details},
+          {"properties", testCase.properties}};
+}
+
+JUnitCase junitCaseFromRecord(const nlohmann::json& record) {
+  JUnitCase testCase;
+  record.at("name").get_to(testCase.name);
+  record.at("seconds").get_to(testCase.seconds);
+  const std::string outcome = record.at("outcome").get<std::string>();
+  const auto known = std::find(kOutcomes.begin(), kOutcomes.end(), outcome);
+  if (known == kOutcomes.end()) throw std::invalid_argument("unknown outcome \"" + outcome + "\"");
+  testCase.outcome = static_cast<JUnitCase::Outcome>(known - kOutcomes.begin());
+  record.at("message").get_to(testCase.message);
+  record.at("details").get_to(testCase.details);
+  record.at("properties").get_to(testCase.properties);
+  return testCase;
 }
 
 void writeJUnitReport(const std::filesystem::path& file, const std::string& name,

@@ -4,6 +4,7 @@
 // could not run: a malformed input).
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,6 +24,12 @@ struct JUnitCase {
 // Writes the suite `name` through a temporary file renamed into place.
 void writeJUnitReport(const std::filesystem::path& file, const std::string& name,
                       const std::vector<JUnitCase>& cases);
+
+// A case as JSON and back, for a shard's record (common/shard.h); junitCaseFromRecord throws
+// nlohmann::json::exception when the record is malformed, std::invalid_argument for an unknown
+// outcome.
+nlohmann::json junitCaseRecord(const JUnitCase& testCase);
+JUnitCase junitCaseFromRecord(const nlohmann::json& record);
 
 // Text with &, <, >, " and ' escaped, and control characters XML 1.0 cannot hold replaced by '?'.
 std::string escapeXml(const std::string& text);

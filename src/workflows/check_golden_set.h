@@ -5,10 +5,12 @@
 // verdict; InputError naming the golden folder when a frame fails.
 
 #include <filesystem>
+#include <optional>
 #include <ostream>
 #include <string>
 
 #include "backends/backend.h"
+#include "common/shard.h"
 #include "eval/golden.h"
 
 namespace vt {
@@ -18,6 +20,8 @@ struct GoldenCheckRequest {
   Backend backend = Backend::kOracle;
   std::string model = "auto";  // a shipped model's name, a model file, or auto
   std::filesystem::path output;
+  std::optional<Shard> shard =
+      std::nullopt;  // check only this part of the frames (eval/golden_report.h)
 };
 
 GoldenCheck checkGoldenSet(const GoldenCheckRequest& request, std::ostream& out, std::ostream& err);

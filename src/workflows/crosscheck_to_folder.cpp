@@ -12,8 +12,8 @@ namespace vt {
 
 void crosscheckToFolder(const CrosscheckRequest& request) {
   if (!request.captures.empty()) {
-    if (!crosscheckCaptures(
-             {request.captures, request.output, request.model, request.threads, request.allSets})
+    if (!crosscheckCaptures({request.captures, request.output, request.model, request.threads,
+                             request.allSets, request.shard})
              .passed())
       throw InputError(request.captures,
                        "crosscheck found unexplained pixels or unreadable captures (see " +

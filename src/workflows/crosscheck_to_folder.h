@@ -5,8 +5,10 @@
 // the texture when a pixel is unexplained.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
+#include "common/shard.h"
 #include "scene/clip_space_mesh.h"
 
 namespace vt {
@@ -21,6 +23,8 @@ struct CrosscheckRequest {
   std::string model = "auto";
   unsigned threads = 0;  // with captures: the oracle's (0: every core)
   bool allSets = false;  // result sets for every pixel, not only where the other frame differs
+  std::optional<Shard> shard =
+      std::nullopt;  // with captures: the part this run judges (common/shard.h)
   std::filesystem::path output;
 };
 

@@ -13,6 +13,16 @@ namespace vt {
 
 Evaluation evaluateToFolder(const VirtualTextureReader& reader, EvaluateRequest request,
                             std::ostream& out) {
+  std::optional<EvaluationPart> part;
+  if (request.shard) {
+    part = EvaluationPart{*request.shard, std::move(request.configurations), {}};
+    request.configurations.clear();
+    for (size_t k = 0; k < part->all.size(); ++k)
+      if (part->shard.holdsInTurn(k)) {
+        part->runIndices.push_back(k);
+        request.configurations.push_back(part->all[k]);
+      }
+  }
   const std::vector<FlightConfiguration>& configurations = request.configurations;
   const CameraPath& path = request.path;
   const Viewport v = request.screen;
@@ -38,9 +48,11 @@ Evaluation evaluateToFolder(const VirtualTextureReader& reader, EvaluateRequest 
 
   request.description.jobs =
       request.jobs ? request.jobs : std::max(1u, std::thread::hardware_concurrency());
-  writeEvaluation(request.output, request.description, path, options.settings, evaluation);
-  out << "evaluated " << configurations.size() << " configurations over " << path.frameCount()
-      << " frames in " << evaluation.wallSeconds << " s (views drawn once "
+  writeEvaluation(request.output, request.description, path, options.settings, evaluation,
+                  part ? &*part : nullptr);
+  out << "evaluated " << configurations.size() << " configurations"
+      << (part ? " (shard " + part->shard.text() + ")" : std::string()) << " over "
+      << path.frameCount() << " frames in " << evaluation.wallSeconds << " s (views drawn once "
       << evaluation.viewSeconds << " s, shaded per run " << evaluation.recolorSeconds
       << " s); wrote " << (request.output / "summary.md").string() << "\n";
   for (const EvaluationRun& run : evaluation.runs) {

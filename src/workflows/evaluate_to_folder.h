@@ -5,10 +5,12 @@
 // eval/evaluation_report.h), and the totals of every run as one line each.
 
 #include <filesystem>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "common/shard.h"
 #include "eval/evaluation_report.h"
 #include "eval/flight_configuration.h"
 #include "format/virtual_texture_reader.h"
@@ -31,6 +33,9 @@ struct EvaluateRequest {
   std::filesystem::path output;
   // The references' texture when not the flown one (EvaluationOptions::reference).
   const VirtualTextureReader* reference = nullptr;
+  // Flies only the configurations this shard takes in turn and writes shard.json besides
+  // (eval/evaluation_report.h); no plots, which `vt merge` draws.
+  std::optional<Shard> shard = std::nullopt;
 };
 
 Evaluation evaluateToFolder(const VirtualTextureReader& reader, EvaluateRequest request,

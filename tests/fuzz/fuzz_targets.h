@@ -65,6 +65,10 @@ inline constexpr const char* kProbeFileSeparator = "#vt-fuzz-file ";
 // written (toJson) and read back the same.
 void configurationFile(Input input);
 
+// A shard's record (shard.json of `--shard I/N`, common/shard.h) as `vt merge` reads it, and the
+// records of a crosscheck's shard decoded, written and read back the same.
+void shardRecord(Input input);
+
 struct Target {
   const char* name;  // the folder of its regression inputs and the program fuzz_<name>
   void (*run)(Input);
@@ -82,6 +86,7 @@ inline constexpr Target kTargets[] = {
     {"precision_model", &precisionModel},
     {"probe_folder", &probeFolder},
     {"config", &configurationFile},
+    {"shard", &shardRecord},
 };
 
 }  // namespace vt::fuzz

@@ -124,7 +124,9 @@ class CapturesCrosscheck : public ::testing::Test {
     }
   }
 
-  CapturesCheck check() { return crosscheckCaptures({dir_ / "captures", dir_ / "out"}); }
+  CapturesCheck check() {
+    return crosscheckCaptures({.captures = dir_ / "captures", .output = dir_ / "out"});
+  }
 
   test::ScratchDirectory dir_;
   std::vector<oracle::Capture> captures_;
@@ -197,7 +199,8 @@ TEST_F(CapturesCrosscheck, ACapturesOwnModelFileJudgesItUnderAuto) {
   EXPECT_EQ(other["model_from"], "unverified");
   EXPECT_TRUE(other["model_file"].is_null());
 
-  const CapturesCheck option = crosscheckCaptures({dir_ / "captures", dir_ / "out", "exact"});
+  const CapturesCheck option = crosscheckCaptures(
+      {.captures = dir_ / "captures", .output = dir_ / "out", .profile = "exact"});
   EXPECT_FALSE(option.passed());
   EXPECT_GT(option.totals.unexplained, 0u) << "llvmpipe's arithmetic is not exact";
   summary = readJson(dir_ / "out" / "summary.json");
