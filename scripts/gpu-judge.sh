@@ -20,20 +20,24 @@ status=0
 echo
 echo "| captures | model | pixels | identical | explained | unexplained | ambiguous | colour width (1/255) | levels | pages |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
-for set in captures compressed/captures-bc1 compressed/captures-bc3a q3dm6ish stress; do
+for set in captures compressed/captures-bc1 compressed/captures-bc3a q3dm6ish stress \
+  flight/rgba8 flight/linear-async flight/bc1; do
   [[ -d $unpacked/$set ]] || continue
   texture=scene.vt
   [[ $set == compressed/* ]] && texture=scene_${set#compressed/captures-}.vt
+  [[ $set == flight/bc1 ]] && texture=scene_bc1.vt
+  label=${set#compressed/}
+  label=${label//\//-}
   ln -sf "$kit/data/$texture" "$unpacked/$set/$texture"
   models=(gl45)
   [[ -f $out/model.json ]] && models=("$out/model.json" gl45)
   for model in "${models[@]}"; do
     name=$(basename "$model" .json)
-    report=$out/judged-${set#compressed/}-$name
+    report=$out/judged-$label-$name
     "$vt" crosscheck --captures "$unpacked/$set" --model "$model" --all-sets -o "$report" \
       >/dev/null ||
       status=1
-    python3 - "$report/summary.json" "${set#compressed/}" "$name" <<'EOF'
+    python3 - "$report/summary.json" "$label" "$name" <<'EOF'
 import json, sys
 s = json.load(open(sys.argv[1]))["totals"]
 print(f"| {sys.argv[2]} | {sys.argv[3]} | {s['pixels']} | {s['identical']} | {s['explained']} | "

@@ -5,9 +5,13 @@
 # selects the NVIDIA EGL vendor where its file is found, then draws the calibration's probes, the
 # named scenes (of the kit's texture and, where the kit has them, of its BC1 and BC3 versions) and
 # the q3dm6ish flythrough and every 10th frame of the hostile scene's (captures) and times them at
-# 1280 x 720 and 1920 x 1080 (VT_KIT_TIMING_SIZES overrides the sizes).
-# OUT receives at most 8 files: log.txt, probes.tar.gz, captures.tar.gz, compressed.tar.gz,
-# q3dm6ish.tar.gz, stress.tar.gz, timings.json, timings-q3dm6ish.json. A step that fails is logged
+# 1280 x 720 and 1920 x 1080 (VT_KIT_TIMING_SIZES overrides the sizes); then flies q3dm6ish's tour
+# (without the map, the hostile scene's path) with the runtime streaming pages into the GL cache,
+# three ways: the texture's pages, its BC1 blocks, and GL_LINEAR with the needbuffer read back one
+# frame late (`vt-capture flight`, every 48th frame a capture; VT_KIT_FLIGHT_SIZE, default
+# 320x200).
+# OUT receives at most 9 files: log.txt, probes.tar.gz, captures.tar.gz, compressed.tar.gz,
+# q3dm6ish.tar.gz, stress.tar.gz, flight.tar.gz, timings.json, timings-q3dm6ish.json. A step that fails is logged
 # and the others still run; the exit status is that of the first failure.
 set -uo pipefail
 kit=$(cd "$(dirname "$0")" && pwd)
@@ -76,7 +80,24 @@ if [[ -f $kit/data/stress.obj ]]; then
   step stress "$capture" scenes "$texture" --mesh "$kit/data/stress.obj" \
     --path "$kit/data/stress.path.json" --every 10 --texture-name scene.vt -o "$work/stress"
 fi
-for folder in probes captures compressed q3dm6ish stress; do
+flown=()
+if [[ -f $kit/data/q3dm6ish.obj ]]; then
+  flown=(--mesh "$kit/data/q3dm6ish.obj" --path "$kit/data/q3dm6ish.path.json" --every 48)
+elif [[ -f $kit/data/stress.obj ]]; then
+  flown=(--mesh "$kit/data/stress.obj" --path "$kit/data/stress.path.json" --every 10)
+fi
+if ((${#flown[@]})); then
+  flown+=(--size "${VT_KIT_FLIGHT_SIZE:-320x200}")
+  step flight "$capture" flight "$texture" "${flown[@]}" --texture-name scene.vt \
+    -o "$work/flight/rgba8"
+  step flight-linear-async "$capture" flight "$texture" "${flown[@]}" --linear --async-readback \
+    --heuristic 'pixelsum*distance' --texture-name scene.vt -o "$work/flight/linear-async"
+  if [[ -f $kit/data/scene_bc1.vt ]]; then
+    step flight-bc1 "$capture" flight "$kit/data/scene_bc1.vt" "${flown[@]}" \
+      --texture-name scene_bc1.vt -o "$work/flight/bc1"
+  fi
+fi
+for folder in probes captures compressed q3dm6ish stress flight; do
   [[ -d $work/$folder ]] && tar -C "$work" -czf "$out/$folder.tar.gz" "$folder"
 done
 echo "== status $status" >>"$log"

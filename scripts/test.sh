@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The second command of the README (and CI's): installs what is missing, builds in Release with
-# warnings as errors and runs every test with ctest; then fuzzes every input parser for a minute
-# each (scripts/fuzz.sh), runs the threaded parts under ThreadSanitizer, and every test again
+# warnings as errors and runs every test with ctest; then fuzzes every input parser for 30 s each
+# (scripts/fuzz.sh), runs the threaded parts under ThreadSanitizer, and every test again
 # built with AddressSanitizer + UndefinedBehaviorSanitizer.
 #   --no-sanitizers   skip the fuzzing and sanitizer passes (quicker local runs)
 set -euo pipefail
@@ -16,9 +16,24 @@ for arg in "$@"; do
 done
 
 jobs=$(nproc)
-bash scripts/install-deps.sh
+# Each step's wall time, printed at the end (also when a step fails): where the command's time goes.
+step_times=()
+timed() {  # label, command...
+  local label=$1 began=$SECONDS
+  shift
+  "$@"
+  step_times+=("$label $((SECONDS - began)) s")
+}
+print_step_times() {
+  local IFS=';'
+  ((${#step_times[@]})) && echo "test.sh steps: ${step_times[*]}; total $SECONDS s"
+}
+trap print_step_times EXIT
+timed dependencies bash scripts/install-deps.sh
 # The real Quake 3 map the retexturing tests use (q3dm6ish), from Debian's OpenArena packages.
+began=$SECONDS
 VT_OPENARENA_DIR=$(bash scripts/fetch-openarena.sh)
+step_times+=("openarena $((SECONDS - began)) s")
 export VT_OPENARENA_DIR
 
 # llvmpipe's results depend on these (docs/design.md section 7): pin them for every test run.
@@ -38,10 +53,10 @@ run_suite() {  # build folder, tests to leave out (a ctest regex, or ''), extra 
   echo "== configure and build $folder"
   cmake -S . -B "$folder" -G Ninja -DCMAKE_BUILD_TYPE=Release -DVT_WARNINGS_AS_ERRORS=ON \
     -DVT_BUILD_TESTS=ON -DVT_BUILD_BENCHMARKS=ON "${unity[@]}" "$@"
-  cmake --build "$folder" --parallel "$jobs"
+  timed "$folder-build" cmake --build "$folder" --parallel "$jobs"
   echo "== test $folder"
-  ctest --test-dir "$folder" --output-on-failure --parallel "$jobs" --timeout 600 \
-    ${exclude:+-E "$exclude"}
+  timed "$folder-tests" ctest --test-dir "$folder" --output-on-failure --parallel "$jobs" \
+    --timeout 600 ${exclude:+-E "$exclude"}
 }
 
 run_suite build ''
@@ -62,8 +77,11 @@ sanitizer_optimization="-O1 -DNDEBUG"
 sanitizer_exclude='^(Q3dm6ish|GoldenBackend\.TheGlPathPassesQ3dm6ish|CaptureCrosscheck\.Q3dm6ish|CrosscheckCommand\.Q3dm6ish|OpenArena/StoryboardPaths\.|OpenArenaMap\.OursWastes|CrashConsistency\.|DemoCommand\.|PlantedBugs\.|PlantedBugsOnAVariant\.|ArithmeticVariant\.|LlvmpipeVariant\.|Calibration\.(Softpipe|IsDeterministic)|CalibrateCommand\.|CaptureCrosscheck\.RedRaised|GpuEvidence\.RedRaised|Chapter4\.|VtCapture\.Probes)'
 
 if ((sanitizers)); then
-  # libFuzzer on every input parser, 60 s each, two at a time (seeds from the Release vt above).
-  VT_EXECUTABLE=build/src/vt bash scripts/fuzz.sh
+  # libFuzzer on every input parser, 30 s each, two at a time (seeds from the Release vt above):
+  # each run starts from the seeds again, and half a minute keeps twelve programs within six
+  # minutes of the test command's 25. `bash scripts/fuzz.sh` alone fuzzes a minute each.
+  VT_EXECUTABLE=build/src/vt VT_FUZZ_SECONDS=${VT_FUZZ_SECONDS:-30} \
+    timed fuzzing bash scripts/fuzz.sh
 
   # ThreadSanitizer over the code that starts its own threads: the streaming thread, concurrent
   # page reads and writes, and the oracle's tile workers, which this build runs on std::thread
@@ -74,10 +92,10 @@ if ((sanitizers)); then
   cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Release -DVT_WARNINGS_AS_ERRORS=ON \
     -DVT_SANITIZE_THREAD=ON -DVT_BUILD_BENCHMARKS=OFF "-DCMAKE_CXX_FLAGS_RELEASE=$sanitizer_optimization" \
     "${unity[@]}"
-  cmake --build build-tsan --parallel "$jobs" --target vt_thread_tests
+  timed build-tsan-build cmake --build build-tsan --parallel "$jobs" --target vt_thread_tests
   echo "== test build-tsan"
-  TSAN_OPTIONS=halt_on_error=1 ctest --test-dir build-tsan --output-on-failure --parallel "$jobs" \
-    --timeout 600 \
+  TSAN_OPTIONS=halt_on_error=1 timed build-tsan-tests ctest --test-dir build-tsan \
+    --output-on-failure --parallel "$jobs" --timeout 600 \
     -R '^(Runtime|PageCache|PageTable|VirtualTextureFile|Oracle|Stability|FrameComparison|NeedbufferScale)\.'
 
   # Leak checking stays on for our code (the GL tests turn it off: tests/CMakeLists.txt says why).

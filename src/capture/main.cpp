@@ -6,6 +6,8 @@
 //   vt-capture probes REQUESTS -o OUT      the calibration's probe draws (capture/probe_files.h)
 //   vt-capture scenes TEXTURE ... -o OUT   captures of the named scenes or of a flythrough
 //   vt-capture timings TEXTURE ... -o FILE frame times of the same views at several sizes
+//   vt-capture flight TEXTURE --mesh OBJ --path PATH -o OUT   a flight streaming into the GL cache,
+//                                          every n-th frame a capture (capture/streamed_flight.h)
 //
 // Exit codes: 0 success, 1 bad input or a failed operation (one line on stderr naming the file and
 // the problem), 2 bad arguments (the error and the usage line on stderr).
@@ -22,6 +24,7 @@
 
 #include "capture/capture_writer.h"
 #include "capture/probe_files.h"
+#include "capture/streamed_flight.h"
 #include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/json_text.h"
@@ -31,6 +34,7 @@
 #include "gl/headless_context.h"
 #include "render/cache_state.h"
 #include "render/check_modes.h"
+#include "runtime/heuristic.h"
 #include "scene/camera_path.h"
 #include "scene/obj_mesh.h"
 #include "scene/test_scenes.h"
@@ -55,8 +59,7 @@ void addViewOptions(CLI::App* command, ViewOptions& o) {
       ->capture_default_str();
   command->add_option("--mesh", o.mesh, "An OBJ scene flown through along --path instead")
       ->check(CLI::ExistingFile);
-  command->add_option("--path", o.path, "Camera path (.json) for --mesh")
-      ->check(CLI::ExistingFile);
+  command->add_option("--path", o.path, "Camera path (.json) for --mesh")->check(CLI::ExistingFile);
   command->add_option("--every", o.every, "With --path: every n-th frame")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
@@ -124,9 +127,8 @@ void scenes(const ViewOptions& o, const std::string& textureName, const std::str
                                     nlohmann::json{{"gl_version", context.version()}}});
                 manifests.push_back(name);
               });
-  const nlohmann::ordered_json summary = {{"renderer", context.renderer()},
-                                          {"gl_version", context.version()},
-                                          {"captures", manifests}};
+  const nlohmann::ordered_json summary = {
+      {"renderer", context.renderer()}, {"gl_version", context.version()}, {"captures", manifests}};
   writeFileAtomically(staging.path() / "captures.summary", summary.dump(1) + "\n");
   staging.commit();
   std::cout << "vt-capture: " << manifests.size() << " captures on " << context.renderer()
@@ -179,19 +181,93 @@ void timings(const ViewOptions& o, const std::vector<std::string>& sizes, int re
                                   {"wall_ms_median", wallMedian},
                                   {"wall_ms_min", wall.front()},
                                   {"wall_ms_max", wall.back()}});
-                  std::cout << size << " " << view.name << " " << mode.name << ": GPU "
-                            << gpuMedian << " ms, wall " << wallMedian << " ms (median of "
-                            << repeats << ")\n";
+                  std::cout << size << " " << view.name << " " << mode.name << ": GPU " << gpuMedian
+                            << " ms, wall " << wallMedian << " ms (median of " << repeats << ")\n";
                 });
   }
   glDeleteQueries(1, &query);
   const nlohmann::ordered_json report = {{"renderer", context.renderer()},
                                          {"gl_version", context.version()},
                                          {"repeats", repeats},
-                                         {"what", "GL_TIME_ELAPSED and wall time of one draw "
-                                                  "(mesh upload, draw, glFinish; no readback)"},
+                                         {"what",
+                                          "GL_TIME_ELAPSED and wall time of one draw "
+                                          "(mesh upload, draw, glFinish; no readback)"},
                                          {"frames", rows}};
   writeFileAtomically(output, report.dump(1) + "\n");
+}
+
+struct FlightArguments {
+  std::string texture, mesh, path, size = "320x200", output;
+  StreamedFlightOptions options;
+};
+
+CLI::App* addFlightCommand(CLI::App& app, FlightArguments& a) {
+  CLI::App* command = app.add_subcommand(
+      "flight", "Fly a camera path streaming pages into the GL cache; every n-th frame a capture");
+  command->add_option("texture", a.texture, "Virtual-texture file (.vt)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--mesh", a.mesh, "OBJ mesh with virtual texture coordinates")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--path", a.path, "Camera path (.json)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--size", a.size, "WIDTHxHEIGHT")
+      ->check(vt::sizeValidator())
+      ->capture_default_str();
+  StreamedFlightOptions& o = a.options;
+  command
+      ->add_option("--heuristic", o.heuristic, "Page priority (pixelsum, pixelsum*distance, ...)")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            try {
+              vt::Heuristic::parse(text);
+              return std::string();
+            } catch (const std::invalid_argument& e) {
+              return std::string(e.what());
+            }
+          },
+          "HEURISTIC"))
+      ->capture_default_str();
+  command->add_option("--budget", o.budget, "Pages streamed a frame")
+      ->check(CLI::Range(0, 1 << 20))
+      ->capture_default_str();
+  command->add_option("--cache-frames", o.cacheFrames, "The cache holds N x N page frames")
+      ->check(CLI::Range(2, 1024))
+      ->capture_default_str();
+  command->add_option("--initial-levels", o.initialLevels, "Levels 0..K-1 loaded first")
+      ->check(CLI::Range(0, 32))
+      ->capture_default_str();
+  command->add_option("--every", o.every, "Capture every n-th frame")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  command->add_flag("--async-readback", o.asyncReadback,
+                    "Analyse each frame's needbuffer one frame late (pixel-buffer objects)");
+  command->add_flag("--linear", o.linear,
+                    "Sample with GL_LINEAR into an 8-bit needbuffer (default: texel fetches, "
+                    "manual trilinear, 32-bit needbuffer)");
+  command->add_option("--texture-name", o.textureName,
+                      "The texture's path as the manifests name it (default: absolute)");
+  command->add_option("-o,--output", a.output, "Folder for the captures and flight.summary")
+      ->required();
+  return command;
+}
+
+void flight(FlightArguments a) {
+  TemporaryFolder::requireReplaceable(a.output, "flight.summary");
+  const VirtualTextureReader reader(a.texture);
+  const Mesh mesh = loadObjMesh(a.mesh);
+  const CameraPath path = CameraPath::load(a.path);
+  a.options.viewport = parseSize(a.size);
+  const HeadlessContext context;
+  TemporaryFolder staging(a.output, "flight.summary");
+  const StreamedFlight flown =
+      flyAndCapture(reader, mesh, path, a.options, context.renderer(), staging.path());
+  staging.commit();
+  std::cout << "vt-capture: flew " << flown.frames << " frames on " << context.renderer() << " ("
+            << flown.streamed << " pages streamed, " << flown.misses
+            << " needed pages missed): " << flown.captures << " captures in " << a.output << "\n";
 }
 
 }  // namespace
@@ -199,15 +275,17 @@ void timings(const ViewOptions& o, const std::vector<std::string>& sizes, int re
 
 int main(int argc, char** argv) {
   using namespace vt::capture;
-  CLI::App app("vt-capture: draw with OpenGL what `vt` judges elsewhere (probes, captures, frame "
-               "times)",
-               "vt-capture");
+  CLI::App app(
+      "vt-capture: draw with OpenGL what `vt` judges elsewhere (probes, captures, frame "
+      "times)",
+      "vt-capture");
   app.require_subcommand(1);
 
   std::string requests, output;
   CLI::App* probesCommand =
-      app.add_subcommand("probes", "Draw the calibration's probe requests (vt calibrate "
-                                   "--record-probes) and write their results");
+      app.add_subcommand("probes",
+                         "Draw the calibration's probe requests (vt calibrate "
+                         "--record-probes) and write their results");
   probesCommand->add_option("requests", requests, "Folder of probe requests")
       ->required()
       ->check(CLI::ExistingDirectory);
@@ -240,16 +318,19 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   timingsCommand->add_option("-o,--output", output, "JSON file for the timings")->required();
 
+  FlightArguments flightArguments;
+  CLI::App* flightCommand = addFlightCommand(app, flightArguments);
+
   try {
     app.parse(argc, argv);
     pinLlvmpipeThreads();
+    if (*flightCommand) flight(flightArguments);
     if (*probesCommand) probes(requests, output);
     if (*scenesCommand) scenes(sceneOptions, textureName, output);
     if (*timingsCommand) timings(timingOptions, sizes, repeats, output);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
-    const CLI::App* command =
-        app.get_subcommands().empty() ? &app : app.get_subcommands().front();
+    const CLI::App* command = app.get_subcommands().empty() ? &app : app.get_subcommands().front();
     std::cerr << "vt-capture: " << e.what() << "\n"
               << CLI::Formatter().make_usage(
                      command, command == &app ? "vt-capture" : "vt-capture " + command->get_name());

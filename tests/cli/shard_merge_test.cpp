@@ -10,8 +10,8 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <regex>
 #include <set>
+#include <sstream>
 
 #include "build/synthetic_texture.h"
 #include "cli/run_command.h"
@@ -81,9 +81,20 @@ void expectSameFolders(const std::filesystem::path& one, const std::filesystem::
   for (const auto& [name, bytes] : a) EXPECT_TRUE(bytes == b.at(name)) << name << " differs";
 }
 
+// The text with every ` NAME="..."` attribute's value removed (std::regex is left out: GCC 12
+// warns falsely in it under the sanitizers' -O1).
+std::string withoutAttribute(std::string text, const std::string& name) {
+  const std::string key = " " + name + "=\"";
+  for (size_t at = text.find(key); at != std::string::npos; at = text.find(key, at)) {
+    const size_t end = text.find('"', at + key.size());
+    if (end == std::string::npos) break;
+    text.erase(at, end + 1 - at);
+  }
+  return text;
+}
+
 std::string junitWithoutTimes(const std::string& name, std::string bytes) {
-  if (name != "junit.xml") return bytes;
-  return std::regex_replace(bytes, std::regex(" time=\"[0-9.]+\""), "");
+  return name == "junit.xml" ? withoutAttribute(bytes, "time") : bytes;
 }
 
 struct ShardFixture {
@@ -202,9 +213,16 @@ std::string evaluationWithoutTimes(const std::string& name, std::string bytes) {
     return summary.dump();
   }
   if (name == "summary.md") {
-    bytes = std::regex_replace(bytes, std::regex("[0-9]+\\.[0-9]+ s"), "T s");
-    bytes = std::regex_replace(bytes, std::regex("[0-9.]+ \\|\n"), "T |\n");
-    return std::regex_replace(bytes, std::regex(", [0-9]+ threads;"), ", J threads;");
+    // The paragraph that states the run times, and the run-time column of the tables.
+    std::istringstream lines(bytes);
+    std::string kept;
+    for (std::string line; std::getline(lines, line);) {
+      if (line.find("Run time:") != std::string::npos) continue;
+      if (line.starts_with("| ") && line.ends_with(" |"))
+        line.erase(line.rfind(" |", line.size() - 3));
+      kept.append(line).append("\n");
+    }
+    return kept;
   }
   return bytes;
 }

@@ -1,7 +1,8 @@
 // vt-capture, the GPU-side program: it links none of the oracle's libraries, its captures judge
 // bit for bit under the llvmpipe model on llvmpipe, and the probes it draws give `vt calibrate
-// --probes` the same model file as `vt calibrate` drawing them itself. Damaged probe folders are
-// refused with the file named.
+// --probes` the same model file as `vt calibrate` drawing them itself; its flights streaming into
+// the GL cache (every way: texel fetches, GL_LINEAR with a late needbuffer, BC1 blocks) give
+// captures that judge bit for bit too. Damaged probe folders are refused with the file named.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -10,6 +11,7 @@
 
 #include "build/synthetic_texture.h"
 #include "cli/run_command.h"
+#include "eval/box_room_scene.h"
 #include "gl/headless_context.h"
 #include "test_support.h"
 
@@ -42,14 +44,14 @@ class VtCapture : public ::testing::Test {
 // ldd's libraries of vt-capture: the C library's own, libepoxy (which opens EGL and GL by name at
 // run time) and xxhash; no C++ runtime (linked statically), image library, Embree, TBB or libzip.
 TEST_F(VtCapture, LinksOnlyWhatDrawingNeeds) {
-  const test::CommandResult ldd = test::runCommand("/usr/bin/ldd", {VT_CAPTURE_EXECUTABLE},
-                                                   dir_.path());
+  const test::CommandResult ldd =
+      test::runCommand("/usr/bin/ldd", {VT_CAPTURE_EXECUTABLE}, dir_.path());
   ASSERT_EQ(ldd.exitCode, 0) << ldd.err;
   if (ldd.out.find("libasan") != std::string::npos || ldd.out.find("libtsan") != std::string::npos)
     GTEST_SKIP() << "a sanitizer build: its runtime brings its own libraries";
-  const std::vector<std::string> allowed = {"linux-vdso", "ld-linux", "libc.so", "libm.so",
-                                            "libdl.so", "libpthread.so", "librt.so",
-                                            "libepoxy.so", "libxxhash.so"};
+  const std::vector<std::string> allowed = {"linux-vdso", "ld-linux",    "libc.so",
+                                            "libm.so",    "libdl.so",    "libpthread.so",
+                                            "librt.so",   "libepoxy.so", "libxxhash.so"};
   std::istringstream lines(ldd.out);
   int libraries = 0;
   for (std::string line; std::getline(lines, line);) {
@@ -64,9 +66,9 @@ TEST_F(VtCapture, LinksOnlyWhatDrawingNeeds) {
 
 TEST_F(VtCapture, ItsCapturesJudgeBitExactUnderLlvmpipe) {
   if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
-  const test::CommandResult drawn = capture({"scenes", (dir_ / "t.vt").string(), "--scenes",
-                                             "room,coplanar,crossing", "--size", "160x100", "-o",
-                                             (dir_ / "captures").string()});
+  const test::CommandResult drawn =
+      capture({"scenes", (dir_ / "t.vt").string(), "--scenes", "room,coplanar,crossing", "--size",
+               "160x100", "-o", (dir_ / "captures").string()});
   ASSERT_EQ(drawn.exitCode, 0) << drawn.err;
   for (const std::string model : {"llvmpipe", "gl45"}) {
     const test::CommandResult judged =
@@ -82,16 +84,69 @@ TEST_F(VtCapture, ItsCapturesJudgeBitExactUnderLlvmpipe) {
   }
 }
 
+// The box room's storyboard flown with 2 pages a frame into a cache of 4 x 4 frames (pages are
+// streamed and evicted throughout), a capture every 4th frame: each judges bit for bit under the
+// llvmpipe model, and the cache the captures record changes along the flight.
+TEST_F(VtCapture, FlightsStreamingIntoTheGlCacheJudgeBitExactUnderLlvmpipe) {
+  if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
+  test::writeBoxRoomScene(dir_.path());
+  writeSyntheticTexture(
+      dir_ / "bc1.vt",
+      {{.pageSize = 32, .border = 2, .levelCount = 6, .channels = 4, .format = PixelFormat::kBc1},
+       0.45});
+  const std::vector<std::pair<std::string, std::vector<std::string>>> flights = {
+      {"t.vt", {}},
+      {"t.vt", {"--linear", "--async-readback", "--heuristic", "pixelsum*distance"}},
+      {"bc1.vt", {}}};
+  for (const auto& [texture, options] : flights) {
+    SCOPED_TRACE(texture + (options.empty() ? "" : " " + options.front()));
+    std::vector<std::string> args = {"flight",
+                                     (dir_ / texture).string(),
+                                     "--mesh",
+                                     (dir_ / "room.obj").string(),
+                                     "--path",
+                                     (dir_ / "path.json").string(),
+                                     "--size",
+                                     "96x60",
+                                     "--budget",
+                                     "2",
+                                     "--cache-frames",
+                                     "4",
+                                     "--every",
+                                     "4",
+                                     "-o",
+                                     (dir_ / "flight").string()};
+    args.insert(args.end(), options.begin(), options.end());
+    std::filesystem::remove_all(dir_ / "flight");
+    const test::CommandResult flown = capture(args);
+    ASSERT_EQ(flown.exitCode, 0) << flown.err;
+    EXPECT_THAT(flown.out, HasSubstr("flew 29 frames"));
+    const auto record = nlohmann::json::parse(test::slurp(dir_ / "flight" / "flight.summary"));
+    EXPECT_EQ(record["totals"]["captures"], 8);
+    EXPECT_GT(record["totals"]["streamed"].get<int>(), 8);
+    EXPECT_GT(record["totals"]["evicted"].get<int>(), 0);
+    const auto first = nlohmann::json::parse(test::slurp(dir_ / "flight" / "frame0000.json"));
+    const auto last = nlohmann::json::parse(test::slurp(dir_ / "flight" / "frame0028.json"));
+    EXPECT_NE(first["cache"]["pages"], last["cache"]["pages"]);
+    const test::CommandResult judged =
+        vt({"crosscheck", "--captures", (dir_ / "flight").string(), "--model", "llvmpipe", "-o",
+            (dir_ / "judged").string()});
+    ASSERT_EQ(judged.exitCode, 0) << judged.out << judged.err;
+    const auto summary = nlohmann::json::parse(test::slurp(dir_ / "judged" / "summary.json"));
+    EXPECT_EQ(summary["totals"]["pixels"], 8u * 96u * 60u);
+    EXPECT_EQ(summary["totals"]["identical"], summary["totals"]["pixels"]);
+  }
+}
+
 TEST_F(VtCapture, ProbesDrawnByItGiveTheModelCalibrateMeasures) {
-  const test::CommandResult here =
-      vt({"calibrate", "--record-probes", (dir_ / "requests").string(), "-o",
-          (dir_ / "here.json").string()});
+  const test::CommandResult here = vt({"calibrate", "--record-probes", (dir_ / "requests").string(),
+                                       "-o", (dir_ / "here.json").string()});
   ASSERT_EQ(here.exitCode, 0) << here.err;
   const test::CommandResult drawn =
       capture({"probes", (dir_ / "requests").string(), "-o", (dir_ / "drawn").string()});
   ASSERT_EQ(drawn.exitCode, 0) << drawn.err;
-  const test::CommandResult fitted = vt({"calibrate", "--probes", (dir_ / "drawn").string(),
-                                         "-o", (dir_ / "elsewhere.json").string()});
+  const test::CommandResult fitted = vt({"calibrate", "--probes", (dir_ / "drawn").string(), "-o",
+                                         (dir_ / "elsewhere.json").string()});
   ASSERT_EQ(fitted.exitCode, 0) << fitted.err;
   EXPECT_EQ(test::slurp(dir_ / "here.json"), test::slurp(dir_ / "elsewhere.json"));
 
@@ -102,8 +157,8 @@ TEST_F(VtCapture, ProbesDrawnByItGiveTheModelCalibrateMeasures) {
     inputs.seekp(0);
     inputs.put('\x7f');
   }
-  const test::CommandResult changed = vt({"calibrate", "--probes", (dir_ / "drawn").string(),
-                                          "-o", (dir_ / "changed.json").string()});
+  const test::CommandResult changed = vt(
+      {"calibrate", "--probes", (dir_ / "drawn").string(), "-o", (dir_ / "changed.json").string()});
   EXPECT_EQ(changed.exitCode, 1);
   EXPECT_THAT(changed.err, HasSubstr("probe draw 0 is not the one this vt calibrate asks for"));
   EXPECT_FALSE(std::filesystem::exists(dir_ / "changed.json"));
@@ -116,8 +171,8 @@ TEST_F(VtCapture, ProbesDrawnByItGiveTheModelCalibrateMeasures) {
   std::filesystem::copy_file(dir_ / "requests" / "probe-0000.inputs.f32",
                              dir_ / "drawn" / "probe-0000.inputs.f32",
                              std::filesystem::copy_options::overwrite_existing);
-  const test::CommandResult cut = vt({"calibrate", "--probes", (dir_ / "drawn").string(), "-o",
-                                      (dir_ / "cut.json").string()});
+  const test::CommandResult cut =
+      vt({"calibrate", "--probes", (dir_ / "drawn").string(), "-o", (dir_ / "cut.json").string()});
   EXPECT_EQ(cut.exitCode, 1);
   EXPECT_THAT(cut.err, HasSubstr("probe-0001.result"));
 }
@@ -125,8 +180,8 @@ TEST_F(VtCapture, ProbesDrawnByItGiveTheModelCalibrateMeasures) {
 TEST_F(VtCapture, BadArgumentsAndInputs) {
   const test::CommandResult none = capture({});
   EXPECT_EQ(none.exitCode, 2);
-  const test::CommandResult size = capture(
-      {"scenes", (dir_ / "t.vt").string(), "--size", "0x5", "-o", (dir_ / "o").string()});
+  const test::CommandResult size =
+      capture({"scenes", (dir_ / "t.vt").string(), "--size", "0x5", "-o", (dir_ / "o").string()});
   EXPECT_EQ(size.exitCode, 2);
   EXPECT_THAT(size.err, HasSubstr("Usage"));
   std::filesystem::create_directories(dir_ / "empty");
@@ -135,10 +190,26 @@ TEST_F(VtCapture, BadArgumentsAndInputs) {
   EXPECT_EQ(empty.exitCode, 1);
   EXPECT_THAT(empty.err, HasSubstr("holds no probe request"));
   EXPECT_FALSE(std::filesystem::exists(dir_ / "out"));
-  const test::CommandResult scene = capture({"scenes", (dir_ / "t.vt").string(), "--scenes",
-                                             "nowhere", "-o", (dir_ / "o").string()});
+  const test::CommandResult scene = capture(
+      {"scenes", (dir_ / "t.vt").string(), "--scenes", "nowhere", "-o", (dir_ / "o").string()});
   EXPECT_EQ(scene.exitCode, 1);
   EXPECT_THAT(scene.err, HasSubstr("nowhere"));
+  test::writeBoxRoomScene(dir_.path());
+  const std::vector<std::string> flight = {
+      "flight", (dir_ / "t.vt").string(),      "--mesh", (dir_ / "room.obj").string(),
+      "--path", (dir_ / "path.json").string(), "-o",     (dir_ / "f").string()};
+  std::vector<std::string> args = flight;
+  args.insert(args.end(), {"--heuristic", "speed"});
+  const test::CommandResult heuristic = capture(args);
+  EXPECT_EQ(heuristic.exitCode, 2);
+  EXPECT_THAT(heuristic.err, HasSubstr("'speed' is not one of"));
+  EXPECT_THAT(heuristic.err, HasSubstr("Usage"));
+  args = flight;
+  args.insert(args.end(), {"--cache-frames", "1000"});  // 1000 x 36 texels: over 16384
+  const test::CommandResult cache = capture(args);
+  EXPECT_EQ(cache.exitCode, 1);
+  EXPECT_THAT(cache.err, HasSubstr((dir_ / "t.vt").string() + ": a cache of 1000 frames"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "f"));
 }
 
 }  // namespace

@@ -4,7 +4,8 @@
 # libraries from the kit alone (ldd: nothing outside it but the C library's own), run by
 # gpu-run.sh in an emptied environment, judged by scripts/gpu-judge.sh: the model fitted from the
 # kit's probes is the one `vt calibrate` measures here, and the captures (of its texture, of
-# the BC1 and BC3 versions of the texture's layout and of the hostile scene) are bit for bit.
+# the BC1 and BC3 versions of the texture's layout and of the hostile scene, and the frames of
+# the flights streaming into the GL cache) are bit for bit.
 #   gpu_kit_test.sh SOURCE BUILD WORK
 set -euo pipefail
 source=$1 build=$2 work=$3
@@ -26,7 +27,7 @@ if [[ -n $outside ]]; then
 fi
 
 env -i PATH=/usr/bin:/bin HOME="$work" VT_KIT_SYSTEM_GL=1 LP_NUM_THREADS=2 \
-  EGL_PLATFORM=surfaceless VT_KIT_TIMING_SIZES=160x100 bash "$work/kit/gpu-run.sh" "$work/out"
+  EGL_PLATFORM=surfaceless VT_KIT_TIMING_SIZES=160x100 VT_KIT_FLIGHT_SIZE=160x100 bash "$work/kit/gpu-run.sh" "$work/out"
 ls "$work/out"
 VT_BUILD_DIR=$build VT="$vt" bash "$source/scripts/gpu-judge.sh" "$work/out" "$work/kit" |
   tee "$work/table.md"
@@ -43,4 +44,10 @@ grep -q "^| stress | model | 1408000 | 1408000 | 0 | 0 | 0.0000 |" "$work/table.
   echo "FAIL: the kit's hostile scene is not bit for bit under the model fitted from its probes"
   exit 1
 }
+for set in flight-rgba8 flight-linear-async flight-bc1; do
+  grep -Eq "^\| $set \| model \| ([0-9]+) \| \1 \| 0 \| 0 \| 0\.0000 \|" "$work/table.md" || {
+    echo "FAIL: the kit's $set flight is not bit for bit under the model fitted from its probes"
+    exit 1
+  }
+done
 echo "gpu kit: model and captures as here"
