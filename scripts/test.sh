@@ -54,6 +54,15 @@ run_suite() {  # build folder, tests to leave out (a ctest regex, or ''), extra 
   cmake -S . -B "$folder" -G Ninja -DCMAKE_BUILD_TYPE=Release -DVT_WARNINGS_AS_ERRORS=ON \
     -DVT_BUILD_TESTS=ON -DVT_BUILD_BENCHMARKS=ON "${unity[@]}" "$@"
   timed "$folder-build" cmake --build "$folder" --parallel "$jobs"
+  # ctest starts the longest tests first once it knows their times, which a new build folder does
+  # not: with 2 cores, a 2-minute test started last leaves one core idle for 2 minutes. A folder
+  # without times gets those of a clean-clone run of this pass (tests/ctest-costs/, ctest's own
+  # file); ctest updates them after every run.
+  local costs=$folder/Testing/Temporary/CTestCostData.txt seed=tests/ctest-costs/$folder.txt
+  if [[ ! -f $costs && -f $seed ]]; then
+    mkdir -p "${costs%/*}"
+    cp "$seed" "$costs"
+  fi
   echo "== test $folder"
   timed "$folder-tests" ctest --test-dir "$folder" --output-on-failure --parallel "$jobs" \
     --timeout 600 ${exclude:+-E "$exclude"}
