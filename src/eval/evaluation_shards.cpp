@@ -117,7 +117,13 @@ void mergeEvaluations(const std::vector<ShardFile>& shards, const std::filesyste
   summary["wall_seconds"] = merged.wallSeconds;
   summary["recolor_seconds"] = merged.recolorSeconds;
   if (summary.contains("reference_seconds")) summary["reference_seconds"] = merged.referenceSeconds;
-  writeEvaluationFiles(output, csv, summary, nullptr);
+  try {
+    writeEvaluationFiles(output, csv, summary, nullptr);
+  } catch (const nlohmann::json::exception& e) {
+    // A field summary.md needs is missing or mistyped in a shard's summary (nothing is written).
+    throw InputError(shards.front().file.parent_path() / "summary.json",
+                     "malformed summary of a shard: " + jsonErrorText(e));
+  }
 }
 
 }  // namespace vt
