@@ -42,17 +42,14 @@ RuntimeOptions runtimeOptions(const VirtualTextureReader& reader,
   return runtime;
 }
 
-RenderSettings renderSettings(const VirtualTextureReader& reader,
-                              const StreamedFlightOptions& options) {
+// The crosscheck's mode the flight draws in (render/check_modes.h).
+CheckMode flightMode(const VirtualTextureReader& reader, const StreamedFlightOptions& options) {
   const std::vector<CheckMode> modes = checkModes(reader.description().finestLevel());
   if (options.linear && modes.size() < 2)
     throw InputError(reader.path(),
                      "its levels do not fit the 8-bit needbuffer that GL_LINEAR "
                      "captures use");
-  RenderSettings settings;
-  settings.viewport = options.viewport;
-  applyMode(settings, modes[options.linear ? 1 : 0]);
-  return settings;
+  return modes[options.linear ? 1 : 0];
 }
 
 }  // namespace
@@ -60,7 +57,10 @@ RenderSettings renderSettings(const VirtualTextureReader& reader,
 StreamedFlight flyAndCapture(const VirtualTextureReader& reader, const Mesh& mesh,
                              const CameraPath& path, const StreamedFlightOptions& options,
                              const std::string& renderer, const std::filesystem::path& folder) {
-  const RenderSettings settings = renderSettings(reader, options);
+  const CheckMode mode = flightMode(reader, options);
+  RenderSettings settings;
+  settings.viewport = options.viewport;
+  applyMode(settings, mode);
   VirtualTextureRuntime runtime(reader, runtimeOptions(reader, options));
   std::vector<uint64_t> initial;
   const uint32_t levels = std::min(options.initialLevels, reader.description().levelCount);
@@ -104,22 +104,21 @@ StreamedFlight flyAndCapture(const VirtualTextureReader& reader, const Mesh& mes
         {{"frame", f}, {"misses", statistics.misses}, {"streamed", applied}, {"evicted", evicted}});
     ++flight.frames;
   }
-  const nlohmann::ordered_json record = {
-      {"renderer", renderer},
-      {"heuristic", options.heuristic},
-      {"budget", options.budget},
-      {"cache_frames", options.cacheFrames},
-      {"initial_levels", options.initialLevels},
-      {"every", options.every},
-      {"async_readback", options.asyncReadback},
-      {"mode", options.linear ? "linear-bilinear-need8" : "texelfetch-trilinear-need32"},
-      {"totals",
-       {{"frames", flight.frames},
-        {"captures", flight.captures},
-        {"streamed", flight.streamed},
-        {"evicted", flight.evicted},
-        {"misses", flight.misses}}},
-      {"frames", frames}};
+  const nlohmann::ordered_json record = {{"renderer", renderer},
+                                         {"heuristic", options.heuristic},
+                                         {"budget", options.budget},
+                                         {"cache_frames", options.cacheFrames},
+                                         {"initial_levels", options.initialLevels},
+                                         {"every", options.every},
+                                         {"async_readback", options.asyncReadback},
+                                         {"mode", mode.name},
+                                         {"totals",
+                                          {{"frames", flight.frames},
+                                           {"captures", flight.captures},
+                                           {"streamed", flight.streamed},
+                                           {"evicted", flight.evicted},
+                                           {"misses", flight.misses}}},
+                                         {"frames", frames}};
   writeFileAtomically(folder / "flight.summary", record.dump(1) + "\n");
   return flight;
 }

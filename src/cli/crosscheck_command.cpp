@@ -83,19 +83,18 @@ void addCrosscheckCommand(CLI::App& app) {
       throw CLI::ValidationError("--shard", "shards split captures: needs --captures");
     if (o->captures.empty() && (o->mesh.empty() != o->path.empty()))
       throw CLI::ValidationError("--mesh/--path", "a flythrough needs both");
-    crosscheckToFolder(
-        {.captures = o->captures,
-         .texture = o->texture,
-         .scenes = o->scenes,
-         .mesh = o->mesh,
-         .path = o->path,
-         .every = o->every,
-         .viewport = parseSize(o->size),
-         .model = o->profile,
-         .threads = o->threads,
-         .allSets = o->allSets,
-         .shard = o->shard.empty() ? std::nullopt : std::optional(parseShard(o->shard)),
-         .output = o->output});
+    crosscheckToFolder({.captures = o->captures,
+                        .texture = o->texture,
+                        .scenes = o->scenes,
+                        .mesh = o->mesh,
+                        .path = o->path,
+                        .every = o->every,
+                        .viewport = parseSize(o->size),
+                        .model = o->profile,
+                        .threads = o->threads,
+                        .allSets = o->allSets,
+                        .shard = parseShardOption(o->shard),
+                        .output = o->output});
   });
 }
 

@@ -169,7 +169,7 @@ void runEval(const EvalOptions& o, const CLI::App& command) {
       .jobs = o.jobs,
       .output = o.output,
       .reference = reference.get(),
-      .shard = o.shard.empty() ? std::nullopt : std::optional(parseShard(o.shard))};
+      .shard = parseShardOption(o.shard)};
   evaluateToFolder(reader, std::move(request), std::cout);
 }
 

@@ -95,7 +95,7 @@ void addGoldenCommand(CLI::App& app) {
                     .backend = parseBackend(c->backend),
                     .model = c->model,
                     .output = c->output,
-                    .shard = c->shard.empty() ? std::nullopt : std::optional(parseShard(c->shard))},
+                    .shard = parseShardOption(c->shard)},
                    std::cout, std::cerr);
   });
 }

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "common/json_text.h"
 #include "common/posix_file.h"
 
@@ -50,6 +51,11 @@ Shard parseShard(std::string_view text) {
   return shard;
 }
 
+std::optional<Shard> parseShardOption(std::string_view text) {
+  if (text.empty()) return std::nullopt;
+  return parseShard(text);
+}
+
 void writeShardFile(const std::filesystem::path& folder, const ShardFile& record) {
   const nlohmann::json json = {{"format", kFormat},         {"version", kVersion},
                                {"command", record.command}, {"shard", record.shard.text()},
@@ -83,6 +89,13 @@ ShardFile readShardFile(const std::filesystem::path& folder) {
     throw InputError(record.file, "malformed shard record: " + jsonErrorText(e));
   }
   return record;
+}
+
+void copyShardFile(const ShardFile& shard, const std::string& name, const std::string& what,
+                   const std::filesystem::path& to) {
+  const std::filesystem::path from = shard.file.parent_path() / name;
+  requireRegularFile(from, what);
+  std::filesystem::copy_file(from, to / name);
 }
 
 std::vector<ShardFile> requireCompleteJob(std::vector<ShardFile> shards) {

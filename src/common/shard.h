@@ -39,6 +39,8 @@ struct Shard {
 
 // "I/N" with 1 <= I <= N <= kMaxShards; throws std::invalid_argument saying what is wrong.
 Shard parseShard(std::string_view text);
+// The same for a command-line option whose empty text means "no --shard": no shard.
+std::optional<Shard> parseShardOption(std::string_view text);
 
 // One shard's record, as written into and read from shard.json.
 struct ShardFile {
@@ -55,6 +57,11 @@ void writeShardFile(const std::filesystem::path& folder, const ShardFile& record
 
 // Reads `folder`/shard.json; throws InputError naming it when it is missing or malformed.
 ShardFile readShardFile(const std::filesystem::path& folder);
+
+// Copies the file `name` of `shard`'s folder into the folder `to`; throws InputError naming it,
+// as `what` ("difference image"), when it is missing or not a regular file.
+void copyShardFile(const ShardFile& shard, const std::string& name, const std::string& what,
+                   const std::filesystem::path& to);
 
 // The shards of one job, ordered by index: throws InputError naming a shard's file unless every
 // shard ran the same command on the same inputs and items, and shards 1 to N are each there once.

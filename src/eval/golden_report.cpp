@@ -3,7 +3,6 @@
 #include <string>
 
 #include "common/error.h"
-#include "common/input_file.h"
 #include "common/json_text.h"
 #include "common/posix_file.h"
 #include "eval/flight_records.h"
@@ -119,11 +118,9 @@ GoldenCheck mergeGoldenCheckShards(const std::vector<ShardFile>& shards,
                          "malformed record of " + shard.items[k] + ": " + jsonErrorText(e));
       }
       const GoldenFrameCheck& frame = check.frames.back();
-      if (!frame.passed) {
-        const std::filesystem::path image = shard.file.parent_path() / differenceImage(frame.frame);
-        requireRegularFile(image, "difference image");
-        std::filesystem::copy_file(image, staging.path() / differenceImage(frame.frame));
-      }
+      if (!frame.passed)
+        copyShardFile(shard, differenceImage(frame.frame).string(), "difference image",
+                      staging.path());
     }
   }
   writeCheckFile(staging.path(), golden, check, profile);

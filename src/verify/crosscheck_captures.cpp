@@ -8,7 +8,6 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
-#include "common/input_file.h"
 #include "common/json_text.h"
 #include "common/posix_file.h"
 #include "common/shard.h"
@@ -215,12 +214,6 @@ CapturesCheck writeReport(const std::filesystem::path& folder, const std::string
   return check;
 }
 
-// A shard's difference image into the merged folder.
-void copyRegularFile(const std::filesystem::path& from, const std::filesystem::path& to) {
-  requireRegularFile(from, "difference image");
-  std::filesystem::copy_file(from, to);
-}
-
 constexpr const char* kCapturesShardCommand = "crosscheck --captures";
 
 nlohmann::json shardInputs(const CapturesCheckOptions& options) {
@@ -299,8 +292,7 @@ CapturesCheck mergeCapturesShards(const std::vector<ShardFile>& shards,
     if (!verdicts.back().unreadable) {
       const std::string stem = std::filesystem::path(items[k]).stem().string();
       for (const char* suffix : {"-color-difference.png", "-classes.png"})
-        copyRegularFile(shard.file.parent_path() / (stem + suffix),
-                        staging.path() / (stem + suffix));
+        copyShardFile(shard, stem + suffix, "difference image", staging.path());
     }
   }
   for (size_t s = 0; s < shards.size(); ++s)
