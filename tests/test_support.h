@@ -16,6 +16,23 @@
 
 namespace vt::test {
 
+// Whether this program was built with AddressSanitizer or ThreadSanitizer. GCC defines
+// __SANITIZE_ADDRESS__ and __SANITIZE_THREAD__; clang 14 answers only __has_feature.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+constexpr bool kAddressSanitizer = __has_feature(address_sanitizer);
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+#if defined(__SANITIZE_THREAD__)
+constexpr bool kThreadSanitizer = true;
+#elif defined(__has_feature)
+constexpr bool kThreadSanitizer = __has_feature(thread_sanitizer);
+#else
+constexpr bool kThreadSanitizer = false;
+#endif
+
 // CI sets CI=true: there, optional resources (OpenArena, Chromium) must be present.
 inline bool runningInCi() {
   const char* ci = std::getenv("CI");

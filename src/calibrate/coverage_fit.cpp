@@ -5,6 +5,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "common/random_draws.h"
+
 namespace vt::calibrate {
 namespace {
 
@@ -156,9 +158,11 @@ std::vector<CoverageProbe> coverageProbes(unsigned seed, Viewport viewport) {
       probe.cellMax = {cx + kCell, cy + kCell};
       const glm::dvec2 centre(cx + kCell / 2 + 0.5, cy + kCell / 2 + 0.5);
       // A pixel centre at most `reach` pixels from the cell's centre, moved by small offsets.
+      // (The offsets are drawn before the whole pixels: the records' order, common/random_draws.h.)
       const auto near = [&](int reach) {
-        return centre + glm::dvec2(pick(-reach, reach), pick(-reach, reach)) +
-               glm::dvec2(offset(), offset());
+        const glm::dvec2 moved = drawPoint(offset);
+        const glm::dvec2 pixels = drawPoint([&] { return double(pick(-reach, reach)); });
+        return centre + pixels + moved;
       };
       auto& v = probe.vertices;
       switch (probes.size() % 5) {
@@ -168,13 +172,17 @@ std::vector<CoverageProbe> coverageProbes(unsigned seed, Viewport viewport) {
         case 1: {  // a sliver: the third vertex next to the middle of the other two
           v[0] = near(4);
           v[1] = 2.0 * centre - v[0];
-          v[2] = centre + glm::dvec2(offset(), offset());
+          v[2] = centre + drawPoint(offset);
           break;
         }
         case 2: {  // a right triangle: a vertical and a horizontal edge near centres
           const glm::dvec2 corner = near(1);
-          v = {corner, corner + glm::dvec2(pick(1, 3) * (pick(0, 1) ? 1 : -1) + offset(), 0.0),
-               corner + glm::dvec2(0.0, pick(1, 3) * (pick(0, 1) ? 1 : -1) + offset())};
+          const auto leg = [&] {  // 1 to 3 pixels either way, moved by an offset
+            const int length = pick(1, 3);
+            const int sign = pick(0, 1) ? 1 : -1;
+            return length * sign + offset();
+          };
+          v = {corner, corner + glm::dvec2(leg(), 0.0), corner + glm::dvec2(0.0, leg())};
           break;
         }
         case 3: {  // an edge exactly through the cell's centre (its ends mirror each other)
@@ -184,8 +192,7 @@ std::vector<CoverageProbe> coverageProbes(unsigned seed, Viewport viewport) {
           break;
         }
         default:  // below a pixel: within half a pixel of the centre
-          v = {centre + glm::dvec2(offset(), offset()), centre + glm::dvec2(offset(), offset()),
-               centre + glm::dvec2(offset(), offset())};
+          v = {centre + drawPoint(offset), centre + drawPoint(offset), centre + drawPoint(offset)};
           break;
       }
       probes.push_back(probe);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 
+#include "common/random_draws.h"
 #include "probes/probe_draws.h"
 #include "reference/linear_filter.h"
 
@@ -53,7 +54,7 @@ std::vector<Sampled> probes() {
   }
   std::vector<glm::vec2> uniform;
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  for (int i = 0; i < 16384; ++i) uniform.push_back(glm::vec2(unit(random), unit(random)));
+  for (int i = 0; i < 16384; ++i) uniform.push_back(drawPoint([&] { return unit(random); }));
   result.push_back(sample(kSide, kSide, steps, random));
   result.push_back(sample(24, 40, uniform, random));
   return result;

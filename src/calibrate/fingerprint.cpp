@@ -7,6 +7,7 @@
 #include "calibrate/decoding_fit.h"
 #include "calibrate/filter_fit.h"
 #include "calibrate/float_bits.h"
+#include "common/random_draws.h"
 #include "probes/probe_draws.h"
 #include "calibrate/probe_texture.h"
 #include "calibrate/raster_fit.h"
@@ -61,7 +62,7 @@ FingerprintDraws drawFingerprint() {
   }
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   for (int i = 0; i < 4096; ++i)
-    d.linear.inputs.push_back(glm::vec4(unit(random), unit(random), 0, 0));
+    d.linear.inputs.push_back(glm::vec4(drawPoint([&] { return unit(random); }), 0, 0));
   d.linearOut = runShaderProbe(d.linear);
 
   d.mesh = randomTriangles(33, 40);

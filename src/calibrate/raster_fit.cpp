@@ -11,6 +11,7 @@
 #include "calibrate/coverage_fit.h"
 #include "calibrate/float_bits.h"
 #include "calibrate/probe_texture.h"
+#include "common/random_draws.h"
 #include "probes/probe_draws.h"
 #include "reference/renderer.h"
 #include "render/precision_model.h"
@@ -127,10 +128,10 @@ ClipSpaceMesh nearPlaneTriangles(unsigned seed, int triangles) {
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f), wRange(0.3f, 3.0f), hair(0.0f, 1e-6f);
   ClipSpaceMesh mesh;
   for (int k = 0; k < triangles; ++k) {
-    const glm::vec2 centre(0.6f * unit(random), 0.6f * unit(random));
+    const glm::vec2 centre = 0.6f * drawPoint([&] { return unit(random); });
     for (int corner = 0; corner < 3; ++corner) {
       const float w = wRange(random);
-      const glm::vec2 xy = centre + 0.5f * glm::vec2(unit(random), unit(random));
+      const glm::vec2 xy = centre + 0.5f * drawPoint([&] { return unit(random); });
       const float z = k % 2 ? -w : -w * (1.0f - hair(random));
       mesh.vertices.push_back(
           {{xy.x * w, xy.y * w, z, w}, {0.5f + 0.5f * unit(random), 0.5f + 0.5f * unit(random)}});

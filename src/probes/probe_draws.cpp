@@ -7,6 +7,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "common/random_draws.h"
 #include "gl/gl_program.h"
 
 namespace vt::calibrate {
@@ -235,10 +236,10 @@ ClipSpaceMesh randomTriangles(unsigned seed, int triangles) {
   };
   for (int k = 0; k < triangles; ++k) {
     const float scale = k % 3 == 0 ? 0.05f : (k % 3 == 1 ? 0.4f : 1.6f);
-    const glm::vec2 centre(unit(random), unit(random));
+    const glm::vec2 centre = drawPoint([&] { return unit(random); });
     for (int corner = 0; corner < 3; ++corner) {
       const float w = k % 7 == 0 && corner == 0 ? -0.5f : wRange(random);
-      const glm::vec2 xy = centre + scale * glm::vec2(unit(random), unit(random));
+      const glm::vec2 xy = centre + scale * drawPoint([&] { return unit(random); });
       const float z = 0.8f * unit(random);
       add({xy.x * std::fabs(w), xy.y * std::fabs(w), z * std::fabs(w) - (w < 0 ? 1.0f : 0.0f), w},
           {0.5f + 0.5f * unit(random), 0.5f + 0.5f * unit(random)});

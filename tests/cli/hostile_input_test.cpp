@@ -348,14 +348,7 @@ TEST_F(HostileInput, AnImageHeaderClaimingBillionsOfTexelsIsBelievedOnlyAsFarAsI
                                      "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
   // AddressSanitizer reserves terabytes of address space for its shadow memory, so under it the
   // address-space limit is left out (the run still must succeed and measure the quad).
-#if defined(__SANITIZE_ADDRESS__)
-  constexpr bool kAddressSanitizer = true;
-#elif defined(__has_feature)
-  constexpr bool kAddressSanitizer = __has_feature(address_sanitizer);
-#else
-  constexpr bool kAddressSanitizer = false;
-#endif
-  const auto result = vtUnder(kAddressSanitizer ? "true" : "ulimit -v 3000000",
+  const auto result = vtUnder(test::kAddressSanitizer ? "true" : "ulimit -v 3000000",
                               {"retexture", path("huge.obj"), "-o", path("out"), "--no-coherence"});
   EXPECT_EQ(result.exitCode, 0) << result.err;
   EXPECT_THAT(result.out + result.err, HasSubstr("huge.tga is not a readable image"));

@@ -243,9 +243,8 @@ TEST_F(VtCommand, BuildStoresBlockCompressedPages) {
 }
 
 TEST_F(VtCommand, BuildPeakMemoryStaysFarBelowTheFinestLevel) {
-#if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "AddressSanitizer's shadow memory and quarantine make RSS meaningless";
-#endif
+  if (test::kAddressSanitizer)
+    GTEST_SKIP() << "AddressSanitizer's shadow memory and quarantine make RSS meaningless";
   // A 16384^2 RGBA texture: its finest level alone is 1 GiB. The process may use what `vt`
   // itself needs (its libraries, measured with --version) plus the documented ring bound plus
   // 32 MiB for pages in flight and the image's scanline.

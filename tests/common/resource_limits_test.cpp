@@ -54,8 +54,9 @@ TEST(ResourceLimits, HeaderAskingForMorePagesThanTheLimitIsRefusedBeforeItsTable
   for (const auto& [header, pages] :
        {std::pair{headerFor(16, false, dense), dense},
         std::pair{headerFor(16, true, kMaxStoredPages + 1), kMaxStoredPages + 1}}) {
-    const uint64_t fileBytes = loadU64(header.data() + 88);
-    EXPECT_THAT([&] { decodeHeader(header, fileBytes, "huge.vt"); },
+    const auto& bytes = header;  // clang 14 cannot capture a structured binding in a lambda
+    const uint64_t fileBytes = loadU64(bytes.data() + 88);
+    EXPECT_THAT([&] { decodeHeader(bytes, fileBytes, "huge.vt"); },
                 ThrowsMessage<InputError>("huge.vt: header field stored_page_count asks for " +
                                           std::to_string(pages) + " pages, the limit is " +
                                           std::to_string(kMaxStoredPages) + " pages"));

@@ -185,7 +185,10 @@ TEST_P(LaneShading, AQuadPairsAttributesInLanesAreAttributesAtPixelByPixel) {
   std::mt19937 random(23);
   std::uniform_real_distribution<float> mantissa(-2.0f, 2.0f);
   std::uniform_int_distribution<int> exponent(-140, 40), position(0, 8191);
-  const auto value = [&] { return std::ldexp(mantissa(random), exponent(random)); };
+  const auto value = [&] {  // the exponent drawn first (one statement each: see common/random_draws.h)
+    const int e = exponent(random);
+    return std::ldexp(mantissa(random), e);
+  };
   const auto plane = [&] { return Plane{value(), value(), value()}; };
   for (const bool flush : {false, true}) {
     const DenormalMode mode(flush);

@@ -22,6 +22,7 @@
 
 #include "cli/run_command.h"
 #include "common/image_file.h"
+#include "common/random_draws.h"
 #include "format/level_image.h"
 #include "format/virtual_texture_reader.h"
 #include "retexture/cell_grid.h"
@@ -137,8 +138,7 @@ std::vector<Polygon> randomBoxes(uint32_t boxes, uint32_t textureCount, uint32_t
         const auto middle = static_cast<float>(a0 + size[a] * uniform(rng, 0.3, 0.7));
         side(a0, middle, glm::vec2(0.0f));
         const bool shifted = rng() % 2 == 0;
-        const glm::vec2 shift = shifted ? glm::vec2(static_cast<float>(rng() % 5) - 2.0f,
-                                                    static_cast<float>(rng() % 5) - 2.0f)
+        const glm::vec2 shift = shifted ? drawPoint([&] { return static_cast<float>(rng() % 5) - 2.0f; })
                                         : glm::vec2(0.0f);
         side(middle, a1, shift);
       }

@@ -265,10 +265,8 @@ TEST_F(Runtime, TrilinearParentsKeepsAParentInUseFromEviction) {
 // element by element would have every one resident. The bound, 5% of the buffer, leaves room for
 // transparent huge pages (2 MB where a page is written) and is 20 times below that failure.
 TEST_F(Runtime, CacheTextureFramesNoPageFilledCostNoMemory) {
-#if defined(__SANITIZE_THREAD__)
   // Measured: under ThreadSanitizer every page of the buffer is resident after the calloc.
-  GTEST_SKIP() << "ThreadSanitizer's calloc clears the memory itself";
-#endif
+  if (test::kThreadSanitizer) GTEST_SKIP() << "ThreadSanitizer's calloc clears the memory itself";
   RuntimeOptions options;
   options.framesX = options.framesY = 1000;
   VirtualTextureRuntime runtime(*reader_, options);

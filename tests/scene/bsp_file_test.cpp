@@ -437,7 +437,7 @@ TEST(BspEntities, RejectsMalformedTextNamingTheLine) {
       {"\"classname\" \"light\"\n", "entities line 1: string \"classname\" outside an entity"},
       {"{\nclassname light\n}\n", "entities line 2: unexpected character 'c' outside a string"}};
   for (const auto& [text, problem] : cases)
-    EXPECT_THAT([&] { parseEntities(text, kName); },
+    EXPECT_THAT([&entities = text] { parseEntities(entities, kName); },
                 ThrowsMessage<InputError>(AllOf(StartsWith(kName + ": "), HasSubstr(problem))))
         << text;
 }
