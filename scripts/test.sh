@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # The second command of the README (and CI's): installs what is missing, builds in Release with
-# warnings as errors and runs every test with ctest; then fuzzes every input parser for 30 s each
-# (scripts/fuzz.sh), runs the threaded parts under ThreadSanitizer, and every test again
-# built with AddressSanitizer + UndefinedBehaviorSanitizer.
-#   --no-sanitizers   skip the fuzzing and sanitizer passes (quicker local runs)
+# warnings as errors, and runs every test once with ctest: most built with AddressSanitizer +
+# UndefinedBehaviorSanitizer, those tests/release-only.txt names in the Release build. Between the
+# two it fuzzes every input parser for 20 s each (scripts/fuzz.sh) and runs the threaded parts
+# under ThreadSanitizer.
+#   --no-sanitizers   every test in the Release build; no fuzzing and no sanitizer pass
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -47,13 +48,18 @@ export EGL_PLATFORM=surfaceless
 # are; 8 files a batch leave enough batches to keep both cores busy to the end of each build.
 unity=(-DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=8)
 
-run_suite() {  # build folder, tests to leave out (a ctest regex, or ''), extra cmake arguments...
-  local folder=$1 exclude=$2
-  shift 2
+build_suite() {  # build folder, extra cmake arguments...
+  local folder=$1
+  shift
   echo "== configure and build $folder"
   cmake -S . -B "$folder" -G Ninja -DCMAKE_BUILD_TYPE=Release -DVT_WARNINGS_AS_ERRORS=ON \
-    -DVT_BUILD_TESTS=ON -DVT_BUILD_BENCHMARKS=ON "${unity[@]}" "$@"
+    -DVT_BUILD_TESTS=ON "${unity[@]}" "$@"
   timed "$folder-build" cmake --build "$folder" --parallel "$jobs"
+}
+
+test_suite() {  # build folder, ctest arguments choosing the tests...
+  local folder=$1
+  shift
   # ctest starts the longest tests first once it knows their times, which a new build folder does
   # not: with 2 cores, a 2-minute test started last leaves one core idle for 2 minutes. A folder
   # without times gets those of a clean-clone run of this pass (tests/ctest-costs/, ctest's own
@@ -65,57 +71,60 @@ run_suite() {  # build folder, tests to leave out (a ctest regex, or ''), extra 
   fi
   echo "== test $folder"
   timed "$folder-tests" ctest --test-dir "$folder" --output-on-failure --parallel "$jobs" \
-    --timeout 600 ${exclude:+-E "$exclude"}
+    --timeout 600 "$@"
 }
 
-run_suite build ''
+build_suite build -DVT_BUILD_BENCHMARKS=ON
+if ((!sanitizers)); then
+  test_suite build
+  exit 0
+fi
 
-# Left out of the sanitizer pass, to keep CI within its time: the tests that retexture and build
-# q3dm6ish again for their own flights (one retexturing test of it stays), the SIGKILL tests
-# (they check files, not memory), the demo, the chapter-4 miniature (retexturing and a 1 GB build
-# again), the driver variants and all calibrations but llvmpipe's (each a calibration and
-# crosschecks in processes of their own, whose code Calibration.Llvmpipe... and the crosscheck
-# tests run under the sanitizers), the red+k captures of llvmpipe and of the H100 (the verdict's
-# width, measured in the Release pass; the H100's runs the demo, whose GL driver's allocations
-# LeakSanitizer cannot name, see tests/CMakeLists.txt) and the planted bugs (the verdict's power; the result
-# sets they exercise run under the sanitizers in CrosscheckCommand.*Gl45Set), and the sharded
-# crosscheck and evaluation run both ways (4.5 minutes of the H100's captures with every pixel's
-# sets under ASan, and a demo whose GL driver's allocations LeakSanitizer cannot name; the merge and its records run under the sanitizers in Merge.* and
-# GoldenShards.*, and fuzz_shard), the probe folders with one wrong value (a calibration each, 2.8
-# minutes under ASan; the fit runs under the sanitizers in Calibration.Llvmpipe... and
-# CalibrateProbes.ANonFinite...), and the checks of the text (docs, imports, function lengths),
-# whose memory is bash's. Each runs in the Release pass above; the parsers they read with are
-# fuzzed under AddressSanitizer.
+# With the sanitizers, every test runs once: those tests/release-only.txt names (it says why) in
+# the Release build, every other one in the sanitizer build at the end.
+mapfile -t release_only < <(sed -e 's/#.*//' -e 's/[[:space:]]*$//' tests/release-only.txt |
+  grep -v '^$')
+tests=$(ctest --test-dir build -N | sed -n 's/^ *Test *#[0-9]*: //p')
+for pattern in "${release_only[@]}"; do
+  grep -Eq "^($pattern)" <<<"$tests" ||
+    { echo "tests/release-only.txt: '$pattern' matches no test" >&2; exit 1; }
+done
+release_only_regex="^($(IFS='|'; echo "${release_only[*]}"))"
+test_suite build -R "$release_only_regex"
+
+# libFuzzer on every input parser, 20 s each, two at a time (seeds from the Release vt above):
+# each run starts from the seeds again, and a third of a minute keeps twelve programs within four
+# minutes of the test command's 25, build included. `bash scripts/fuzz.sh` alone fuzzes a minute
+# each.
+VT_EXECUTABLE=build/src/vt VT_FUZZ_SECONDS=${VT_FUZZ_SECONDS:-20} \
+  timed fuzzing bash scripts/fuzz.sh
+
 # The sanitizer builds compile at -O1, as the sanitizers' documentation advises: the builds are
 # most of CI's time, and -O1 keeps the stack traces readable.
 sanitizer_optimization="-O1 -DNDEBUG"
-sanitizer_exclude='^(Q3dm6ish|GoldenBackend\.TheGlPathPassesQ3dm6ish|CaptureCrosscheck\.Q3dm6ish|CrosscheckCommand\.Q3dm6ish|OpenArena/StoryboardPaths\.|OpenArenaMap\.OursWastes|CrashConsistency\.|DemoCommand\.|PlantedBugs\.|PlantedBugsOnAVariant\.|ArithmeticVariant\.|LlvmpipeVariant\.|Calibration\.(Softpipe|IsDeterministic)|CalibrateCommand\.|CaptureCrosscheck\.RedRaised|GpuEvidence\.RedRaised|Chapter4\.|VtCapture\.Probes|CrosscheckShards\.|EvalShards\.|CalibrateProbes\.OneWrongValue|Docs\.|ImportGraph\.|FunctionLength\.)'
 
-if ((sanitizers)); then
-  # libFuzzer on every input parser, 30 s each, two at a time (seeds from the Release vt above):
-  # each run starts from the seeds again, and half a minute keeps twelve programs within six
-  # minutes of the test command's 25. `bash scripts/fuzz.sh` alone fuzzes a minute each.
-  VT_EXECUTABLE=build/src/vt VT_FUZZ_SECONDS=${VT_FUZZ_SECONDS:-30} \
-    timed fuzzing bash scripts/fuzz.sh
+# ThreadSanitizer over the code that starts its own threads: the streaming thread, concurrent
+# page reads and writes, and the oracle's tile workers, which this build runs on std::thread
+# (VT_STD_THREAD_WORKERS, src/common/parallel_for.h). Code parallelised with TBB (the texture
+# builder, retexturing) is left out: TBB is not instrumented and its synchronisation reads as
+# races. These tests run in one of the other passes too.
+echo "== configure and build build-tsan"
+cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Release -DVT_WARNINGS_AS_ERRORS=ON \
+  -DVT_SANITIZE_THREAD=ON -DVT_BUILD_BENCHMARKS=OFF "-DCMAKE_CXX_FLAGS_RELEASE=$sanitizer_optimization" \
+  "${unity[@]}"
+timed build-tsan-build cmake --build build-tsan --parallel "$jobs" --target vt_thread_tests
+echo "== test build-tsan"
+TSAN_OPTIONS=halt_on_error=1 timed build-tsan-tests ctest --test-dir build-tsan \
+  --output-on-failure --parallel "$jobs" --timeout 600 \
+  -R '^(Runtime|PageCache|PageTable|VirtualTextureFile|Oracle|Stability|FrameComparison|NeedbufferScale)\.'
 
-  # ThreadSanitizer over the code that starts its own threads: the streaming thread, concurrent
-  # page reads and writes, and the oracle's tile workers, which this build runs on std::thread
-  # (VT_STD_THREAD_WORKERS, src/common/parallel_for.h). Code parallelised with TBB (the texture
-  # builder, retexturing) is left out: TBB is not instrumented and its synchronisation reads as
-  # races.
-  echo "== configure and build build-tsan"
-  cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Release -DVT_WARNINGS_AS_ERRORS=ON \
-    -DVT_SANITIZE_THREAD=ON -DVT_BUILD_BENCHMARKS=OFF "-DCMAKE_CXX_FLAGS_RELEASE=$sanitizer_optimization" \
-    "${unity[@]}"
-  timed build-tsan-build cmake --build build-tsan --parallel "$jobs" --target vt_thread_tests
-  echo "== test build-tsan"
-  TSAN_OPTIONS=halt_on_error=1 timed build-tsan-tests ctest --test-dir build-tsan \
-    --output-on-failure --parallel "$jobs" --timeout 600 \
-    -R '^(Runtime|PageCache|PageTable|VirtualTextureFile|Oracle|Stability|FrameComparison|NeedbufferScale)\.'
-
-  # Leak checking stays on for our code (the GL tests turn it off: tests/CMakeLists.txt says why).
-  export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
-  export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-  run_suite build-sanitize "$sanitizer_exclude" -DVT_SANITIZE=ON -DVT_BUILD_BENCHMARKS=OFF \
-    "-DCMAKE_CXX_FLAGS_RELEASE=$sanitizer_optimization"
-fi
+# AddressSanitizer + UndefinedBehaviorSanitizer, built with clang: it compiled this project's
+# instrumented sources in half GCC's time (docs/benchmarks.md), and a second compiler's reading of
+# the code is a check of its own (it found arguments whose order of evaluation C++ leaves open,
+# common/random_draws.h). Leak checking stays on for our code (the GL tests turn it off:
+# tests/CMakeLists.txt says why).
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+build_suite build-sanitize -DCMAKE_CXX_COMPILER=clang++ -DVT_SANITIZE=ON \
+  -DVT_BUILD_BENCHMARKS=OFF "-DCMAKE_CXX_FLAGS_RELEASE=$sanitizer_optimization"
+test_suite build-sanitize -E "$release_only_regex"
