@@ -59,8 +59,8 @@ for folder in "${!layer_of[@]}"; do
     file=${hit%%:*}
     rest=${hit#*:}
     line=${rest%%:*}
-    included=$(sed -E 's/^[^:]*:[0-9]+:[[:space:]]*#[[:space:]]*include[[:space:]]*"([^/"]+)\/.*/\1/' \
-      <<< "$hit")
+    [[ $rest =~ ^[0-9]+:[[:space:]]*#[[:space:]]*include[[:space:]]*\"([^/\"]+)/ ]] || continue
+    included=${BASH_REMATCH[1]}
     [[ $included == vt ]] && included=reference  # the oracle's public API
     [[ $included == "$folder" || -z ${layer_of[$included]+set} ]] && continue
     ((layer_of[$included] < own)) && continue

@@ -24,14 +24,19 @@ options_in() {
 # The lines of docs/commands.md from "## NAME" to the next "## ".
 section_of() { awk -v h="## $1" '$0 == h {s = 1; next} s && /^## / {exit} s' "$doc"; }
 
-# Every leaf command as "PROGRAM WORDS...", found by walking the help texts.
+# Whether LINES (one item a line) holds ITEM; without a process per question.
+holds() { [[ $'\n'$1$'\n' == *$'\n'"$2"$'\n'* ]]; }
+
+# Every leaf command as "PROGRAM WORDS...", found by walking the help texts, and its help text.
 commands=()
+declare -A help_of
 walk() {
   local help subs
   help=$("$@" --help)
   subs=$(subcommands_in "$help")
   if [[ -z $subs ]]; then
     commands+=("$(basename "$1") ${*:2}")
+    help_of["${commands[-1]}"]=$help
     return
   fi
   local sub
@@ -41,11 +46,7 @@ walk "$vt"
 walk "$vt_capture"
 
 for command in "${commands[@]}"; do
-  read -r program words <<< "$command"
-  binary=$vt
-  [[ $program == vt-capture ]] && binary=$vt_capture
-  # shellcheck disable=SC2086  # the words of a subcommand path
-  help=$("$binary" $words --help)
+  help=${help_of[$command]}
   section=$(section_of "$command")
   if [[ -z $section ]]; then
     fail "docs/commands.md has no section '## $command'"
@@ -53,16 +54,16 @@ for command in "${commands[@]}"; do
   fi
   # The options the section's table lists: the first cell of each row, "`-o, --output`".
   listed=$(sed -n 's/^| `\([^`]*\)` |.*/\1/p' <<< "$section" | tr ',' '\n' | tr -d ' ')
+  printed=$(options_in "$help")
   while read -r option; do
     [[ -z $option ]] && continue
     checked=$((checked + 1))
-    grep -qx -- "$option" <<< "$listed" ||
+    holds "$listed" "$option" ||
       fail "'$command --help' prints $option, which the table of '## $command' in docs/commands.md lacks"
-  done < <(options_in "$help")
-  printed=$(options_in "$help")
+  done <<< "$printed"
   while read -r option; do
     [[ $option == -* ]] || continue  # a positional argument's row
-    grep -qx -- "$option" <<< "$printed" ||
+    holds "$printed" "$option" ||
       fail "docs/commands.md lists $option under '## $command', which its --help does not print"
   done <<< "$listed"
 done
