@@ -161,7 +161,8 @@ void generateGolden(const GoldenRequest& request, const std::filesystem::path& d
 }
 
 bool GoldenCheck::passed() const {
-  if (frames.empty()) return false;
+  // A golden set holds at least one frame (golden_manifest.cpp); a shard of a check may hold none,
+  // and then its part of the job passes.
   for (const GoldenFrameCheck& frame : frames)
     if (!frame.passed) return false;
   return true;

@@ -40,8 +40,7 @@ GoldenCheck checkGoldenSet(const GoldenCheckRequest& request, std::ostream& out,
   out << "golden check (" << result.backend << ", model " << result.model << "): " << passed
       << " of " << result.frames.size() << " frames pass; wrote "
       << (request.output / "check.json").string() << "\n";
-  // A shard may hold no frame (more shards than frames): it passes, as its part of the job does.
-  if (!result.passed() && !(request.shard && result.frames.empty()))
+  if (!result.passed())
     throw InputError(request.golden, std::to_string(result.frames.size() - passed) + " of " +
                                          std::to_string(result.frames.size()) +
                                          " golden frames differ (see " +

@@ -195,6 +195,12 @@ TEST(GoldenShards, MergedShardsWriteWhatOneCheckWrites) {
     const nlohmann::json merged =
         nlohmann::json::parse(test::slurp(f.dir / "merged" / "check.json"));
     EXPECT_EQ(merged["frames"].size(), 8u);
+    // Each shard's own record says whether its part passed: under auto every part does, also the
+    // shards that got no frame (ten shards of eight frames).
+    for (uint32_t i = 1; i <= count && exitCode == 0; ++i) {
+      const std::filesystem::path own = f.dir / ("shard" + std::to_string(i)) / "check.json";
+      EXPECT_TRUE(nlohmann::json::parse(test::slurp(own))["passed"].get<bool>()) << own;
+    }
   }
   EXPECT_TRUE(std::filesystem::is_regular_file(f.dir / "merged" / "frame0028.difference.png"));
 }
