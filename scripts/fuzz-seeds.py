@@ -12,6 +12,7 @@ configuration targets.
 
 import io
 import json
+import math
 import os
 import struct
 import sys
@@ -355,6 +356,21 @@ def probe_folder_seeds(out):
             seed = probe_seed(request, files)
             if len(seed) <= MAX_SEED // 8:
                 write(out, "probe_folder", stem + ".probe", seed)
+    # The probe pack's sweeps (capture/sweep_files.h), beside the first draw: the first row of
+    # log2 over [0.5, 2), its results delta-coded, and a sqrt asked for but not drawn.
+    first, count = 0x3F000000, 4096
+    sweeps = {"format": "vt-sweeps", "version": 1, "sweeps": [
+        {"name": "log2", "expression": "log2(x)", "first": first, "count": count},
+        {"name": "sqrt", "expression": "sqrt(x)", "first": 0x3F800000, "count": count}]}
+    previous, deltas = 0, bytearray()
+    for i in range(count):
+        x = struct.unpack("<f", struct.pack("<I", first + i))[0]
+        bits = struct.unpack("<I", struct.pack("<f", math.log2(x)))[0]
+        deltas += struct.pack("<I", (bits - previous) % 2**32)
+        previous = bits
+    files = {"probes.json": description, "sweeps.json": json.dumps(sweeps, indent=1).encode(),
+             "sweep-log2.delta": bytes(deltas)}
+    write(out, "probe_folder", "sweeps.probe", probe_seed({"kind": "shader"}, files))
 
 
 def config_seeds(out):

@@ -72,7 +72,7 @@ fi
 # The calibration's probe requests, recorded on this machine; their results are drawn there.
 "$vt" calibrate --record-probes "$work/probes" -o "$work/here.json" >/dev/null
 for file in "$work"/probes/*; do
-  case $file in *.result | */probes.json) ;; *) cp "$file" "$staging/probes/" ;; esac
+  case $file in *.result | *.delta | */probes.json) ;; *) cp "$file" "$staging/probes/" ;; esac
 done
 
 # The texture of the named scenes and the map's flythrough: the demo's unless one is given.

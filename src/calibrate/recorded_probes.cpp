@@ -4,6 +4,7 @@
 
 #include "calibrate/decoding_fit.h"
 #include "capture/probe_files.h"
+#include "capture/sweep_files.h"
 #include "common/error.h"
 
 namespace vt::calibrate {
@@ -65,13 +66,23 @@ RasterReadback RecordingProbeDrawer::triangles(const ClipSpaceMesh& mesh, Viewpo
                                                DepthFormat format) {
   return record(folder_, next_, trianglesRequest(mesh, viewport, format)).raster;
 }
-void RecordingProbeDrawer::finish() { capture::writeProbeFolder(folder_, {next_, identityHere()}); }
+std::optional<std::vector<uint32_t>> RecordingProbeDrawer::sweep(const FunctionSweep& sweep) {
+  std::vector<uint32_t> bits = drawFunctionSweepHere(sweep);
+  capture::writeSweepResult(folder_, sweep, bits);
+  sweeps_.push_back(sweep);
+  return bits;
+}
+void RecordingProbeDrawer::finish() {
+  if (!sweeps_.empty()) capture::writeSweepRequests(folder_, sweeps_);
+  capture::writeProbeFolder(folder_, {next_, identityHere()});
+}
 
 RecordedProbeDrawer::RecordedProbeDrawer(std::filesystem::path folder)
     : folder_(std::move(folder)) {
   const capture::ProbeFolder description = capture::readProbeFolder(folder_);
   count_ = description.count;
   identity_ = description.identity;
+  sweeps_ = capture::readSweepRequests(folder_);
 }
 
 std::vector<glm::vec4> RecordedProbeDrawer::shader(const ShaderProbe& probe) {
@@ -83,6 +94,18 @@ std::vector<glm::u8vec4> RecordedProbeDrawer::colour(const ShaderProbe& probe) {
 RasterReadback RecordedProbeDrawer::triangles(const ClipSpaceMesh& mesh, Viewport viewport,
                                               DepthFormat format) {
   return replay(folder_, count_, next_, trianglesRequest(mesh, viewport, format)).raster;
+}
+
+std::optional<std::vector<uint32_t>> RecordedProbeDrawer::sweep(const FunctionSweep& sweep) {
+  for (const FunctionSweep& listed : sweeps_) {
+    if (listed.name != sweep.name) continue;
+    if (listed != sweep)
+      throw InputError(folder_ / "sweeps.json", "sweep " + sweep.name +
+                                                    " is not the one this vt calibrate asks for "
+                                                    "(drawn for another version?)");
+    return capture::readSweepResult(folder_, sweep);
+  }
+  return std::nullopt;
 }
 
 std::optional<std::vector<uint8_t>> RecordedProbeDrawer::denseAlphaTable() {

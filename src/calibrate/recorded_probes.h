@@ -20,12 +20,14 @@ class RecordingProbeDrawer : public ProbeDrawer {
   RasterReadback triangles(const ClipSpaceMesh& mesh, Viewport viewport,
                            DepthFormat format) override;
   ProbeIdentity identity() override { return identityHere(); }
-  // Writes probes.json with the number of draws recorded.
+  std::optional<std::vector<uint32_t>> sweep(const FunctionSweep& sweep) override;
+  // Writes probes.json with the number of draws recorded, and sweeps.json with the sweeps.
   void finish();
 
  private:
   std::filesystem::path folder_;
   size_t next_ = 0;
+  std::vector<FunctionSweep> sweeps_;
 };
 
 class RecordedProbeDrawer : public ProbeDrawer {
@@ -40,11 +42,15 @@ class RecordedProbeDrawer : public ProbeDrawer {
   // The folder's bc3-alpha.u8 (scripts/bc3-alpha-probe.py table), if it has one; InputError
   // naming it when it is not 65,536 x 6 bytes.
   std::optional<std::vector<uint8_t>> denseAlphaTable() override;
+  // The sweep's results, where the folder's sweeps.json asks for it and its file is there;
+  // InputError when the folder's sweep of that name asks for other inputs (another version).
+  std::optional<std::vector<uint32_t>> sweep(const FunctionSweep& sweep) override;
 
  private:
   std::filesystem::path folder_;
   size_t count_ = 0, next_ = 0;
   ProbeIdentity identity_;
+  std::vector<FunctionSweep> sweeps_;  // what the folder's sweeps.json lists
 };
 
 }  // namespace vt::calibrate

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include "calibrate/float_bits.h"
+#include "probes/function_sweeps.h"
 #include "probes/probe_draws.h"
 #include "reference/linear_filter.h"
 #include "reference/shader_math.h"
@@ -26,34 +28,70 @@ std::vector<glm::vec4> mathInputs() {
   return inputs;
 }
 
+// What the implementation returned for one function: the probe's samples (one channel of its
+// results), then the pack's sweep of it where there is one (probes/function_sweeps.h).
+struct Returned {
+  const std::vector<glm::vec4>& inputs;
+  const std::vector<glm::vec4>& out;
+  int channel;
+  std::optional<std::vector<uint32_t>> swept;
+  uint32_t first = 0;
+
+  uint64_t size() const { return out.size() + (swept ? swept->size() : 0); }
+  // f(x, result) for every input, the samples first.
+  template <class F>
+  void visit(F&& f) const {
+    for (size_t i = 0; i < out.size(); ++i) f(inputs[i].x, out[i][channel]);
+    if (!swept) return;
+    for (uint32_t i = 0; i < swept->size(); ++i)
+      f(std::bit_cast<float>(first + i), std::bit_cast<float>((*swept)[i]));
+  }
+};
+
+Returned returned(const std::vector<glm::vec4>& inputs, const std::vector<glm::vec4>& out,
+                  int channel, const std::string& function) {
+  Returned r{inputs, out, channel, std::nullopt};
+  for (const FunctionSweep& sweep : functionSweeps())
+    if (sweep.name == function) {
+      r.swept = functionSweep(sweep);
+      r.first = sweep.first;
+    }
+  return r;
+}
+
 void fitLog2AndSqrt(ShaderMathFits& m) {
   ShaderProbe probe;
   probe.body = "result = vec4(log2(x.x), sqrt(x.x), x.z * x.y, 0.0);";
   probe.inputs = mathInputs();
   probe.inputs[0].z = 0x1p-130f;  // a denormal, times the 1 in y
   const std::vector<glm::vec4> out = runShaderProbe(probe);
-  const uint64_t n = out.size();
-  const std::string inputs = "log2 and sqrt of 65,536 positive floats of every exponent";
+  const Returned logs = returned(probe.inputs, out, 0, "log2");
+  const Returned roots = returned(probe.inputs, out, 1, "sqrt");
+  std::string inputs = "log2 and sqrt of 65,536 positive floats of every exponent";
+  if (logs.swept) inputs += ", log2 of every float of [0.5, 2)";
+  if (roots.swept) inputs += ", sqrt of every float of [1, 4)";
 
-  m.log2 = {"log2", inputs, n};
-  for (const auto& [form, name] : kLog2FormNames) {
+  m.log2 = {"log2", inputs, logs.size()};
+  for (const auto& member : kLog2FormNames) {
     uint64_t missed = 0;
-    for (size_t i = 0; i < n; ++i)
-      missed += !sameBits(out[i].x, reference::log2Of(form, probe.inputs[i].x));
-    m.log2.members.push_back({std::string(name), missed});
+    logs.visit(
+        [&](float x, float y) { missed += !sameBits(y, reference::log2Of(member.value, x)); });
+    m.log2.members.push_back({std::string(member.name), missed});
   }
   m.log2Form = kLog2FormNames[m.log2.choose()].value;
-  uint64_t notSqrt = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const float x = probe.inputs[i].x;
+  logs.visit([&](float x, float y) {
     const double exact = std::log2(static_cast<double>(x));
     if (x >= 0.5f && x <= 2.0f)
-      m.log2Absolute = std::max(m.log2Absolute, std::fabs(out[i].x - exact));
+      m.log2Absolute = std::max(m.log2Absolute, std::fabs(y - exact));
     else
-      m.log2Ulps = std::max(m.log2Ulps, ulpsFrom(out[i].x, exact));
-    notSqrt += !sameBits(out[i].y, std::sqrt(x));
-    m.sqrtUlps = std::max(m.sqrtUlps, ulpsFrom(out[i].y, std::sqrt(static_cast<double>(x))));
-  }
+      m.log2Ulps = std::max(m.log2Ulps, ulpsFrom(y, exact));
+  });
+  uint64_t notSqrt = 0;
+  roots.visit([&](float x, float y) {
+    notSqrt += !sameBits(y, std::sqrt(x));
+    m.sqrtUlps = std::max(m.sqrtUlps, ulpsFrom(y, std::sqrt(static_cast<double>(x))));
+  });
+  const uint64_t nSqrt = roots.size();
   if (m.log2.pinned) {
     m.log2.finding = m.log2.chosen + ", bit for bit (" + m.log2.memberSummary() + ")";
     m.log2Absolute = m.log2Ulps = 0;
@@ -65,12 +103,12 @@ void fitLog2AndSqrt(ShaderMathFits& m) {
                      std::to_string(m.log2Absolute) + ", outside " + std::to_string(m.log2Ulps) +
                      " ulps";
   }
-  m.sqrt = {"sqrt", inputs, n, {{"ieee", notSqrt}}};
+  m.sqrt = {"sqrt", inputs, nSqrt, {{"ieee", notSqrt}}};
   m.sqrt.choose();
   m.sqrt.unit = "ulps";
   if (!m.sqrt.pinned) m.sqrt.largestResidual = m.sqrtUlps;
   m.sqrt.finding = notSqrt == 0 ? "IEEE sqrt, correctly rounded, bit for bit"
-                                : differ(notSqrt, n) + " from IEEE sqrt, largest " +
+                                : differ(notSqrt, nSqrt) + " from IEEE sqrt, largest " +
                                       std::to_string(m.sqrtUlps) + " ulps";
   if (notSqrt == 0) m.sqrtUlps = 0;
 

@@ -25,6 +25,7 @@
 #include "capture/capture_writer.h"
 #include "capture/probe_files.h"
 #include "capture/streamed_flight.h"
+#include "capture/sweep_files.h"
 #include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/json_text.h"
@@ -98,10 +99,18 @@ void probes(const std::string& requests, const std::string& output) {
     writeProbeRequest(staging.path(), i, request);
     writeProbeResult(staging.path(), i, request, drawHere(request));
   }
+  // The probe pack's sweeps, where the requests ask for them (capture/sweep_files.h).
+  const std::vector<calibrate::FunctionSweep> sweeps = readSweepRequests(requests);
+  uint64_t swept = 0;
+  for (const calibrate::FunctionSweep& sweep : sweeps) {
+    writeSweepResult(staging.path(), sweep, calibrate::drawFunctionSweepHere(sweep));
+    swept += sweep.count;
+  }
+  if (!sweeps.empty()) writeSweepRequests(staging.path(), sweeps);
   writeProbeFolder(staging.path(), {count, calibrate::identityHere()});
   staging.commit();
-  std::cout << "vt-capture: drew " << count << " probe draws on " << context.renderer()
-            << ": wrote " << output << "\n";
+  std::cout << "vt-capture: drew " << count << " probe draws and " << sweeps.size() << " sweeps of "
+            << swept << " inputs on " << context.renderer() << ": wrote " << output << "\n";
 }
 
 void scenes(const ViewOptions& o, const std::string& textureName, const std::string& output) {

@@ -15,8 +15,9 @@
 //                            colour: four bytes per input; triangles: per pixel (bottom row
 //                            first) int32 triangle, float32 s, t, ds/dx, dt/dx, ds/dy, dt/dy, depth
 // and probes.json: {"format": "vt-probes", "version": 1, "count", "renderer", "version_string",
-// "vendor"}. Every size is checked against its limit and against the request before anything is
-// allocated; a file that disagrees is refused with its name.
+// "vendor"}; the function sweeps beside them are capture/sweep_files.h's. Every size is checked
+// against its limit and against the request before anything is allocated; a file that disagrees
+// is refused with its name.
 
 #include <cstddef>
 #include <filesystem>

@@ -2,6 +2,7 @@
 
 #include <epoxy/gl.h>
 
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <random>
@@ -219,6 +220,18 @@ RasterReadback drawTriangles(const ClipSpaceMesh& mesh, Viewport viewport, Depth
 }
 
 ProbeIdentity probeIdentity() { return currentDrawer ? currentDrawer->identity() : identityHere(); }
+
+std::optional<std::vector<uint32_t>> functionSweep(const FunctionSweep& sweep) {
+  std::optional<std::vector<uint32_t>> bits =
+      currentDrawer ? currentDrawer->sweep(sweep) : drawFunctionSweepHere(sweep);
+  // The pack's functions have finite exact results over their intervals (function_sweeps.h).
+  for (size_t i = 0; bits && i < bits->size(); ++i)
+    if (const float v = std::bit_cast<float>((*bits)[i]); !std::isfinite(v))
+      refuseValue("the sweep of " + sweep.expression + " over every float from " +
+                      std::to_string(std::bit_cast<float>(sweep.first)),
+                  i, "at input", v);
+  return bits;
+}
 
 std::optional<std::vector<uint8_t>> denseAlphaTable() {
   return currentDrawer ? currentDrawer->denseAlphaTable() : std::nullopt;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "format/texture_description.h"
+#include "probes/function_sweeps.h"
 #include "render/render_settings.h"
 #include "scene/clip_space_mesh.h"
 
@@ -82,6 +83,8 @@ class ProbeDrawer {
   virtual ProbeIdentity identity() = 0;
   // A dense BC3 alpha table measured beside the probes (decoding_fit.h), if the drawer has one.
   virtual std::optional<std::vector<uint8_t>> denseAlphaTable() { return std::nullopt; }
+  // A function sweep drawn beside the probes (probes/function_sweeps.h), if the drawer has it.
+  virtual std::optional<std::vector<uint32_t>> sweep(const FunctionSweep&) { return std::nullopt; }
 };
 
 // The set drawer's dense BC3 alpha table; none without a drawer (this context draws no such

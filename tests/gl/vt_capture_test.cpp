@@ -6,7 +6,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <fstream>
+#include <functional>
+#include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "build/synthetic_texture.h"
@@ -176,6 +180,79 @@ TEST_F(VtCapture, ProbesDrawnByItGiveTheModelCalibrateMeasures) {
       vt({"calibrate", "--probes", (dir_ / "drawn").string(), "-o", (dir_ / "cut.json").string()});
   EXPECT_EQ(cut.exitCode, 1);
   EXPECT_THAT(cut.err, HasSubstr("probe-0001.result"));
+}
+
+// The probe pack's sweeps: log2 of every float of [0.5, 2) and sqrt of every float of [1, 4),
+// drawn by vt-capture from the pixel index and fitted offline, pin llvmpipe's log2 and sqrt over
+// all 2^24 inputs each; one value changed after drawing unpins log2 and is counted, and a NaN is
+// refused naming the rule.
+TEST_F(VtCapture, SweepsOfEveryFloatPinLlvmpipesLog2AndSqrt) {
+  if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
+  const test::CommandResult here = vt({"calibrate", "--record-probes", (dir_ / "requests").string(),
+                                       "-o", (dir_ / "here.json").string()});
+  ASSERT_EQ(here.exitCode, 0) << here.err;
+  // The kit carries the requests only (gpu-kit.sh leaves out results and sweeps' .delta files).
+  std::filesystem::create_directory(dir_ / "kit");
+  for (const auto& entry : std::filesystem::directory_iterator(dir_ / "requests")) {
+    const std::string name = entry.path().filename().string();
+    if (!name.ends_with(".result") && !name.ends_with(".delta") && name != "probes.json")
+      std::filesystem::copy_file(entry.path(), dir_ / "kit" / name);
+  }
+  const test::CommandResult drawn =
+      capture({"probes", (dir_ / "kit").string(), "-o", (dir_ / "drawn").string()});
+  ASSERT_EQ(drawn.exitCode, 0) << drawn.err;
+  EXPECT_THAT(drawn.out, HasSubstr("and 2 sweeps of 33554432 inputs on llvmpipe"));
+  const auto fit = [&](const char* name) {
+    const test::CommandResult fitted =
+        vt({"calibrate", "--probes", (dir_ / "drawn").string(), "-o", (dir_ / name).string()});
+    EXPECT_EQ(fitted.exitCode, 0) << fitted.err;
+    const nlohmann::json model = nlohmann::json::parse(test::slurp(dir_ / name));
+    std::map<std::string, nlohmann::json> byName;
+    for (const nlohmann::json& p : model["calibration"]["parameters"])
+      byName[p["parameter"].get<std::string>()] = p;
+    return byName;
+  };
+  auto parameters = fit("elsewhere.json");
+  EXPECT_EQ(test::slurp(dir_ / "here.json"), test::slurp(dir_ / "elsewhere.json"));
+  for (const char* function : {"log2", "sqrt"}) {
+    SCOPED_TRACE(function);
+    EXPECT_TRUE(parameters[function]["pinned"].get<bool>());
+    EXPECT_EQ(parameters[function]["probes"].get<uint64_t>(), 65536u + (1u << 24));
+    EXPECT_THAT(parameters[function]["probe"].get<std::string>(),
+                HasSubstr("log2 of every float of [0.5, 2), sqrt of every float of [1, 4)"));
+  }
+
+  // The log2 sweep's file decoded, changed and coded again (capture/sweep_files.h).
+  const std::filesystem::path log2File = dir_ / "drawn" / "sweep-log2.delta";
+  const auto change = [&](const std::function<uint32_t(uint32_t)>& into) {
+    std::vector<uint32_t> values(std::filesystem::file_size(log2File) / 4);
+    std::ifstream(log2File, std::ios::binary)
+        .read(reinterpret_cast<char*>(values.data()),
+              static_cast<std::streamsize>(values.size() * 4));
+    for (size_t i = 1; i < values.size(); ++i) values[i] += values[i - 1];
+    values[5000000] = into(values[5000000]);
+    for (size_t i = values.size() - 1; i > 0; --i) values[i] -= values[i - 1];
+    std::ofstream(log2File, std::ios::binary | std::ios::trunc)
+        .write(reinterpret_cast<const char*>(values.data()),
+               static_cast<std::streamsize>(values.size() * 4));
+  };
+  // log2 of input 5,000,000 (in [0.5, 1)) one ulp off: log2 is no longer pinned, by one value.
+  change([](uint32_t bits) { return bits + 1; });
+  parameters = fit("changed.json");
+  EXPECT_FALSE(parameters["log2"]["pinned"].get<bool>());
+  EXPECT_EQ(parameters["log2"]["mismatches"].get<uint64_t>(), 1u);
+  EXPECT_THAT(parameters["log2"]["finding"].get<std::string>(),
+              HasSubstr("polynomial_fused 1 of 16842752 differ"));
+
+  // NaN in its place.
+  change([](uint32_t) { return std::bit_cast<uint32_t>(std::numeric_limits<float>::quiet_NaN()); });
+  const test::CommandResult refused =
+      vt({"calibrate", "--probes", (dir_ / "drawn").string(), "-o", (dir_ / "nan.json").string()});
+  EXPECT_EQ(refused.exitCode, 1);
+  EXPECT_THAT(refused.err, HasSubstr("breaks a rule (GL 4.5 core, section 2.3.4"));
+  EXPECT_THAT(refused.err, HasSubstr("the sweep of log2(x) over every float from 0.5"));
+  EXPECT_THAT(refused.err, HasSubstr("returned NaN at input 5000000"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "nan.json"));
 }
 
 TEST_F(VtCapture, BadArgumentsAndInputs) {

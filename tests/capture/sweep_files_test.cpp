@@ -1,0 +1,116 @@
+// The probe pack's sweep files (capture/sweep_files.h): results delta-coded and read back equal,
+// requests read strictly, every malformed file refused naming itself and the field.
+
+#include "capture/sweep_files.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "calibrate/recorded_probes.h"
+#include "capture/probe_files.h"
+#include "common/error.h"
+#include "test_support.h"
+
+namespace vt {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+using ::testing::ThrowsMessage;
+
+const calibrate::FunctionSweep kSweep = {"log2", "log2(x)", 0x3f000000u,
+                                         2 * calibrate::kSweepWidth};
+
+TEST(SweepFiles, ResultsAreDeltaCodedAndReadBackEqual) {
+  test::ScratchDirectory dir;
+  std::vector<uint32_t> bits(kSweep.count);
+  for (size_t i = 0; i < bits.size(); ++i) bits[i] = static_cast<uint32_t>(i * 2654435761u);
+  bits[5] = 0xffffffffu;  // a difference that wraps around 2^32
+  bits[6] = 0;
+  capture::writeSweepResult(dir.path(), kSweep, bits);
+  // The file holds the first value, then each value minus its predecessor.
+  std::ifstream in(dir / "sweep-log2.delta", std::ios::binary);
+  uint32_t stored[7];
+  in.read(reinterpret_cast<char*>(stored), sizeof stored);
+  EXPECT_EQ(stored[0], bits[0]);
+  EXPECT_EQ(stored[1], bits[1] - bits[0]);
+  EXPECT_EQ(stored[6], 1u);  // 0 - 0xffffffff, mod 2^32
+  EXPECT_EQ(capture::readSweepResult(dir.path(), kSweep), bits);
+  EXPECT_EQ(capture::readSweepResult(dir.path(), {"sqrt", "sqrt(x)", 0, 4096}), std::nullopt);
+
+  capture::writeSweepRequests(dir.path(), {kSweep, {"sqrt", "sqrt(x)", 0x3f800000u, 4096}});
+  const auto read = capture::readSweepRequests(dir.path());
+  ASSERT_EQ(read.size(), 2u);
+  EXPECT_EQ(read[0], kSweep);
+  EXPECT_EQ(read[1].name, "sqrt");
+}
+
+TEST(SweepFiles, AFolderWithoutSweepsAsksForNone) {
+  test::ScratchDirectory dir;
+  EXPECT_TRUE(capture::readSweepRequests(dir.path()).empty());
+}
+
+TEST(SweepFiles, MalformedRequestsAreRefusedNamingTheFileAndTheField) {
+  const std::string head = R"j({"format": "vt-sweeps", "version": 1, "sweeps": [)j";
+  const std::string log2 = R"j({"name": "log2", "expression": "log2(x)", "first": 1056964608, )j";
+  const std::pair<std::string, std::string> cases[] = {
+      {R"j({"format": "vt-sweeps", "version": 1, "sweeps": [], "extra": 1})j",
+       "field extra is not a field of a sweep here"},
+      {R"j({"format": "vt-sweeps", "version": 2, "sweeps": []})j", "not a vt-sweeps description"},
+      {head + log2 + R"j("count": 4095}]})j",
+       "sweep 0: field count is not a whole number from 4096 to 33554432"},
+      {head + log2 + R"j("count": 6000}]})j", "sweep 0: field count is not a multiple of 4096"},
+      {head + R"j({"name": "log2", "expression": "x", "first": 4294963200, "count": 8192}]})j",
+       "sweep 0: the inputs run past the last float bits"},
+      {head + R"j({"name": "../x", "expression": "x", "first": 0, "count": 4096}]})j",
+       "sweep 0: field name is not 1 to 32 of a-z, 0-9 and _"},
+      {head + log2 + R"j("count": 4096, "colour": 1}]})j",
+       "sweep 0: field colour is not a field of a sweep here"},
+      {head + log2 + R"j("count": 4096}, )j" + log2 + R"j("count": 8192}]})j",
+       "sweep 1: a second sweep named log2"},
+      {head + R"j({"name": 7}]})j", "sweeps.json: "},
+  };
+  for (const auto& [text, problem] : cases) {
+    SCOPED_TRACE(text);
+    test::ScratchDirectory dir;
+    std::ofstream(dir / "sweeps.json") << text;
+    EXPECT_THAT([&] { capture::readSweepRequests(dir.path()); },
+                ThrowsMessage<InputError>(
+                    AllOf(StartsWith((dir / "sweeps.json").string() + ": "), HasSubstr(problem))));
+  }
+}
+
+TEST(SweepFiles, AResultOfTheWrongSizeIsRefusedBeforeItIsRead) {
+  test::ScratchDirectory dir;
+  std::ofstream(dir / "sweep-log2.delta") << std::string(4 * kSweep.count + 4, 'x');
+  EXPECT_THAT([&] { capture::readSweepResult(dir.path(), kSweep); },
+              ThrowsMessage<InputError>(
+                  AllOf(StartsWith((dir / "sweep-log2.delta").string() + ": "),
+                        HasSubstr("asks for 32772 bytes, the limit is 32768 bytes"))));
+  std::ofstream(dir / "sweep-log2.delta", std::ios::trunc) << std::string(12, 'x');
+  EXPECT_THAT([&] { capture::readSweepResult(dir.path(), kSweep); },
+              ThrowsMessage<InputError>(AllOf(StartsWith((dir / "sweep-log2.delta").string()),
+                                              HasSubstr("12 bytes, expected 32768"))));
+}
+
+// A folder drawn for another version (its log2 sweep asks for other inputs) is refused by the
+// replay, naming its sweeps.json.
+TEST(SweepFiles, ASweepForOtherInputsIsRefusedByTheReplay) {
+  test::ScratchDirectory dir;
+  capture::writeProbeFolder(dir.path(), {1, {"r", "v", "w"}});
+  calibrate::FunctionSweep other = calibrate::functionSweeps().front();
+  other.count /= 2;
+  capture::writeSweepRequests(dir.path(), {other});
+  calibrate::RecordedProbeDrawer drawer(dir.path());
+  EXPECT_THAT([&] { drawer.sweep(calibrate::functionSweeps().front()); },
+              ThrowsMessage<InputError>(
+                  AllOf(StartsWith((dir / "sweeps.json").string() + ": "),
+                        HasSubstr("sweep log2 is not the one this vt calibrate asks for"))));
+  EXPECT_EQ(drawer.sweep(calibrate::functionSweeps().back()), std::nullopt);  // sqrt: not listed
+}
+
+}  // namespace
+}  // namespace vt
