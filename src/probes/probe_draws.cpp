@@ -75,6 +75,22 @@ std::string fragmentSource(const ShaderProbe& probe, const char* outputType) {
          probe.body + "\n  outResult = result;\n}\n";
 }
 
+std::string sweepFragment(const FunctionSweep& sweep) {
+  return "#version 450 core\n"
+         "layout(location = 0) uniform uint uFirst;\n"
+         "layout(location = 0) out uint outBits;\n"
+         "void main() {\n"
+         "  uint i = uint(gl_FragCoord.y) * " +
+         std::to_string(kSweepWidth) +
+         "u + uint(gl_FragCoord.x);\n"
+         "  precise float x = uintBitsToFloat(uFirst + i);\n"
+         "  precise float result = " +
+         sweep.expression +
+         ";\n"
+         "  outBits = floatBitsToUint(result);\n"
+         "}\n";
+}
+
 // Draws the probe into a `format` target and reads it back as `readFormat`/`readType`.
 template <class Texel>
 std::vector<Texel> drawProbe(const ShaderProbe& probe, GLenum format, GLenum readFormat,
@@ -152,6 +168,37 @@ std::vector<glm::vec4> drawShaderProbeHere(const ShaderProbe& probe) {
 
 std::vector<glm::u8vec4> drawColourProbeHere(const ShaderProbe& probe) {
   return drawProbe<glm::u8vec4>(probe, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, "vec4");
+}
+
+std::vector<uint32_t> drawFunctionSweepHere(const FunctionSweep& sweep) {
+  if (sweep.count == 0 || sweep.count % kSweepWidth != 0 || sweep.count > kMaxSweepCount ||
+      uint64_t{sweep.first} + sweep.count > (uint64_t{1} << 32))
+    throw std::invalid_argument("function sweep " + sweep.name + ": not whole rows of inputs");
+  const auto width = static_cast<GLsizei>(kSweepWidth);
+  const auto height = static_cast<GLsizei>(sweep.count / kSweepWidth);
+  const GlProgram program(kFullScreenVertex, sweepFragment(sweep));
+  Names names;
+  const GLuint target = names.texture(GL_R32UI, width, height);
+  const GLuint framebuffer = names.framebuffer();
+  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, target, 0);
+  GLuint array = 0;
+  glCreateVertexArrays(1, &array);
+  names.arrays.push_back(array);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_DITHER);
+  glUseProgram(program.id());
+  glProgramUniform1ui(program.id(), 0, sweep.first);
+  glBindVertexArray(array);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  std::vector<uint32_t> bits(sweep.count);
+  glGetTextureImage(target, 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                    static_cast<GLsizei>(bits.size() * sizeof(uint32_t)), bits.data());
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glUseProgram(0);
+  requireNoError("function sweep");
+  return bits;
 }
 
 ProbeIdentity identityHere() {
