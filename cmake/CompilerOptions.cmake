@@ -31,25 +31,23 @@ if(VT_SANITIZE)
                                                       -fno-sanitize-recover=all -fno-omit-frame-pointer)
   target_link_options(vt_compile_options INTERFACE -fsanitize=address,undefined)
 endif()
-# The fuzz programs of tests/fuzz (scripts/fuzz.sh): every library instrumented for libFuzzer's
-# coverage, AddressSanitizer and UndefinedBehaviorSanitizer; libFuzzer itself comes with clang.
+# The fuzz programs of tests/fuzz (scripts/fuzz.sh): every library built with AddressSanitizer and
+# UndefinedBehaviorSanitizer, and those the programs read their inputs with (target property
+# VT_FUZZ_COVERAGE, tests/fuzz/CMakeLists.txt) instrumented for libFuzzer's coverage too;
+# libFuzzer itself comes with clang. With VT_SANITIZE as well, one build serves the sanitizer tests
+# and the fuzzing (scripts/test.sh): the coverage instrumentation changes no result, and leaving
+# out the oracle's rasterization and shading, the command line and the tests keeps the sanitizer
+# tests' time within a few percent of a build without it (docs/benchmarks.md).
 option(VT_FUZZ "Build the libFuzzer programs of tests/fuzz (clang only)" OFF)
 if(VT_FUZZ)
   if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
     message(FATAL_ERROR "VT_FUZZ needs clang: configure with -DCMAKE_CXX_COMPILER=clang++")
   endif()
-  target_compile_options(vt_compile_options INTERFACE -fsanitize=fuzzer-no-link,address,undefined
-                         -fno-sanitize-recover=all -fno-omit-frame-pointer -gline-tables-only)
-  target_link_options(vt_compile_options INTERFACE -fsanitize=address,undefined)
+  target_compile_options(vt_compile_options INTERFACE -gline-tables-only
+    $<$<BOOL:$<TARGET_PROPERTY:VT_FUZZ_COVERAGE>>:-fsanitize=fuzzer-no-link>)
+  if(NOT VT_SANITIZE)
+    target_compile_options(vt_compile_options INTERFACE -fsanitize=address,undefined
+                                                        -fno-sanitize-recover=all -fno-omit-frame-pointer)
+    target_link_options(vt_compile_options INTERFACE -fsanitize=address,undefined)
+  endif()
 endif()
-
-# Fused multiply-add instructions for the oracle's hot code when the build machine has them: its
-# std::fma calls become single instructions instead of calls into libm. Results are identical
-# (fma is exact either way, and contraction stays off); only speed changes. A binary built so runs
-# only on CPUs with FMA, so this follows the machine that builds it.
-include(CheckCXXSourceRuns)
-set(CMAKE_REQUIRED_FLAGS -mfma)
-check_cxx_source_runs("int main() { return __builtin_cpu_supports(\"fma\") ? 0 : 1; }" VT_HOST_HAS_FMA)
-unset(CMAKE_REQUIRED_FLAGS)
-option(VT_USE_FMA_INSTRUCTIONS "Compile the oracle with -mfma (default: when this machine has FMA)"
-       ${VT_HOST_HAS_FMA})

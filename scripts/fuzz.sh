@@ -5,18 +5,19 @@
 # it, and the models, probes and configurations under data/), runs every program for
 # VT_FUZZ_SECONDS (60) seconds, two at a time, and prints for each the executions and the
 # coverage libFuzzer reached. Fails on any crash, hang, out-of-memory, leak or sanitizer report;
-# the input that caused it stays in build-fuzz/crashes/<target>/, to be kept as
+# the input that caused it stays in the build folder's crashes/<target>/, to be kept as
 # tests/fuzz/regressions/<target>/<name> once the parser is fixed.
 #   scripts/fuzz.sh [TARGET...]          (default: every target of tests/fuzz/CMakeLists.txt)
-# Needs the Release `vt` (VT_EXECUTABLE, default build/src/vt) for the seeds; scripts/test.sh
-# runs this after its Release suite.
+# Needs the Release `vt` (VT_EXECUTABLE, default build/src/vt) for the seeds. VT_FUZZ_BUILD_DIR
+# names a build folder configured already with -DVT_FUZZ=ON (scripts/test.sh's sanitizer build,
+# which builds the programs beside the tests) instead of build-fuzz.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 seconds=${VT_FUZZ_SECONDS:-60}
 parallel=${VT_FUZZ_PARALLEL:-2}
 vt=${VT_EXECUTABLE:-build/src/vt}
-folder=build-fuzz
+folder=${VT_FUZZ_BUILD_DIR:-build-fuzz}
 all_targets=(vt_file bsp pk3 obj layout camera_path needbuffer capture precision_model probe_folder
   config shard)
 targets=("${@:-${all_targets[@]}}")
@@ -26,13 +27,15 @@ openarena=${VT_OPENARENA_DIR:-$(bash scripts/fetch-openarena.sh)}
 start=$SECONDS
 echo "== configure and build $folder (clang, libFuzzer, ASan, UBSan)"
 mkdir -p "$folder"
-# A unity build, as scripts/test.sh's (which says why), at -O1 as libFuzzer's documentation
-# advises for its programs: it compiles faster, and most of the fuzzing time is the sanitizers'.
-cmake -S . -B "$folder" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ \
-  "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" \
-  -DVT_FUZZ=ON -DVT_BUILD_TESTS=OFF -DVT_BUILD_BENCHMARKS=OFF -DCMAKE_UNITY_BUILD=ON \
-  -DCMAKE_UNITY_BUILD_BATCH_SIZE=8 >"$folder/configure.log" 2>&1 ||
-  { cat "$folder/configure.log"; exit 1; }
+if [[ -z ${VT_FUZZ_BUILD_DIR:-} ]]; then
+  # A unity build, as scripts/test.sh's (which says why), at -O1 as libFuzzer's documentation
+  # advises for its programs: it compiles faster, and most of the fuzzing time is the sanitizers'.
+  cmake -S . -B "$folder" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ \
+    "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" \
+    -DVT_FUZZ=ON -DVT_BUILD_TESTS=OFF -DVT_BUILD_BENCHMARKS=OFF -DCMAKE_UNITY_BUILD=ON \
+    -DCMAKE_UNITY_BUILD_BATCH_SIZE=8 >"$folder/configure.log" 2>&1 ||
+    { cat "$folder/configure.log"; exit 1; }
+fi
 cmake --build "$folder" --parallel "$(nproc)" --target "${targets[@]/#/fuzz_}"
 built=$SECONDS
 

@@ -4,6 +4,7 @@
 # Fits the GPU's precision model from its probes (OUT/model.json; `vt calibrate` exits 1 and names
 # the rule where the GPU breaks one), judges the captures under that model and under gl45
 # (OUT/judged-*/summary.json) and prints a Markdown table of the verdicts and the frame times.
+# VT_JUDGE_GL45=0 judges under the fitted model only (the GPU kit's test, which checks those rows).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 out=$(cd "${1:?usage: scripts/gpu-judge.sh OUT [KIT]}" && pwd)
@@ -31,6 +32,7 @@ for set in captures compressed/captures-bc1 compressed/captures-bc3a q3dm6ish st
   ln -sf "$kit/data/$texture" "$unpacked/$set/$texture"
   models=(gl45)
   [[ -f $out/model.json ]] && models=("$out/model.json" gl45)
+  [[ ${VT_JUDGE_GL45:-1} == 0 && -f $out/model.json ]] && models=("$out/model.json")
   for model in "${models[@]}"; do
     name=$(basename "$model" .json)
     report=$out/judged-$label-$name

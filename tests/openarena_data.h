@@ -21,9 +21,19 @@ inline std::optional<std::filesystem::path> openArenaFolder() {
   return std::nullopt;
 }
 
-// `vt retexture q3dm6ish` into `folder`/q3 and `vt build` of its layout into `folder`/q3.vt.
+// `vt retexture q3dm6ish` into `folder`/q3 and `vt build` of its layout into `folder`/q3.vt. Where
+// VT_Q3DM6ISH_DIR names the folder the ctest fixture made them in once for every test
+// (tests/openarena/shared_q3dm6ish.sh), links to those instead: the tests only read them.
 inline void retextureAndBuildQ3dm6ish(const std::filesystem::path& packages,
                                       const std::filesystem::path& folder) {
+  if (const char* shared = std::getenv("VT_Q3DM6ISH_DIR")) {
+    const std::filesystem::path made(shared);
+    if (std::filesystem::is_directory(made / "q3") && std::filesystem::is_regular_file(made / "q3.vt")) {
+      std::filesystem::create_directory_symlink(made / "q3", folder / "q3");
+      std::filesystem::create_symlink(made / "q3.vt", folder / "q3.vt");
+      return;
+    }
+  }
   const std::string out = (folder / "q3").string();
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"retexture", "q3dm6ish", "--packages", packages.string(), "-o",

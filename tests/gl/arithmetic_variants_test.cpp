@@ -165,8 +165,9 @@ void expectRefused(const test::CommandResult& calibration, const std::filesystem
 }
 
 TEST_F(ArithmeticVariant, NearestSamplingForLinearIsRefusedNamingTheRule) {
-  expectRefused(calibrate({{"LP_PERF", "no_linear"}}), dir_ / "model.json", "GL_LINEAR");
-  EXPECT_THAT(calibrate({{"LP_PERF", "no_linear"}}).err, HasSubstr("section 8.14.2"));
+  const test::CommandResult calibration = calibrate({{"LP_PERF", "no_linear"}});
+  expectRefused(calibration, dir_ / "model.json", "GL_LINEAR");
+  EXPECT_THAT(calibration.err, HasSubstr("section 8.14.2"));
 }
 
 TEST_F(ArithmeticVariant, NoDepthTestIsRefusedNamingTheRule) {
