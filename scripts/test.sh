@@ -84,7 +84,12 @@ fi
 # the Release build, every other one in the sanitizer build at the end.
 mapfile -t release_only < <(sed -e 's/#.*//' -e 's/[[:space:]]*$//' tests/release-only.txt |
   grep -v '^$')
-tests=$(ctest --test-dir build -N | sed -n 's/^ *Test *#[0-9]*: //p')
+# A build folder's test names (a parameterised test's listed name ends in its parameter's bytes,
+# which differ between builds: left out).
+test_names() {
+  ctest --test-dir "$1" -N | sed -n -e 's/  # GetParam() = .*//' -e 's/^ *Test *#[0-9]*: //p'
+}
+tests=$(test_names build)
 for pattern in "${release_only[@]}"; do
   grep -Eq "^($pattern)" <<<"$tests" ||
     { echo "tests/release-only.txt: '$pattern' matches no test" >&2; exit 1; }
@@ -118,16 +123,14 @@ TSAN_OPTIONS=halt_on_error=1 timed build-tsan-tests ctest --test-dir build-tsan 
 # tests/CMakeLists.txt says why).
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-# The same build holds the libFuzzer programs (-DVT_FUZZ=ON: every library also compiled with
-# libFuzzer's coverage counters, which change no result), so that the fuzzing needs no build of its
-# own.
+# The same build holds the libFuzzer programs (-DVT_FUZZ=ON: the programs and the libraries that
+# read their inputs also compiled with libFuzzer's coverage counters, which change no result), so
+# that the fuzzing needs no build of its own.
 build_suite build-sanitize -DCMAKE_CXX_COMPILER=clang++ -DVT_SANITIZE=ON -DVT_FUZZ=ON \
   -DVT_BUILD_BENCHMARKS=OFF "-DCMAKE_CXX_FLAGS_RELEASE=$sanitizer_optimization"
 # Every test runs in one of the two passes: a Release test that tests/release-only.txt does not
 # name must be one the sanitizer build defines.
-# (A parameterised test's listed name ends in its parameter's bytes, which differ between builds.)
-test_names() { ctest --test-dir "$1" -N | sed -n -e 's/  # GetParam() = .*//' -e 's/^ *Test *#[0-9]*: //p'; }
-missing=$(comm -23 <(test_names build | grep -Ev "$release_only_regex" | sort) \
+missing=$(comm -23 <(grep -Ev "$release_only_regex" <<<"$tests" | sort) \
   <(test_names build-sanitize | sort))
 if [[ -n $missing ]]; then
   echo "tests in neither pass (name them in tests/release-only.txt): $missing" >&2

@@ -28,7 +28,8 @@ inline void retextureAndBuildQ3dm6ish(const std::filesystem::path& packages,
                                       const std::filesystem::path& folder) {
   if (const char* shared = std::getenv("VT_Q3DM6ISH_DIR")) {
     const std::filesystem::path made(shared);
-    if (std::filesystem::is_directory(made / "q3") && std::filesystem::is_regular_file(made / "q3.vt")) {
+    if (std::filesystem::is_directory(made / "q3") &&
+        std::filesystem::is_regular_file(made / "q3.vt")) {
       std::filesystem::create_directory_symlink(made / "q3", folder / "q3");
       std::filesystem::create_symlink(made / "q3.vt", folder / "q3.vt");
       return;

@@ -31,8 +31,8 @@ env -i PATH=/usr/bin:/bin HOME="$work" VT_KIT_SYSTEM_GL=1 LP_NUM_THREADS=2 \
 ls "$work/out"
 # Under the fitted model only: the rows checked below (the gl45 verdicts of captures are checked by
 # CaptureCrosscheck and GpuEvidence).
-VT_JUDGE_GL45=0 VT_BUILD_DIR=$build VT="$vt" bash "$source/scripts/gpu-judge.sh" "$work/out" "$work/kit" |
-  tee "$work/table.md"
+VT_JUDGE_GL45=0 VT_BUILD_DIR=$build VT="$vt" \
+  bash "$source/scripts/gpu-judge.sh" "$work/out" "$work/kit" | tee "$work/table.md"
 
 "$vt" calibrate -o "$work/here.json" >/dev/null
 cmp "$work/here.json" "$work/out/model.json"
