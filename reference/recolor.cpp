@@ -1,5 +1,6 @@
 #include "reference/recolor.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <optional>
@@ -139,17 +140,22 @@ class EntryGroups {
   bool valid_ = false;
 };
 
-}  // namespace
-
-void recolor(const Frame& drawn, std::span<const CacheState* const> caches,
-             const RenderSettings& settings, std::span<std::vector<uint8_t>* const> colors) {
-  const Viewport v = settings.viewport;
+void requireDebugChannels(const Frame& drawn, Viewport v) {
   const size_t pixels = static_cast<size_t>(v.width) * static_cast<size_t>(v.height);
   if (drawn.viewport.width != v.width || drawn.viewport.height != v.height ||
       drawn.uv.size() != pixels || drawn.derivatives.size() != pixels ||
       drawn.triangle.size() != pixels)
     throw std::invalid_argument("recolor: the frame was not drawn with debug channels at " +
                                 std::to_string(v.width) + " x " + std::to_string(v.height));
+}
+
+}  // namespace
+
+void recolor(const Frame& drawn, std::span<const CacheState* const> caches,
+             const RenderSettings& settings, std::span<std::vector<uint8_t>* const> colors) {
+  const Viewport v = settings.viewport;
+  const size_t pixels = static_cast<size_t>(v.width) * static_cast<size_t>(v.height);
+  requireDebugChannels(drawn, v);
   if (caches.size() != colors.size())
     throw std::invalid_argument("recolor: one colour buffer per cache state");
   if (caches.empty()) return;
@@ -221,6 +227,58 @@ void recolor(const Frame& drawn, std::span<const CacheState* const> caches,
       }
     }
   });
+}
+
+void recolorPixels(const Frame& drawn, const CacheState& cache, const RenderSettings& settings,
+                   std::span<const uint32_t> pixels, std::span<uint8_t> rgba) {
+  const Viewport v = settings.viewport;
+  const size_t count = static_cast<size_t>(v.width) * static_cast<size_t>(v.height);
+  requireDebugChannels(drawn, v);
+  if (rgba.size() != pixels.size() * 4)
+    throw std::invalid_argument("recolorPixels: four bytes per pixel listed");
+  const DenormalMode denormals(settings.arithmetic.flushDenormals);
+  Shader shader(&cache, settings.arithmetic);
+  const shader::VtParameters parameters = shaderParameters(
+      cache.description,
+      glm::vec2(static_cast<float>(cache.widthTexels), static_cast<float>(cache.heightTexels)),
+      settings);
+  for (size_t k = 0; k < pixels.size(); ++k) {
+    const size_t i = pixels[k];
+    if (i >= count) throw std::invalid_argument("recolorPixels: a pixel outside the frame");
+    uint8_t* out = rgba.data() + k * 4;
+    if (drawn.triangle[i] < 0) {
+      std::fill_n(out, 4, 0);
+      continue;
+    }
+    const glm::vec4 d = drawn.derivatives[i];
+    const Shader::VtFragment f = shader.vtShadeFragment(
+        drawn.uv[i], shader::vec2(d.x, d.y), shader::vec2(d.z, d.w), parameters);
+    for (int c = 0; c < 4; ++c) out[c] = toUnorm8(f.color[c], settings.arithmetic.colourConversion);
+  }
+}
+
+std::vector<PagesRead> pagesRead(const Frame& drawn, const TextureDescription& description,
+                                 const RenderSettings& settings) {
+  const Viewport v = settings.viewport;
+  requireDebugChannels(drawn, v);
+  std::vector<PagesRead> pages(static_cast<size_t>(v.width) * static_cast<size_t>(v.height));
+  // What a pixel reads depends on the cache's size only through parameters no lookup uses.
+  const shader::VtParameters parameters = shaderParameters(description, glm::vec2(1.0f), settings);
+  constexpr int kRows = 16;
+  const int tasks = (v.height + kRows - 1) / kRows;
+  parallelFor(static_cast<size_t>(tasks), settings.threads, [&](size_t task) {
+    const DenormalMode denormals(settings.arithmetic.flushDenormals);
+    Shader shader(nullptr, settings.arithmetic);  // the lookups read no texel and no entry
+    const int first = static_cast<int>(task) * kRows, last = std::min(v.height, first + kRows);
+    for (size_t i = static_cast<size_t>(first) * static_cast<size_t>(v.width),
+                end = static_cast<size_t>(last) * static_cast<size_t>(v.width);
+         i < end; ++i) {
+      if (drawn.triangle[i] < 0) continue;
+      const Lookups lookups = lookupsOf(shader, drawn.uv[i], drawn.derivatives[i], parameters);
+      pages[i] = {lookups.first, lookups.second, true};
+    }
+  });
+  return pages;
 }
 
 void recolor(const Frame& drawn, const CacheState& cache, const RenderSettings& settings,

@@ -37,4 +37,24 @@ void recolor(const Frame& drawn, std::span<const CacheState* const> caches,
 void recolor(const Frame& drawn, const CacheState& cache, const RenderSettings& settings,
              std::vector<uint8_t>& color);
 
+// The pixels listed (indices py * width + px) of `drawn` under one cache state, one thread: their
+// RGBA8 into rgba[4 k .. 4 k + 3] for pixels[k], the bytes recolor() writes there. For trying
+// many small changes of a cache state (eval/selection_ceiling.h). Throws as recolor() does, and
+// std::invalid_argument when a pixel lies outside the frame or `rgba` is not 4 per pixel.
+void recolorPixels(const Frame& drawn, const CacheState& cache, const RenderSettings& settings,
+                   std::span<const uint32_t> pixels, std::span<uint8_t> rgba);
+
+// The pages a pixel's colour reads through the indirection table (vtShadeFragment): with
+// trilinear filtering the pages under it at levels floor(lod) and the next finer one, else the
+// needed level's page twice. Pixels without geometry read none (`covered` false).
+struct PagesRead {
+  PageId first, second;
+  bool covered = false;
+  bool operator==(const PagesRead&) const = default;
+};
+// For every pixel of `drawn` (drawn with debug channels at settings' viewport); what a pixel
+// reads does not depend on what the cache holds, only on the texture's description and settings.
+std::vector<PagesRead> pagesRead(const Frame& drawn, const TextureDescription& description,
+                                 const RenderSettings& settings);
+
 }  // namespace vt::reference

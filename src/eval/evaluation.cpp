@@ -14,6 +14,7 @@
 #include "eval/flight_run.h"
 #include "eval/frame_plan.h"
 #include "eval/image_metrics.h"
+#include "eval/selection_ceiling.h"
 #include "runtime/needbuffer_scale.h"
 
 namespace vt {
@@ -52,20 +53,32 @@ class SharedViews {
   }
 
   // Draws frame `frameNumber`'s view and the passes of its plans other than the view, each with
-  // every thread, each distinct pass once.
-  void draw(int frameNumber) {
+  // every thread, each distinct pass once. The view is taken from `drawn` when it holds one
+  // (drawView() drew it ahead, in `seconds`).
+  void draw(int frameNumber, Frame* drawn = nullptr, double seconds = 0.0) {
     const auto start = Clock::now();
     plans_.clear();
     for (const FlightConfiguration& c : configurations_)
       plans_.push_back(planFrame(c, settings_.viewport, path_, frameNumber));
-    everything_->draw(toClipSpace(mesh_, path_.at(frameNumber), settings_.viewport), settings_,
-                      view_);
-    viewSeconds_ = secondsSince(start);
+    if (drawn != nullptr && !drawn->triangle.empty()) {
+      std::swap(view_, *drawn);
+      drawn->triangle.clear();
+      viewSeconds_ = seconds;
+    } else {
+      drawView(frameNumber, view_);
+      viewSeconds_ = secondsSince(start);
+    }
     passes_.clear();
     for (const FramePlan& plan : plans_) {
       if (!plan.needPassIsTheView()) drawPass(plan.need);
       if (plan.lookAhead) drawPass(*plan.lookAhead);
     }
+  }
+
+  // Frame `frameNumber`'s view alone, with every page resident and the debug channels.
+  void drawView(int frameNumber, Frame& out) const {
+    everything_->draw(toClipSpace(mesh_, path_.at(frameNumber), settings_.viewport), settings_,
+                      out);
   }
 
   const Frame& view() const { return view_; }
@@ -112,6 +125,7 @@ class SharedViews {
 // each frame, and the previous frame's needbuffer under asynchronous readback).
 struct RunState {
   std::unique_ptr<FlightRun> run;
+  std::unique_ptr<CeilingSelection> ceiling;  // with the ceiling's selection
   std::vector<uint8_t> color;
   std::vector<glm::uvec4> delayedNeed;
   std::vector<float> delayedDepth;
@@ -121,7 +135,8 @@ struct RunState {
 // the needbuffers its configuration reads, then the run's analysis, quality and streaming. Its
 // drawing time is the shared passes' it reads: what drawing the frame once costs.
 void flyFrame(RunState& state, const SharedViews& views, const FramePlan& plan,
-              std::span<const uint8_t> referenceColor, const PreparedReference& reference, int f) {
+              std::span<const uint8_t> referenceColor, const PreparedReference& reference, int f,
+              const Frame* next) {
   double drawSeconds = views.viewSeconds();
   std::span<const glm::uvec4> need = views.view().need;
   std::span<const float> depth = views.view().depth;
@@ -148,14 +163,19 @@ void flyFrame(RunState& state, const SharedViews& views, const FramePlan& plan,
     need = currentNeed;
     depth = currentDepth;
   }
-  state.run->frame(f, plan.previous, plan.camera,
-                   DrawnFrame{.color = state.color,
-                              .need = need,
-                              .depth = depth,
-                              .lookAheadNeed = lookAheadNeed,
-                              .reference = referenceColor,
-                              .preparedReference = &reference},
-                   drawSeconds);
+  DrawnFrame drawn{.color = state.color,
+                   .need = need,
+                   .depth = depth,
+                   .lookAheadNeed = lookAheadNeed,
+                   .reference = referenceColor,
+                   .preparedReference = &reference};
+  if (state.ceiling && next != nullptr)
+    drawn.select = [&](std::span<const StreamRequest> requests,
+                       const VirtualTextureRuntime& runtime) {
+      return state.ceiling->choose(runtime.cacheState(), *next, requests,
+                                   state.run->configuration().budget);
+    };
+  state.run->frame(f, plan.previous, plan.camera, drawn, drawSeconds);
 }
 
 }  // namespace
@@ -203,18 +223,39 @@ Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const 
   const std::unique_ptr<const CacheRenderer> recolorer = makeCacheRenderer();
   FlightOptions flight;
   flight.settings = settings;
+  // The ceiling's runs pick pages with the next frame's view: each view is then drawn a frame
+  // ahead (once still).
+  flight.drawsNextView = true;
+  const bool drawAhead =
+      std::any_of(configurations.begin(), configurations.end(), [](const FlightConfiguration& c) {
+        return c.selection != PageSelection::kHeuristic;
+      });
+  Frame next;
+  double nextSeconds = 0.0;
   Evaluation evaluation;
   std::vector<RunState> states(configurations.size());
   double sharedSeconds = 0.0;
   for (int f = 0; f < frames; ++f) {
-    views.draw(f);
+    views.draw(f, &next, nextSeconds);
     sharedSeconds += views.totalSeconds();
+    const bool ahead = drawAhead && f + 1 < frames;
+    if (ahead) {
+      const auto aheadStart = Clock::now();
+      views.drawView(f + 1, next);
+      nextSeconds = secondsSince(aheadStart);
+    }
     if (f == 0)  // the initial cache states need the first view's needbuffer
-      for (size_t r = 0; r < configurations.size(); ++r)
+      for (size_t r = 0; r < configurations.size(); ++r) {
         states[r].run = std::make_unique<FlightRun>(
             reader, configurations[r], flight,
             reducedViewport(settings.viewport, configurations[r].needScaleLog2),
             initialPages(reader, configurations[r], views.view().need, settings.need8));
+        if (configurations[r].selection != PageSelection::kHeuristic)
+          states[r].ceiling = std::make_unique<CeilingSelection>(
+              reader, settings, configurations[r].ceilingCandidates,
+              configurations[r].selection == PageSelection::kCeiling ? CeilingPool::kRequests
+                                                                     : CeilingPool::kNextFrame);
+      }
     const auto recolorStart = Clock::now();
     std::vector<const CacheState*> caches;
     std::vector<std::vector<uint8_t>*> colors;
@@ -240,7 +281,8 @@ Evaluation evaluate(const VirtualTextureReader& reader, const Mesh& mesh, const 
       evaluation.encoding.push_back(prepared.compare(
           ImageView{settings.viewport.width, settings.viewport.height, views.view().color}));
     parallelFor(states.size(), threads, [&](size_t r) {
-      flyFrame(states[r], views, views.plan(r), referenceColor, prepared, f);
+      flyFrame(states[r], views, views.plan(r), referenceColor, prepared, f,
+               ahead ? &next : nullptr);
     });
     report(static_cast<uint64_t>(f + 1) * configurations.size());
   }

@@ -96,6 +96,9 @@ struct FlightOptions {
   // Flies frames 0 to lastFrame only (a shard of a golden check stops at its last frame); -1:
   // every frame of the path. The frames flown are those of the whole flight.
   int lastFrame = -1;
+  // The driver draws each frame's next view and picks pages with it (DrawnFrame::select): only
+  // then may a configuration's selection be the ceiling (an evaluation; eval/evaluation.h).
+  bool drawsNextView = false;
 };
 
 FlightResult fly(const VirtualTextureReader& reader, const Mesh& mesh, const CameraPath& path,

@@ -32,6 +32,8 @@ std::string FlightConfiguration::label() const {
   if (latency > 0) add("latency=", std::to_string(latency));
   if (cacheBytes > 0) add("cache=", std::to_string(cacheBytes) + "B");
   if (seed > 0) add("seed=", std::to_string(seed));
+  if (selection != PageSelection::kHeuristic)
+    add("", std::string(nameOf(kPageSelectionNames, selection)));
   return text;
 }
 
@@ -56,6 +58,10 @@ nlohmann::json FlightConfiguration::toJson() const {
   // Only where set: every configuration written before byte budgets reads the same.
   if (budgetBytes > 0) object["budget_bytes"] = budgetBytes;
   if (cacheBytes > 0) object["cache_bytes"] = cacheBytes;
+  if (selection != PageSelection::kHeuristic) {
+    object["selection"] = std::string(nameOf(kPageSelectionNames, selection));
+    object["ceiling_candidates"] = ceilingCandidates;
+  }
   return object;
 }
 
@@ -136,10 +142,22 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
       if (!mode)
         throw std::invalid_argument("'readback' must be " + joinedNames(kReadbackNames, " or "));
       c.asyncReadback = *mode;
+    } else if (key == "selection") {
+      const auto selection = findByName(kPageSelectionNames, text());
+      if (!selection)
+        throw std::invalid_argument("'selection' must be " +
+                                    joinedNames(kPageSelectionNames, " or "));
+      c.selection = *selection;
+    } else if (key == "ceiling_candidates") {
+      c.ceilingCandidates = count(1, 4096);
     } else {
       throw std::invalid_argument("unknown configuration key '" + key + "'");
     }
   }
+  if (c.selection != PageSelection::kHeuristic && (c.budgetBytes > 0 || c.latency > 0))
+    throw std::invalid_argument(
+        "'selection' ceiling picks pages for the next frame: it needs a budget in pages "
+        "('budget') and no 'budget_bytes' or 'latency'");
   return c;
 }
 

@@ -20,6 +20,17 @@
 
 namespace vt {
 
+// How the pages to stream are chosen: by the heuristic and ancestor strategy (the runtime's own
+// requests), or by the ceiling of selection, which looks at the next frame
+// (eval/selection_ceiling.h; only an evaluation, which draws every view, can fly it), among the
+// pages the requests name and their ancestors, or among every page the next frame reads.
+enum class PageSelection { kHeuristic, kCeiling, kCeilingNextFrame };
+inline constexpr EnumNames<PageSelection, 3> kPageSelectionNames = {{
+    {PageSelection::kHeuristic, "heuristic"},
+    {PageSelection::kCeiling, "ceiling"},
+    {PageSelection::kCeilingNextFrame, "ceiling_next_frame"},
+}};
+
 struct FlightConfiguration {
   std::string name;     // label in tables and plots; empty: label() describes the settings
   Heuristic heuristic;  // pixelsum; runtime/page_priority.h
@@ -44,6 +55,10 @@ struct FlightConfiguration {
   bool trilinearParents = false;  // the parent of a needed page counts as needed too: trilinear
                                   // filtering reads it (runtime/virtual_texture_runtime.h)
   uint32_t seed = 0;  // of the `random` factor: runs differing only in it are independent draws
+  // JSON "selection"; the ceiling needs a budget in pages and no latency (it picks for the next
+  // frame), and tries at most ceilingCandidates pages a frame (JSON "ceiling_candidates").
+  PageSelection selection = PageSelection::kHeuristic;
+  uint32_t ceilingCandidates = 32;
 
   std::string label() const;  // the name, or a short description of the settings
   nlohmann::json toJson() const;

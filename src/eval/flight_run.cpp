@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <stdexcept>
 
 #include "common/elapsed_time.h"
 #include "runtime/needbuffer_scale.h"
@@ -60,6 +61,10 @@ FlightRun::FlightRun(const VirtualTextureReader& reader, const FlightConfigurati
     : configuration_(configuration),
       options_(options),
       needViewport_(needViewport) {
+  if (configuration.selection != PageSelection::kHeuristic && !options.drawsNextView)
+    throw std::invalid_argument("configuration '" + configuration.label() +
+                                "': selection ceiling picks pages with the next frame's view, "
+                                "which only vt eval draws");
   RuntimeOptions settings = runtimeOptions(reader, configuration);
   settings.keepAnalysis = options.keepAnalysis;
   // The cache's texels decoded as the oracle's arithmetic decodes: its frames need no second
@@ -95,11 +100,12 @@ void FlightRun::frame(int frameNumber, const Camera& previous, const Camera& cur
   frame.statistics.streamed = streamedBefore_;
   frame.statistics.evicted = evictedBefore_;
   // The first frame under asynchronous readback has no needbuffer yet: nothing to ask for.
-  const std::vector<StreamRequest> requests =
+  std::vector<StreamRequest> requests =
       drawn.need.empty()
           ? std::vector<StreamRequest>{}
           : runtime_->analyze(drawn.need, drawn.depth, needViewport.width, needViewport.height,
                               settings.need8, frameIndex, frame.statistics, prediction);
+  if (drawn.select) requests = drawn.select(requests, *runtime_);
   times.analysis += secondsSince(analysisStart);
 
   if (!drawn.reference.empty()) {

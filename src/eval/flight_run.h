@@ -29,6 +29,11 @@ struct DrawnFrame {
   // The needbuffer's size when it is not the run's (an interactive window was resized); 0 x 0: the
   // run's.
   Viewport needViewport{};
+  // Replaces the analysis's requests (most important first) before they are streamed: the
+  // ceiling of selection (eval/selection_ceiling.h), which the evaluation drives; empty: kept.
+  std::function<std::vector<StreamRequest>(std::span<const StreamRequest>,
+                                           const VirtualTextureRuntime&)>
+      select{};
 };
 
 class FlightRun {

@@ -118,6 +118,66 @@ TEST_F(Recolor, ANeedOnlyPassGivesTheNeedbufferAndDepthOfTheFullPass) {
     }
 }
 
+// Shading a list of pixels gives recolor()'s bytes at those pixels, pixels without geometry and
+// repeated ones included; and the pages each pixel reads are those its indirection lookups name:
+// removing every page but the root and those pages' ancestors leaves its colour as it was.
+TEST_F(Recolor, ListedPixelsGetRecolorsBytesAndReadOnlyThePagesNamed) {
+  const ResidentTexture everything(*reader_);
+  const std::vector<CacheState> states = caches();
+  for (const bool trilinear : {true, false}) {
+    RenderSettings settings;
+    settings.viewport = {83, 61};
+    settings.trilinear = trilinear;
+    const ClipSpaceMesh mesh = toClipSpace(boxRoom(), boxRoomPath().at(3), settings.viewport);
+    RenderSettings debug = settings;
+    debug.debugChannels = true;
+    Frame drawn = renderFrame(mesh, everything, debug);
+    // The room fills the screen: a few pixels are marked as showing no geometry.
+    for (size_t i = 0; i < drawn.triangle.size(); i += 29) drawn.triangle[i] = -1;
+    std::vector<uint32_t> pixels;
+    for (uint32_t i = 0; i < drawn.triangle.size(); i += 7) pixels.push_back(i);
+    pixels.push_back(pixels.front());
+    for (const CacheState& cache : states) {
+      std::vector<uint8_t> whole;
+      recolor(drawn, cache, settings, whole);
+      std::vector<uint8_t> listed(pixels.size() * 4);
+      recolorPixels(drawn, cache, settings, pixels, listed);
+      for (size_t k = 0; k < pixels.size(); ++k)
+        ASSERT_TRUE(std::equal(listed.begin() + 4 * k, listed.begin() + 4 * k + 4,
+                               whole.begin() + 4 * pixels[k]))
+            << "pixel " << pixels[k] << " trilinear " << trilinear;
+    }
+    const std::vector<PagesRead> reads = pagesRead(drawn, reader_->description(), settings);
+    ASSERT_EQ(reads.size(), drawn.triangle.size());
+    int checked = 0;
+    for (uint32_t i = 0; i < reads.size(); i += 97) {
+      EXPECT_EQ(reads[i].covered, drawn.triangle[i] >= 0);
+      if (!reads[i].covered) continue;
+      const bool finest = reads[i].first.level == reader_->description().finestLevel();
+      EXPECT_EQ(reads[i].first == reads[i].second, !trilinear || finest);
+      std::vector<uint64_t> kept;
+      for (const PageId read : {reads[i].first, reads[i].second})
+        for (uint32_t level = 0; level <= read.level; ++level)
+          kept.push_back(absoluteIndex(ancestorAt(read, level)));
+      std::sort(kept.begin(), kept.end());
+      kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+      // The same frames for the pages kept, every other stored page after them in the second.
+      std::vector<uint64_t> all = kept;
+      for (uint64_t p = 0; p < pageCount(reader_->description().finestLevel()); ++p)
+        if (reader_->contains(fromAbsoluteIndex(p)) &&
+            !std::binary_search(kept.begin(), kept.end(), p))
+          all.push_back(p);
+      const uint32_t pixel[] = {i};
+      std::vector<uint8_t> alone(4), among(4);
+      recolorPixels(drawn, makeCacheState(*reader_, kept, 37, 37), settings, pixel, alone);
+      recolorPixels(drawn, makeCacheState(*reader_, all, 37, 37), settings, pixel, among);
+      EXPECT_EQ(alone, among) << "pixel " << i;
+      ++checked;
+    }
+    EXPECT_GT(checked, 5);
+  }
+}
+
 TEST_F(Recolor, RefusesAFrameWithoutDebugChannels) {
   RenderSettings settings;
   settings.viewport = {16, 16};
