@@ -5,6 +5,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "runtime/error_gain_order.h"
+
 namespace vt {
 namespace {
 
@@ -107,6 +109,7 @@ std::vector<StreamRequest> prioritizePages(const NeedBufferAnalysis& analysis,
     priority[absolute] = value;
   }
 
+  if (options.ancestors == AncestorStrategy::kGain) return orderByErrorGain(priority, table, noise);
   if (options.ancestors != AncestorStrategy::kNone) {
     // Ancestors get the sum of their children's priorities: finest levels first, so that each
     // page's priority is complete before it passes it on.

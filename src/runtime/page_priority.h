@@ -20,6 +20,8 @@
 //   extern  coarser levels before finer ones; within a level, priority decides
 //   with NoiseValue skipping (extern), an ancestor is added only through a child whose NoiseValue
 //   (against that ancestor) reaches the threshold (default: the texture's mean NoiseValue).
+//   gain    beyond the thesis: greedily by the error each page removes, the heuristic's value of
+//           each needed page weighting its pixels (runtime/error_gain_order.h)
 
 #include <cstdint>
 #include <functional>
@@ -34,12 +36,13 @@
 
 namespace vt {
 
-enum class AncestorStrategy { kNone, kIntern, kExtern };
+enum class AncestorStrategy { kNone, kIntern, kExtern, kGain };
 
-inline constexpr EnumNames<AncestorStrategy, 3> kAncestorStrategyNames = {{
+inline constexpr EnumNames<AncestorStrategy, 4> kAncestorStrategyNames = {{
     {AncestorStrategy::kNone, "none"},
     {AncestorStrategy::kIntern, "intern"},
     {AncestorStrategy::kExtern, "extern"},
+    {AncestorStrategy::kGain, "gain"},
 }};
 
 struct PriorityOptions {
@@ -60,7 +63,7 @@ struct StreamRequest {
 using NoiseValues = std::function<float(PageId)>;
 
 // Throws std::invalid_argument naming an unknown strategy.
-AncestorStrategy parseAncestorStrategy(const std::string& name);  // none, intern, extern
+AncestorStrategy parseAncestorStrategy(const std::string& name);  // none, intern, extern, gain
 std::string toString(AncestorStrategy strategy);
 
 // The value of each factor of the heuristic for a page the analysis holds, in the heuristic's

@@ -109,7 +109,7 @@ TEST(ConfigurationsFile, RefusesEachMistakeWithItsMessage) {
             "configuration 1: heuristic: 'luck' is not one of random, pixelsum, distance, "
             "weightedpixel, hotspot, noisevalue, mipgap");
   EXPECT_EQ(configurationsError(R"({"configurations": [{"ancestors": "sideways"}]})"),
-            "configuration 1: ancestor strategy 'sideways' is not one of none, intern, extern");
+            "configuration 1: ancestor strategy 'sideways' is not one of none, intern, extern, gain");
   EXPECT_EQ(configurationsError(R"({"configurations": []})"),
             "expected a non-empty list of configurations");
   EXPECT_EQ(configurationsError(R"({"configurations": {}})"),

@@ -177,5 +177,39 @@ TEST_F(PagePriority, ResidentPagesAreNotRequested) {
             (std::vector<uint64_t>{11}));
 }
 
+// Ancestor streaming by expected error removed (runtime/error_gain_order.h), worked by hand. The
+// root is resident; q1 (2, 2) and q2 (3, 2) on level 2 share the parent p (1, 1), q3 (0, 0) has
+// the parent r (0, 0); 10 pixels each. NoiseValues: q1 and q2 1, p 2, q3 3, r 0.5. Errors
+// through the root: q1, q2 1 + 2 = 3, q3 3 + 0.5 = 3.5. First gains: p 10 (3 - 1) x 2 = 40, q3
+// 35, q1 and q2 30 each, r 5. After p: q1 and q2 gain 10 (1 - 0) each, q3 still 35. After q3: r
+// gains nothing (q3 is served on its own level). q1 and q2 tie; the smaller index goes first.
+TEST_F(PagePriority, GainTakesTheParentOfTwoBeforeEachChildAndPricesPagesAgainAfterEachPick) {
+  const PageId q1{2, 2, 2}, q2{3, 2, 2}, q3{0, 0, 2}, p{1, 1, 1}, r{0, 0, 1};
+  const auto need = needBuffer({q1, q2, q3, std::nullopt, std::nullopt, std::nullopt,
+                                std::nullopt, std::nullopt});
+  auto analysis = analyzeNeedBuffer(need, {}, 4, 2, {});
+  for (auto& [page, statistics] : analysis.pages) statistics.pixels = 10;
+  const std::map<uint64_t, float> noise = {{absoluteIndex(q1), 1.0f}, {absoluteIndex(q2), 1.0f},
+                                           {absoluteIndex(p), 2.0f},  {absoluteIndex(q3), 3.0f},
+                                           {absoluteIndex(r), 0.5f}};
+  const NoiseValues noiseValue = [&](PageId page) {
+    const auto found = noise.find(absoluteIndex(page));
+    return found == noise.end() ? 0.0f : found->second;
+  };
+  PriorityOptions options;
+  options.ancestors = AncestorStrategy::kGain;
+  const auto requests = prioritizePages(analysis, table_, noiseValue, options);
+  EXPECT_EQ(order(requests),
+            (std::vector<uint64_t>{absoluteIndex(p), absoluteIndex(q3), absoluteIndex(q1),
+                                   absoluteIndex(q2), absoluteIndex(r)}));
+  std::vector<double> gains;
+  for (const StreamRequest& request : requests) gains.push_back(request.priority);
+  EXPECT_EQ(gains, (std::vector<double>{40.0, 35.0, 10.0, 10.0, 0.0}));
+  // The thesis's strategies know no error: PixelSum alone gives the three pages one priority.
+  options.ancestors = AncestorStrategy::kNone;
+  EXPECT_EQ(order(prioritizePages(analysis, table_, noiseValue, options)),
+            (std::vector<uint64_t>{absoluteIndex(q3), absoluteIndex(q1), absoluteIndex(q2)}));
+}
+
 }  // namespace
 }  // namespace vt
