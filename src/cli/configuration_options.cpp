@@ -8,6 +8,7 @@
 #include "cli/size_argument.h"
 #include "common/error.h"
 #include "common/json_text.h"
+#include "eval/configurations_file.h"
 #include "runtime/needbuffer_scale.h"
 #include "scene/box_room.h"
 #include "scene/obj_mesh.h"
@@ -34,7 +35,7 @@ Mesh FlightSceneArguments::loadMesh() const { return mesh.empty() ? boxRoom() : 
 std::string FlightSceneArguments::sceneName() const { return mesh.empty() ? "box room" : mesh; }
 
 struct ConfigurationOptions::Values {
-  std::string config, heuristic = "pixelsum", ancestors = "none", lookAhead = "none",
+  std::string config, configName, heuristic = "pixelsum", ancestors = "none", lookAhead = "none",
                       hotSpot = "shifted", needScale = "1", readback = "sync";
   uint32_t budget = 10, latency = 0, lockedLevels = 0, initialLevels = 3, frames = 16;
   uint64_t budgetBytes = 0, cacheBytes = 0;
@@ -45,9 +46,15 @@ struct ConfigurationOptions::Values {
 ConfigurationOptions::ConfigurationOptions(CLI::App* command)
     : values_(std::make_shared<Values>()), command_(command) {
   Values& v = *values_;
-  command->add_option("--config", v.config,
-                      "Configuration (.json, the keys of the options below); options given as "
-                      "well override it");
+  CLI::Option* config =
+      command->add_option("--config", v.config,
+                          "Configuration (.json, the keys of the options below); options given "
+                          "as well override it");
+  command
+      ->add_option("--config-name", v.configName,
+                   "With --config naming a configurations file (vt eval's --configs, e.g. "
+                   "data/chapter4/beyond.json): its configuration of this name")
+      ->needs(config);
   command->add_option("--budget", v.budget, "Pages streamed per frame (thesis 4.1.1)")
       ->check(wholeNumbersIn(0, 1 << 20))
       ->capture_default_str();
@@ -127,7 +134,9 @@ std::filesystem::path ConfigurationOptions::file() const { return values_->confi
 FlightConfiguration ConfigurationOptions::configuration() const {
   const Values& v = *values_;
   FlightConfiguration base;
-  if (!v.config.empty()) {
+  if (!v.configName.empty()) {
+    base = loadNamedConfiguration(v.config, v.configName);
+  } else if (!v.config.empty()) {
     try {
       base = FlightConfiguration::fromJson(readJsonFile(v.config, "configuration"), base);
     } catch (const nlohmann::json::exception& e) {

@@ -1,8 +1,9 @@
 #pragma once
 // The command-line options that make one FlightConfiguration (eval/flight_configuration.h), shared
 // by `vt fly`, `vt inspect` and `vt golden generate`: the same names as the JSON keys, with
-// dashes. `--config FILE` reads a configuration from JSON instead; options given as well
-// override its values.
+// dashes. `--config FILE` reads a configuration from JSON instead, or with `--config-name NAME`
+// the configuration of that name from a configurations file (eval/configurations_file.h);
+// options given as well override its values.
 
 #include <CLI/CLI.hpp>
 #include <filesystem>

@@ -2,7 +2,8 @@
 // finding out why a configuration streamed what it streamed. Per frame: the rendered image, the
 // reference (every needed page resident), their difference, the needbuffer by level, the level
 // each needed page resolves to, the cache atlas, the statistics, the head of the priority queue
-// with each page's heuristic terms, and the pages streamed for the next frame.
+// with each page's heuristic terms, and the pages streamed for the next frame; with --against,
+// a second configuration flown over the same path beside the first.
 
 #include <iostream>
 #include <memory>
@@ -11,6 +12,7 @@
 #include "cli/configuration_options.h"
 #include "cli/size_argument.h"
 #include "common/output_path.h"
+#include "eval/configurations_file.h"
 #include "workflows/inspect_to_page.h"
 
 namespace vt {
@@ -20,6 +22,7 @@ void addInspectCommand(CLI::App& app) {
     FlightSceneArguments scene;
     std::string output = "inspect.html";
     int first = 0, last = -1, every = 1, queue = 24, atlasSide = 512;
+    std::string against, againstName;
   };
   auto o = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand(
@@ -38,11 +41,21 @@ void addInspectCommand(CLI::App& app) {
   command->add_option("--atlas-side", o->atlasSide, "Largest side of the cache atlas image")
       ->check(CLI::Range(16, 8192))
       ->capture_default_str();
+  command->add_option("--against", o->against,
+                      "A configurations file (vt eval's --configs): fly its configuration named "
+                      "by --against-name too and show the two side by side");
+  command->add_option("--against-name", o->againstName,
+                      "The configuration of the --against file shown beside the first");
   command->add_option("-o,--output", o->output, "HTML file")->capture_default_str();
   command->callback([o, configurationOptions] {
     std::vector<std::filesystem::path> inputs = o->scene.inputs();
     inputs.push_back(configurationOptions->file());
+    inputs.push_back(o->against);
+    if (o->against.empty() != o->againstName.empty())
+      throw CLI::ValidationError("--against", "--against and --against-name go together");
     requireOutputFile(o->output, inputs);
+    std::optional<FlightConfiguration> against;
+    if (!o->against.empty()) against = loadNamedConfiguration(o->against, o->againstName);
     const VirtualTextureReader reader(o->scene.texture);
     inspectToPage(reader,
                   Inspection{.texture = o->scene.texture,
@@ -51,6 +64,7 @@ void addInspectCommand(CLI::App& app) {
                              .mesh = o->scene.loadMesh(),
                              .path = o->scene.cameraPath(),
                              .configuration = configurationOptions->configuration(),
+                             .against = against,
                              .screen = parseSize(o->scene.size),
                              .screenText = o->scene.size,
                              .first = o->first,

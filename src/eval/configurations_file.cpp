@@ -84,6 +84,17 @@ ConfigurationsFile loadConfigurationsFile(const std::filesystem::path& file) {
   }
 }
 
+FlightConfiguration loadNamedConfiguration(const std::filesystem::path& file,
+                                           const std::string& name) {
+  const ConfigurationsFile loaded = loadConfigurationsFile(file);
+  std::string names;
+  for (const FlightConfiguration& c : loaded.configurations) {
+    if (c.label() == name) return c;
+    names += (names.empty() ? "'" : ", '") + c.label() + "'";
+  }
+  throw InputError(file, "no configuration named '" + name + "' (it holds " + names + ")");
+}
+
 std::vector<FlightConfiguration> configurationProduct(const ConfigurationLists& lists,
                                                       const FlightConfiguration& base) {
   std::vector<FlightConfiguration> configurations;

@@ -32,6 +32,12 @@ ConfigurationsFile parseConfigurationsFile(const nlohmann::json& root);
 // Throws InputError naming `file` and what is wrong.
 ConfigurationsFile loadConfigurationsFile(const std::filesystem::path& file);
 
+// The configuration named `name` in the configurations file `file`, as `vt eval` would fly it
+// (its defaults applied). Throws InputError naming `file` and what is wrong, or the names it
+// holds when none is `name`.
+FlightConfiguration loadNamedConfiguration(const std::filesystem::path& file,
+                                           const std::string& name);
+
 // Comma-separated lists of settings, as `vt eval --heuristic pixelsum,random --budget 5,10` gives
 // them; empty items are skipped, an empty list is an error.
 struct ConfigurationLists {

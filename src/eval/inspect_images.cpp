@@ -46,6 +46,27 @@ InspectImage differenceImage(Viewport viewport, std::span<const uint8_t> got,
   return image;
 }
 
+InspectImage comparisonImage(const std::string& name, Viewport viewport, std::span<const uint8_t> a,
+                             std::span<const uint8_t> b, std::span<const uint8_t> want) {
+  InspectImage image{name, viewport.width, viewport.height, {}};
+  image.rgba.assign(static_cast<size_t>(viewport.width) * viewport.height * 4, 255);
+  for (int row = 0; row < viewport.height; ++row)
+    for (int x = 0; x < viewport.width; ++x) {
+      const size_t from = (flippedRow(viewport, row) + static_cast<size_t>(x)) * 4;
+      int da = 0, db = 0;
+      for (size_t c = 0; c < 3; ++c) {
+        da = std::max(da, std::abs(int{a[from + c]} - int{want[from + c]}));
+        db = std::max(db, std::abs(int{b[from + c]} - int{want[from + c]}));
+      }
+      const auto level = static_cast<uint8_t>(255.0 * std::min(1.0, std::abs(da - db) / 32.0));
+      uint8_t* out = image.rgba.data() + (static_cast<size_t>(row) * viewport.width + x) * 4;
+      out[0] = da > db ? level : 0;  // B nearer: magenta
+      out[1] = da < db ? level : 0;  // A nearer: green
+      out[2] = da > db ? level : 0;
+    }
+  return image;
+}
+
 InspectImage needbufferImage(Viewport viewport, std::span<const glm::uvec4> need, bool need8) {
   Frame frame;
   frame.viewport = viewport;

@@ -9,9 +9,13 @@
 //                  page or its best resident ancestor), same hues; the shader samples that level
 //   cache atlas    the cache texture, shrunk by whole factors to at most `maxSide` pixels a side,
 //                  with each frame's outline in its resident page's level hue
+//   A against B    where two configurations' frames differ from the reference by different
+//                  amounts: green where A is nearer (brighter by how much, over 0..32 of 255 in
+//                  the largest channel difference), magenta where B is, black where they tie
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "eval/inspect_page.h"
@@ -27,5 +31,7 @@ InspectImage needbufferImage(Viewport viewport, std::span<const glm::uvec4> need
 InspectImage residentLevelImage(Viewport viewport, std::span<const glm::uvec4> need, bool need8,
                                 const CacheState& cache);
 InspectImage cacheAtlasImage(const CacheState& cache, int maxSide);
+InspectImage comparisonImage(const std::string& name, Viewport viewport, std::span<const uint8_t> a,
+                             std::span<const uint8_t> b, std::span<const uint8_t> want);
 
 }  // namespace vt

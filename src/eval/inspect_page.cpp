@@ -48,9 +48,31 @@ json pairsJson(const std::vector<std::pair<std::string, std::string>>& pairs) {
   return array;
 }
 
-// Queue rows are arrays [page, level, x, y, priority, streamed, term values...] under the frame's
-// term names, the union of the requests' terms in order of first appearance (null where a request
-// lacks one): a queue has thousands of rows, and names once per frame keep the page small.
+// Queue rows are arrays [page, level, x, y, priority, streamed, term values...] under the
+// queue's term names, the union of the requests' terms in order of first appearance (null where a
+// request lacks one): a queue has thousands of rows, and names once per queue keep the page small.
+json queueJson(const InspectQueue& queue) {
+  std::vector<std::string> terms;
+  for (const InspectRequest& request : queue.queue)
+    for (const InspectTerm& term : request.terms)
+      if (std::find(terms.begin(), terms.end(), term.name) == terms.end())
+        terms.push_back(term.name);
+  json rows = json::array();
+  for (const InspectRequest& request : queue.queue) {
+    json row = {request.page, request.level,    request.x,
+                request.y,    request.priority, request.streamed};
+    std::vector<json> values(terms.size());  // null where the request has no such term
+    for (const InspectTerm& term : request.terms)
+      values[std::find(terms.begin(), terms.end(), term.name) - terms.begin()] = term.value;
+    for (json& value : values) row.push_back(std::move(value));
+    rows.push_back(std::move(row));
+  }
+  return {{"label", queue.label},
+          {"terms", terms},
+          {"queue", std::move(rows)},
+          {"streamed", queue.streamed}};
+}
+
 json frameJson(const InspectFrame& frame) {
   json images = json::array();
   for (const InspectImage& image : frame.images)
@@ -58,24 +80,12 @@ json frameJson(const InspectFrame& frame) {
                       {"width", image.width},
                       {"height", image.height},
                       {"src", "data:image/png;base64," + encodeBase64(encodePng(image))}});
-  std::vector<std::string> terms;
-  for (const InspectRequest& request : frame.queue)
-    for (const InspectTerm& term : request.terms)
-      if (std::find(terms.begin(), terms.end(), term.name) == terms.end())
-        terms.push_back(term.name);
-  json queue = json::array();
-  for (const InspectRequest& request : frame.queue) {
-    json row = {request.page, request.level,    request.x,
-                request.y,    request.priority, request.streamed};
-    std::vector<json> values(terms.size());  // null where the request has no such term
-    for (const InspectTerm& term : request.terms)
-      values[std::find(terms.begin(), terms.end(), term.name) - terms.begin()] = term.value;
-    for (json& value : values) row.push_back(std::move(value));
-    queue.push_back(std::move(row));
-  }
-  return {{"frame", frame.frame},        {"statistics", pairsJson(frame.statistics)},
-          {"images", std::move(images)}, {"terms", terms},
-          {"queue", std::move(queue)},   {"streamed", frame.streamed}};
+  json queues = json::array();
+  for (const InspectQueue& queue : frame.queues) queues.push_back(queueJson(queue));
+  return {{"frame", frame.frame},
+          {"statistics", pairsJson(frame.statistics)},
+          {"images", std::move(images)},
+          {"queues", std::move(queues)}};
 }
 
 // '<' only occurs inside JSON strings, where \u003c means the same; without it no "</script" or

@@ -2,7 +2,7 @@
 // The page of the frame-by-frame debugging viewer of a streaming flythrough: one self-contained
 // HTML file (no external resources, so it works from file://) that steps through the frames of a
 // run and shows, per frame, its images, statistics, the priority queue of page requests and the
-// pages streamed for the next frame.
+// pages streamed for the next frame (or, comparing configurations, each one's queue and pages).
 //
 // The run travels as JSON inside <script type="application/json" id="inspect-data">, every '<'
 // written as \u003c so no string of the data ("</script>", "<!--") can end the element; images
@@ -45,12 +45,19 @@ struct InspectRequest {
   bool streamed = false;  // chosen to be streamed this frame
 };
 
+// One configuration's priority queue and what it streamed; a page comparing two
+// configurations shows one of each, side by side, under their labels.
+struct InspectQueue {
+  std::string label;                  // empty for a page of one configuration
+  std::vector<InspectRequest> queue;  // most important first
+  std::vector<uint64_t> streamed;     // absolute page indices streamed for the next frame
+};
+
 struct InspectFrame {
   int frame = 0;  // the flythrough's own frame number, shown next to the index
   std::vector<std::pair<std::string, std::string>> statistics;
   std::vector<InspectImage> images;
-  std::vector<InspectRequest> queue;  // most important first
-  std::vector<uint64_t> streamed;     // absolute page indices streamed for the next frame
+  std::vector<InspectQueue> queues;
 };
 
 struct InspectRun {

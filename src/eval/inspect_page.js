@@ -2,8 +2,8 @@
 // into one self-contained page). It draws everything from the run's JSON with textContent.
 'use strict';
 // run: {title, settings: [[name, value]], frames: [{frame, statistics: [[name, value]],
-//   images: [{name, width, height, src}], terms: [name], queue: [[page, level, x, y, priority,
-//   streamed, ...term values]], streamed: [page]}]}
+//   images: [{name, width, height, src}], queues: [{label, terms: [name], queue: [[page, level, x,
+//   y, priority, streamed, ...term values]], streamed: [page]}]}]}
 const run = JSON.parse(document.getElementById('inspect-data').textContent);
 const frames = run.frames;
 const byId = (id) => document.getElementById(id);
@@ -77,13 +77,30 @@ function showStatistics(frame) {
   }));
 }
 
-function showQueue(frame) {
-  const table = byId('queue');
+// One section per queue (two when configurations are compared), kept from frame to frame.
+function queueSection() {
+  const table = element('table', undefined, 'queue');
+  table.append(element('thead'), element('tbody'));
+  const scroll = element('div', undefined, 'queue-box');
+  scroll.append(table);
+  const section = element('section');
+  section.append(element('h2', undefined, 'streamed-heading'), element('div', undefined, 'streamed'),
+                 element('h2', undefined, 'queue-heading'), scroll);
+  return section;
+}
+
+function showQueue(section, queue) {
+  const of = queue.label ? ` of ${queue.label}` : '';
+  section.querySelector('.streamed-heading').textContent =
+      `Streamed for the next frame${of} (${queue.streamed.length})`;
+  section.querySelector('.streamed').replaceChildren(
+      ...queue.streamed.map((page) => element('span', String(page))));
+  const table = section.querySelector('table');
   const head = element('tr');
-  for (const name of ['#', 'page', 'level', 'x', 'y', 'priority', ...frame.terms, 'streamed'])
+  for (const name of ['#', 'page', 'level', 'x', 'y', 'priority', ...queue.terms, 'streamed'])
     head.append(element('th', name));
   table.tHead.replaceChildren(head);
-  const rows = frame.queue.map(([page, level, x, y, priority, streamed, ...terms], rank) => {
+  const rows = queue.queue.map(([page, level, x, y, priority, streamed, ...terms], rank) => {
     const tr = element('tr', undefined, streamed ? 'streamed' : '');
     tr.append(numberCell(rank + 1), numberCell(page), numberCell(level), numberCell(x),
               numberCell(y), numberCell(priority), ...terms.map(numberCell),
@@ -91,12 +108,15 @@ function showQueue(frame) {
     return tr;
   });
   table.tBodies[0].replaceChildren(...rows);
-  byId('queue-heading').textContent = `Priority queue (${frame.queue.length})`;
+  section.querySelector('.queue-heading').textContent =
+      `Priority queue${of} (${queue.queue.length})`;
 }
 
-function showStreamed(frame) {
-  byId('streamed-heading').textContent = `Streamed for the next frame (${frame.streamed.length})`;
-  byId('streamed').replaceChildren(...frame.streamed.map((page) => element('span', String(page))));
+function showQueues(frame) {
+  const box = byId('queues');
+  while (box.children.length > frame.queues.length) box.lastChild.remove();
+  while (box.children.length < frame.queues.length) box.append(queueSection());
+  frame.queues.forEach((queue, i) => showQueue(box.children[i], queue));
 }
 
 function showFrame(index) {
@@ -109,8 +129,7 @@ function showFrame(index) {
   byId('counter').textContent = `${index + 1} / ${frames.length} \u00b7 frame ${frame.frame}`;
   showImages(frame);
   showStatistics(frame);
-  showQueue(frame);
-  showStreamed(frame);
+  showQueues(frame);
 }
 
 const steps = new Map([['ArrowRight', 1], ['n', 1], ['ArrowLeft', -1], ['p', -1],
@@ -161,12 +180,17 @@ async function checkFrame(index) {
     if (!img.complete || img.naturalWidth !== image.width || img.naturalHeight !== image.height)
       throw new Error(`frame ${index}: image ${image.name} is ${img.naturalWidth}x${img.naturalHeight}`);
   }
-  const rows = document.querySelectorAll('#queue tbody tr').length;
-  if (rows !== frame.queue.length)
-    throw new Error(`frame ${index}: ${rows} queue rows, expected ${frame.queue.length}`);
-  const streamed = document.querySelectorAll('#streamed span').length;
-  if (streamed !== frame.streamed.length)
-    throw new Error(`frame ${index}: ${streamed} streamed pages, expected ${frame.streamed.length}`);
+  const sections = document.querySelectorAll('#queues > section');
+  if (sections.length !== frame.queues.length)
+    throw new Error(`frame ${index}: ${sections.length} queues shown, expected ${frame.queues.length}`);
+  frame.queues.forEach((queue, i) => {
+    const rows = sections[i].querySelectorAll('tbody tr').length;
+    if (rows !== queue.queue.length)
+      throw new Error(`frame ${index}: ${rows} rows in queue ${i}, expected ${queue.queue.length}`);
+    const streamed = sections[i].querySelectorAll('.streamed span').length;
+    if (streamed !== queue.streamed.length)
+      throw new Error(`frame ${index}: ${streamed} pages streamed in queue ${i}, expected ${queue.streamed.length}`);
+  });
 }
 
 window.vtSelfTest = async function () {

@@ -6,6 +6,7 @@
 // with each page's heuristic terms, and the pages streamed for the next frame.
 
 #include <filesystem>
+#include <optional>
 #include <ostream>
 #include <string>
 
@@ -23,6 +24,10 @@ struct Inspection {
   Mesh mesh;
   CameraPath path;
   FlightConfiguration configuration;
+  // A second configuration flown over the same path and shown beside the first: each one's
+  // frames, differences against the reference, resident levels, statistics and queue, and
+  // where each is nearer the reference.
+  std::optional<FlightConfiguration> against;
   Viewport screen{320, 200};
   std::string screenText;               // as given
   int first = 0, last = -1, every = 1;  // the frames shown (last -1: the path's last)

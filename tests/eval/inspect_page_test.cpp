@@ -46,14 +46,16 @@ InspectRun exampleRun(int frameCount) {
     frame.statistics = {{"resident pages", std::to_string(40 + f)}, {"misses", "3"}};
     frame.images = {pattern("rendered", 16, 12, f), pattern("difference", 8, 8, f + 7),
                     pattern("needbuffer", 5, 3, f + 13)};
+    InspectQueue queue;
     for (int r = 0; r < f + 2; ++r) {
       InspectRequest request{uint64_t(1000 + r), uint32_t(r % 3),
                              uint32_t(r),        uint32_t(2 * r),
                              100.0 / (r + 1),    {{"pixelsum", 812.0 - r}, {"noisevalue", 0.3}},
                              r % 2 == 0};
-      if (request.streamed) frame.streamed.push_back(request.page);
-      frame.queue.push_back(request);
+      if (request.streamed) queue.streamed.push_back(request.page);
+      queue.queue.push_back(request);
     }
+    frame.queues.push_back(queue);
     run.frames.push_back(frame);
   }
   return run;
@@ -168,10 +170,12 @@ TEST(InspectPage, ScriptEndInTheDataStaysEscaped) {
   ASSERT_EQ(data["frames"].size(), 3u);
   const nlohmann::json& frame = data["frames"][2];
   EXPECT_EQ(frame["frame"], 102);
-  EXPECT_EQ(frame["terms"], (nlohmann::json{"pixelsum", "noisevalue"}));
-  EXPECT_EQ(frame["queue"].size(), 4u);
-  EXPECT_EQ(frame["queue"][1], (nlohmann::json{1001, 1, 1, 2, 50.0, false, 811.0, 0.3}));
-  EXPECT_EQ(frame["streamed"], (nlohmann::json{1000, 1002}));
+  ASSERT_EQ(frame["queues"].size(), 1u);
+  const nlohmann::json& queue = frame["queues"][0];
+  EXPECT_EQ(queue["terms"], (nlohmann::json{"pixelsum", "noisevalue"}));
+  EXPECT_EQ(queue["queue"].size(), 4u);
+  EXPECT_EQ(queue["queue"][1], (nlohmann::json{1001, 1, 1, 2, 50.0, false, 811.0, 0.3}));
+  EXPECT_EQ(queue["streamed"], (nlohmann::json{1000, 1002}));
   EXPECT_EQ(frame["images"][0]["src"],
             "data:image/png;base64," + encodeBase64(encodePng(run.frames[2].images[0])));
 }
