@@ -20,6 +20,10 @@
 #   --results DIR   where the `vt eval` folders go, emptied first (default $work/results; with
 #                   --miniature, next to the report: REPORT without .md, plus .results)
 #   --vt PATH       use this vt binary: no dependency check, no build
+#   --beyond        only page selection beyond the thesis (data/chapter4/beyond.json: the ceiling
+#                   of selection and the strategy frozen on q3dm6ish's thesis layout) on both
+#                   indoor layouts and the terrain, into data/reports/chapter4-beyond.md
+#                   (scripts/chapter4-beyond-report.py); the full run does it too, last
 #   --miniature     the whole pipeline (retexture, build, eval, report, plots) in under a minute,
 #                   for CI: q3dm6ish only, its storyboard cut to the motions that start within the
 #                   first 40 frames, 160x100, PixelSum 5 and 10 (data/chapter4/miniature.json) on
@@ -38,7 +42,8 @@ report=data/reports/chapter4.md
 results=
 vt=
 miniature=false
-usage='usage: scripts/reproduce-chapter4.sh [--size WxH] [--maps "A B"] [--jobs N] [--report PATH] [--results DIR] [--vt PATH] [--miniature]'
+beyond_only=false
+usage='usage: scripts/reproduce-chapter4.sh [--size WxH] [--maps "A B"] [--jobs N] [--report PATH] [--results DIR] [--vt PATH] [--beyond] [--miniature]'
 while (($#)); do
   case "$1" in
     --size) size=$2; shift 2 ;;
@@ -48,6 +53,7 @@ while (($#)); do
     --results) results=$2; shift 2 ;;
     --vt) vt=$(realpath "$2"); shift 2 ;;
     --miniature) miniature=true; shift ;;
+    --beyond) beyond_only=true; shift ;;
     *) echo "$usage" >&2; exit 2 ;;
   esac
 done
@@ -82,6 +88,8 @@ baseoa=${VT_OPENARENA_DIR:-$(bash scripts/fetch-openarena.sh)}
 work=${VT_DATA_CACHE:-${HOME:-/tmp}/.cache/vt}/chapter4
 if $miniature; then
   results=${results:-${report%.md}.results}  # never over the full run's results
+elif $beyond_only; then
+  results=${results:-$work/results-beyond}
 else
   results=${results:-$work/results}
 fi
@@ -228,7 +236,34 @@ PY
     --reference-texture "$work/$map.vt"
 }
 
+# Page selection beyond the thesis (issue 51): the ceiling and the frozen strategy against
+# PixelSum 5 and 10 on each indoor map's two layouts and on the terrain. The report goes beside
+# chapter4.md.
+beyond() {
+  local map cache
+  for map in $maps; do
+    prepare_map "$map" baseline
+    prepare_map "$map"
+    cache=(--cache-frames "$(cache_of "$map")")
+    evaluate "$work/$map.baseline.vt" "$work/$map.baseline/$map.obj" \
+      "data/paths/$map.storyboard.json" data/chapter4/beyond.json "$map, beyond the thesis" \
+      "$results/$map/beyond-thesis" "${cache[@]}"
+    evaluate "$work/$map.vt" "$work/$map/$map.obj" "data/paths/$map.storyboard.json" \
+      data/chapter4/beyond.json "$map, chart layout, beyond the thesis" \
+      "$results/$map/beyond-charts" "${cache[@]}"
+  done
+  prepare_map islandctf
+  evaluate "$work/islandctf.vt" "$work/islandctf/islandctf.obj" \
+    data/paths/islandctf.storyboard.json data/chapter4/beyond.json \
+    "islandctf, beyond the thesis" "$results/islandctf/beyond-terrain" --cache-frames 40
+  "$python" scripts/chapter4-beyond-report.py "$results" "$(dirname "$report")/chapter4-beyond.md"
+}
+
 rm -rf "$results"
+if $beyond_only; then
+  beyond
+  exit 0
+fi
 if $miniature; then
   prepare_map q3dm6ish
   mkdir -p "$results"
@@ -262,3 +297,4 @@ evaluate "$work/islandctf.vt" "$work/islandctf/islandctf.obj" data/paths/islandc
   data/chapter4/terrain.json "islandctf terrain" "$results/islandctf/terrain"
 
 "$python" scripts/chapter4-report.py "$results" "$report"
+beyond
