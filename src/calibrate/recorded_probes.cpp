@@ -103,7 +103,13 @@ std::optional<std::vector<uint32_t>> RecordedProbeDrawer::sweep(const FunctionSw
       throw InputError(folder_ / "sweeps.json", "sweep " + sweep.name +
                                                     " is not the one this vt calibrate asks for "
                                                     "(drawn for another version?)");
-    return capture::readSweepResult(folder_, sweep);
+    // Listed means drawn: a folder that lost the results (a transfer cut short) is refused
+    // rather than fitted without them.
+    std::optional<std::vector<uint32_t>> bits = capture::readSweepResult(folder_, sweep);
+    if (!bits)
+      throw InputError(folder_ / "sweeps.json",
+                       "lists sweep " + sweep.name + ", but its results are not in the folder");
+    return bits;
   }
   return std::nullopt;
 }

@@ -112,5 +112,22 @@ TEST(SweepFiles, ASweepForOtherInputsIsRefusedByTheReplay) {
   EXPECT_EQ(drawer.sweep(calibrate::functionSweeps().back()), std::nullopt);  // sqrt: not listed
 }
 
+// A sweep the folder lists but whose results it lacks is refused, naming sweeps.json and the
+// sweep, rather than fitted without.
+TEST(SweepFiles, AListedSweepWithoutResultsIsRefused) {
+  test::ScratchDirectory dir;
+  capture::writeProbeFolder(dir.path(), {1, {"r", "v", "w"}});
+  const calibrate::FunctionSweep log2 = calibrate::functionSweeps().front();
+  capture::writeSweepRequests(dir.path(), {log2});
+  calibrate::RecordedProbeDrawer drawer(dir.path());
+  EXPECT_THAT([&] { drawer.sweep(log2); },
+              ThrowsMessage<InputError>(
+                  AllOf(StartsWith((dir / "sweeps.json").string() + ": "),
+                        HasSubstr("lists sweep log2, but its results are not in the folder"))));
+  capture::writeSweepResult(dir.path(), log2, std::vector<uint32_t>(log2.count, 7));
+  EXPECT_EQ(calibrate::RecordedProbeDrawer(dir.path()).sweep(log2),
+            std::vector<uint32_t>(log2.count, 7));
+}
+
 }  // namespace
 }  // namespace vt
