@@ -149,7 +149,7 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
                                     joinedNames(kPageSelectionNames, " or "));
       c.selection = *selection;
     } else if (key == "ceiling_candidates") {
-      c.ceilingCandidates = count(1, 4096);
+      c.ceilingCandidates = count(1, 1024);
     } else {
       throw std::invalid_argument("unknown configuration key '" + key + "'");
     }

@@ -320,6 +320,30 @@ TEST_F(VtCommand, FlyMeasuresQualityAgainstEveryPageResident) {
   EXPECT_THAT(header, testing::EndsWith(",rmse,ssim,wssim"));
 }
 
+// The strategy beyond the thesis runs by its name in data/chapter4/beyond.json; the ceiling
+// there, which looks at the next frame's view, is refused by vt fly with one line.
+TEST_F(VtCommand, FlyRunsAStrategyOfAConfigurationsFileByName) {
+  const auto texture = sparseTexture();
+  const std::string configs = std::string(VT_TEST_SOURCE_DIR) + "/../data/chapter4/beyond.json";
+  const auto frozen =
+      vt({"fly", texture, "--size", "96x64", "--config", configs, "--config-name",
+          "Frozen: WeightedPixel Gain + LookAhead + parents 5", "-o", (dir_ / "f").string()});
+  ASSERT_EQ(frozen.exitCode, 0) << frozen.err;
+  std::ifstream in(dir_ / "f" / "summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(in);
+  EXPECT_EQ(summary["ancestors"], "gain");
+  EXPECT_EQ(summary["heuristic"], "weightedpixel");
+  EXPECT_EQ(summary["trilinear_parents"], true);
+  const auto ceiling = vt({"fly", texture, "--size", "96x64", "--config", configs,
+                           "--config-name", "Ceiling 5", "-o", (dir_ / "c").string()});
+  EXPECT_EQ(ceiling.exitCode, 1);
+  EXPECT_THAT(ceiling.err, HasSubstr("selection ceiling picks pages with the next frame's view, "
+                                     "which only vt eval draws"));
+  const auto nameless = vt({"fly", texture, "--config-name", "PixelSum 5"});
+  EXPECT_EQ(nameless.exitCode, 2);
+  EXPECT_THAT(nameless.err, HasSubstr("--config-name requires --config"));
+}
+
 TEST_F(VtCommand, BuildErrorsNameTheFile) {
   std::ofstream(dir_ / "layout.json") << R"({"images": [{"file": "gone.png", "x": 0, "y": 0}]})";
   const auto output = (dir_ / "out.vt").string();
