@@ -140,6 +140,17 @@ class EntryGroups {
   bool valid_ = false;
 };
 
+// Pixel i of a frame with geometry there, shaded from its recorded inputs under the shader's cache
+// state, into out[0..3].
+void shadePixel(Shader& shader, const Frame& drawn, size_t i,
+                const shader::VtParameters& parameters, const RenderSettings& settings,
+                uint8_t* out) {
+  const glm::vec4 d = drawn.derivatives[i];
+  const Shader::VtFragment f = shader.vtShadeFragment(drawn.uv[i], shader::vec2(d.x, d.y),
+                                                      shader::vec2(d.z, d.w), parameters);
+  for (int c = 0; c < 4; ++c) out[c] = toUnorm8(f.color[c], settings.arithmetic.colourConversion);
+}
+
 void requireDebugChannels(const Frame& drawn, Viewport v) {
   const size_t pixels = static_cast<size_t>(v.width) * static_cast<size_t>(v.height);
   if (drawn.viewport.width != v.width || drawn.viewport.height != v.height ||
@@ -189,10 +200,9 @@ void recolor(const Frame& drawn, std::span<const CacheState* const> caches,
         for (std::vector<uint8_t>* color : colors) std::fill_n(color->data() + i * 4, 4, 0);
         continue;
       }
-      const glm::vec4 d = drawn.derivatives[i];
       Lookups lookups{};
       if (share) {
-        lookups = lookupsOf(shaders.front(), drawn.uv[i], d, parameters.front());
+        lookups = lookupsOf(shaders.front(), drawn.uv[i], drawn.derivatives[i], parameters.front());
         groups.lookUp(lookups);
       }
       shaded.clear();
@@ -220,10 +230,7 @@ void recolor(const Frame& drawn, std::span<const CacheState* const> caches,
           }
           shaded.push_back({key, k});
         }
-        const Shader::VtFragment f = shaders[k].vtShadeFragment(
-            drawn.uv[i], shader::vec2(d.x, d.y), shader::vec2(d.z, d.w), parameters[k]);
-        for (int c = 0; c < 4; ++c)
-          out[c] = toUnorm8(f.color[c], settings.arithmetic.colourConversion);
+        shadePixel(shaders[k], drawn, i, parameters[k], settings, out);
       }
     }
   });
@@ -246,14 +253,10 @@ void recolorPixels(const Frame& drawn, const CacheState& cache, const RenderSett
     const size_t i = pixels[k];
     if (i >= count) throw std::invalid_argument("recolorPixels: a pixel outside the frame");
     uint8_t* out = rgba.data() + k * 4;
-    if (drawn.triangle[i] < 0) {
+    if (drawn.triangle[i] < 0)
       std::fill_n(out, 4, 0);
-      continue;
-    }
-    const glm::vec4 d = drawn.derivatives[i];
-    const Shader::VtFragment f = shader.vtShadeFragment(
-        drawn.uv[i], shader::vec2(d.x, d.y), shader::vec2(d.z, d.w), parameters);
-    for (int c = 0; c < 4; ++c) out[c] = toUnorm8(f.color[c], settings.arithmetic.colourConversion);
+    else
+      shadePixel(shader, drawn, i, parameters, settings, out);
   }
 }
 

@@ -206,11 +206,7 @@ def main():
     verdicts = ["## Verdicts", "", chapter4.table_row(["Map", "Layout", "frozen strategy 5",
                                                        "Ceiling 5", "Ceiling, next frame 5"]),
                 "|---|---|---|---|---|"] + summary + ["", "## Each map and layout", ""]
-    text = intro + verdicts + sections
-    with open(report + ".tmp", "w") as f:
-        f.write("\n".join(text) + "\n")
-    os.replace(report + ".tmp", report)
-    print(f"wrote {report}")
+    chapter4.write_report(report, intro + verdicts + sections)
     return 0
 
 

@@ -756,6 +756,14 @@ def header():
             ""]
 
 
+def write_report(report, lines):
+    """The report's lines as one file, replaced whole (never left half written)."""
+    with open(report + ".tmp", "w") as f:
+        f.write("\n".join(lines) + "\n")
+    os.replace(report + ".tmp", report)
+    print(f"wrote {report}")
+
+
 def main():
     if len(sys.argv) != 3:
         sys.stderr.write("usage: chapter4-report.py RESULTS REPORT.md\n")
@@ -773,10 +781,7 @@ def main():
         out += map_section(name, experiments, report_dir)
     out += ours_section(by_map)
     out += compression_section(results_dir, report_dir)
-    with open(report + ".tmp", "w") as f:
-        f.write("\n".join(out) + "\n")
-    os.replace(report + ".tmp", report)
-    print(f"wrote {report}")
+    write_report(report, out)
     return 0
 
 

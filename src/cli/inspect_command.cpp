@@ -41,18 +41,20 @@ void addInspectCommand(CLI::App& app) {
   command->add_option("--atlas-side", o->atlasSide, "Largest side of the cache atlas image")
       ->check(CLI::Range(16, 8192))
       ->capture_default_str();
-  command->add_option("--against", o->against,
-                      "A configurations file (vt eval's --configs): fly its configuration named "
-                      "by --against-name too and show the two side by side");
-  command->add_option("--against-name", o->againstName,
-                      "The configuration of the --against file shown beside the first");
+  CLI::Option* against =
+      command->add_option("--against", o->against,
+                          "A configurations file (vt eval's --configs): fly its configuration "
+                          "named by --against-name too and show the two side by side");
+  CLI::Option* againstName =
+      command->add_option("--against-name", o->againstName,
+                          "The configuration of the --against file shown beside the first");
+  against->needs(againstName);
+  againstName->needs(against);
   command->add_option("-o,--output", o->output, "HTML file")->capture_default_str();
   command->callback([o, configurationOptions] {
     std::vector<std::filesystem::path> inputs = o->scene.inputs();
     inputs.push_back(configurationOptions->file());
     inputs.push_back(o->against);
-    if (o->against.empty() != o->againstName.empty())
-      throw CLI::ValidationError("--against", "--against and --against-name go together");
     requireOutputFile(o->output, inputs);
     std::optional<FlightConfiguration> against;
     if (!o->against.empty()) against = loadNamedConfiguration(o->against, o->againstName);

@@ -20,9 +20,7 @@ void requireSameSize(const ImageView& a, const ImageView& b) {
 
 std::vector<double> luminance(const ImageView& image) {
   std::vector<double> y(static_cast<size_t>(image.width) * image.height);
-  for (size_t i = 0; i < y.size(); ++i)
-    y[i] = 0.2126 * image.rgba[4 * i] + 0.7152 * image.rgba[4 * i + 1] +
-           0.0722 * image.rgba[4 * i + 2];
+  for (size_t i = 0; i < y.size(); ++i) y[i] = luminanceOf(image.rgba.data() + 4 * i);
   return y;
 }
 
@@ -202,7 +200,6 @@ SsimAndWssim PreparedReference::compare(const ImageView& image) const {
   if (image.width != p.width || image.height != p.height ||
       image.rgba.size() != static_cast<size_t>(p.width) * static_cast<size_t>(p.height) * 4)
     throw std::invalid_argument("images differ in size");
-  constexpr double kC1 = (0.01 * 255) * (0.01 * 255), kC2 = (0.03 * 255) * (0.03 * 255);
   const Window& w = p.w;
   const int taps = static_cast<int>(w.taps.size()), W = p.width;
   const std::vector<double> x = luminance(image);
@@ -261,8 +258,7 @@ SsimAndWssim PreparedReference::compare(const ImageView& image) const {
     for (size_t c = span.first; c < span.last; ++c) {
       const double vx = xx[c] - mx[c] * mx[c], vy = yy[c] - my[c] * my[c],
                    cxy = xy[c] - mx[c] * my[c];
-      q[c] = ((2 * mx[c] * my[c] + kC1) * (2 * cxy + kC2)) /
-             ((mx[c] * mx[c] + my[c] * my[c] + kC1) * (vx + vy + kC2));
+      q[c] = windowSsim(mx[c], my[c], vx, vy, cxy);
     }
     const double* weight = p.weight.data() + top * columns;
     for (size_t c = 0; c < columns; ++c) {

@@ -34,8 +34,19 @@ struct SsimOptions {
   int uniformSize = 8;  // side of the uniform window, pixels
 };
 
-// Rec. 709 luminance 0.2126 R + 0.7152 G + 0.0722 B of each pixel, in [0, 255], as SSIM uses it.
+// Rec. 709 luminance 0.2126 R + 0.7152 G + 0.0722 B of one RGBA8 pixel, in [0, 255], as SSIM
+// uses it.
+inline double luminanceOf(const uint8_t* rgba) {
+  return 0.2126 * rgba[0] + 0.7152 * rgba[1] + 0.0722 * rgba[2];
+}
+// Of each pixel.
 std::vector<double> luminance(const ImageView& image);
+
+// One window's Q from its means, variances and covariance (population statistics).
+inline double windowSsim(double mx, double my, double vx, double vy, double cxy) {
+  constexpr double kC1 = (0.01 * 255) * (0.01 * 255), kC2 = (0.03 * 255) * (0.03 * 255);
+  return ((2 * mx * my + kC1) * (2 * cxy + kC2)) / ((mx * mx + my * my + kC1) * (vx + vy + kC2));
+}
 
 double rmse(const ImageView& a, const ImageView& b);
 // Throws std::invalid_argument for images of different sizes or smaller than the window.

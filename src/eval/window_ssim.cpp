@@ -3,16 +3,9 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "eval/image_metrics.h"
+
 namespace vt {
-namespace {
-
-constexpr double kC1 = (0.01 * 255) * (0.01 * 255), kC2 = (0.03 * 255) * (0.03 * 255);
-
-double luminanceOf(const uint8_t* rgba) {  // eval/image_metrics.cpp's luminance()
-  return 0.2126 * rgba[0] + 0.7152 * rgba[1] + 0.0722 * rgba[2];
-}
-
-}  // namespace
 
 WindowSsim::WindowSsim(int width, int height, int window)
     : width_(width), height_(height), side_(window) {
@@ -64,7 +57,7 @@ double WindowSsim::windowQ(uint64_t window) const {
   const double n = static_cast<double>(side_) * side_;
   const double mx = sx / n, my = sy / n;
   const double vx = sxx / n - mx * mx, vy = syy / n - my * my, cxy = sxy / n - mx * my;
-  return ((2 * mx * my + kC1) * (2 * cxy + kC2)) / ((mx * mx + my * my + kC1) * (vx + vy + kC2));
+  return windowSsim(mx, my, vx, vy, cxy);
 }
 
 void WindowSsim::touch(std::span<const uint32_t> pixels) {
