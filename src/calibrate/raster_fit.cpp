@@ -10,6 +10,7 @@
 
 #include "calibrate/coverage_fit.h"
 #include "calibrate/float_bits.h"
+#include "calibrate/plane_probes.h"
 #include "calibrate/probe_texture.h"
 #include "common/random_draws.h"
 #include "probes/probe_draws.h"
@@ -231,6 +232,13 @@ ClipSpaceMesh planesBehindTheCamera(const CrossingPlanes& view, Viewport viewpor
   return withOwnVertices(toClipSpace(mesh, camera, viewport));
 }
 
+// A probe mesh with its viewport and what the implementation drew of it.
+struct DrawnProbe {
+  ClipSpaceMesh mesh;
+  Viewport viewport;
+  RasterReadback gl;
+};
+
 // What the result sets of `model` leave unexplained of the implementation's readbacks: pixels
 // whose triangle no alternative names, and pixels whose (s, t) lies outside its alternative's
 // interval.
@@ -239,11 +247,10 @@ struct SetResiduals {
   uint64_t attributesOutside = 0;
 };
 
-SetResiduals setResiduals(const PrecisionModel& model,
-                          const std::vector<std::pair<ClipSpaceMesh, RasterReadback>>& drawn,
-                          const reference::ResidentTexture& texture, Viewport viewport) {
+SetResiduals setResiduals(const PrecisionModel& model, const std::vector<DrawnProbe>& drawn,
+                          const reference::ResidentTexture& texture) {
   SetResiduals r;
-  for (const auto& [mesh, gl] : drawn) {
+  for (const auto& [mesh, viewport, gl] : drawn) {
     RenderSettings settings;
     settings.viewport = viewport;
     applyModel(settings, model);
@@ -301,6 +308,10 @@ const char* const kRasterProbe =
     "coplanar pair), 60 cut just behind the near plane, three planes to the horizon, two "
     "pairs of crossing planes and a ground under a triangle, with vertices behind the camera, "
     "at 160 x 120";
+// Added to it where the folder holds the plane group (plane_probes.h).
+const char* const kPlaneGroupProbe =
+    "; and one triangle on the 1/256 grid at w = 1, shifted by 1 to 512 pixels, its depths near "
+    "1 and near 2^-10, its vertices rotated, at w 0.5, 2 and 3";
 const char* const kPixelsCounted =
     " pixels, in coverage, coordinates or depth, with the member's best combination";
 
@@ -361,18 +372,26 @@ std::vector<ClipSpaceMesh> rasterProbeMeshes(Viewport viewport) {
   return meshes;
 }
 
+// Counts what every combination misses of a readback of `mesh` (32F depth).
+void compareCombinations(const DrawnProbe& drawn, std::vector<Combination>& combinations,
+                         const reference::ResidentTexture& texture) {
+  for (Combination& c : combinations)
+    compareRaster(
+        drawn.gl,
+        oracleFrame(drawn.mesh, texture, drawn.viewport, c.arithmetic, DepthFormat::kDepth32F),
+        c.counts);
+}
+
 // Draws each mesh on the implementation and counts what every combination misses of it; returns
 // the meshes with their readbacks.
-std::vector<std::pair<ClipSpaceMesh, RasterReadback>> drawAndCompare(
-    const std::vector<ClipSpaceMesh>& meshes, std::vector<Combination>& combinations,
-    const reference::ResidentTexture& texture, Viewport viewport) {
-  std::vector<std::pair<ClipSpaceMesh, RasterReadback>> drawn;
+std::vector<DrawnProbe> drawAndCompare(const std::vector<ClipSpaceMesh>& meshes,
+                                       std::vector<Combination>& combinations,
+                                       const reference::ResidentTexture& texture,
+                                       Viewport viewport) {
+  std::vector<DrawnProbe> drawn;
   for (const ClipSpaceMesh& mesh : meshes) {
-    const RasterReadback gl = drawTriangles(mesh, viewport);
-    for (Combination& c : combinations)
-      compareRaster(gl, oracleFrame(mesh, texture, viewport, c.arithmetic, DepthFormat::kDepth32F),
-                    c.counts);
-    drawn.emplace_back(mesh, gl);
+    drawn.push_back({mesh, viewport, drawTriangles(mesh, viewport)});
+    compareCombinations(drawn.back(), combinations, texture);
   }
   return drawn;
 }
@@ -491,8 +510,8 @@ void addFamilyFits(RasterFits& result, const GridResult& grid,
 // within the sub-pixel grid explain: result.attributeUlps, unexplainedOwners, depthUlps and
 // depthBeyondSets.
 void boundResiduals(RasterFits& result, const Arithmetic& chosen, int gridBits,
-                    const std::vector<std::pair<ClipSpaceMesh, RasterReadback>>& drawn,
-                    const reference::ResidentTexture& texture, Viewport viewport) {
+                    const std::vector<DrawnProbe>& drawn,
+                    const reference::ResidentTexture& texture) {
   PrecisionModel bounds = gl45Model();
   bounds.arithmetic = chosen;
   setCoverageBounds(bounds, result.coveragePinned, gridBits);
@@ -505,11 +524,11 @@ void boundResiduals(RasterFits& result, const Arithmetic& chosen, int gridBits,
   result.attributeUlps = smallestBound(
       [&](double ulps) {
         bounds.attributeUlps = ulps;
-        return setResiduals(bounds, drawn, texture, viewport).attributesOutside == 0;
+        return setResiduals(bounds, drawn, texture).attributesOutside == 0;
       },
       gl45Model().attributeUlps);
   bounds.attributeUlps = 0;
-  SetResiduals r = setResiduals(bounds, drawn, texture, viewport);
+  SetResiduals r = setResiduals(bounds, drawn, texture);
   result.unexplainedOwners = r.unexplainedOwners;
   // A pixel whose triangle no set admits: the smallest whole depth bound that admits every one
   // (doubling up to gl45's, then halving the interval), or, past that, gl45's own.
@@ -517,7 +536,7 @@ void boundResiduals(RasterFits& result, const Arithmetic& chosen, int gridBits,
   const double gl45 = gl45Model().depthUlps;
   const auto explains = [&](double ulps) {
     bounds.depthUlps = ulps;
-    return setResiduals(bounds, drawn, texture, viewport).unexplainedOwners == 0;
+    return setResiduals(bounds, drawn, texture).unexplainedOwners == 0;
   };
   if (!explains(gl45)) {
     // Not even gl45's bound admits them. The depth rule itself is probed on its own
@@ -578,34 +597,73 @@ ParameterFit depthEvidence(const RasterCounts& c, const RasterFits& result) {
 }
 
 // Z24 under the members taken: sets result.arithmetic's conversion and z24Pinned; returns the
-// family's evidence.
-ParameterFit fitZ24(RasterFits& result, bool reproduced, const reference::ResidentTexture& texture,
-                    Viewport viewport) {
-  const ClipSpaceMesh mesh = randomTriangles(5, 120);
-  const RasterReadback gl = drawTriangles(mesh, viewport, DepthFormat::kDepth24);
+// family's evidence. From 120 random triangles, which show the conversion only where the
+// combination reproduced every other probe, and from the plane group's constant-depth squares
+// where the folder holds them, whose window depth every member computes exactly (compared
+// wherever the implementation drew the oracle's square).
+ParameterFit fitZ24(RasterFits& result, bool reproduced, const DrawnProbe& random,
+                    const std::optional<DrawnProbe>& squares,
+                    const reference::ResidentTexture& texture) {
   ParameterFit z24;
   z24.parameter = "z24";
-  z24.probe = "120 random triangles drawn into a Z24 depth buffer";
+  const bool randomCounts = !squares || reproduced;
+  z24.probe = !squares ? "120 random triangles drawn into a Z24 depth buffer"
+              : reproduced
+                  ? "4,096 squares of constant depth and 120 random triangles drawn into a Z24 "
+                    "depth buffer"
+                  : "4,096 squares of constant depth drawn into a Z24 depth buffer";
   for (const auto& [conversion, name] : kZ24ConversionNames) {
     Arithmetic a = result.arithmetic;
     a.depth.z24 = conversion;
-    const Frame oracle = oracleFrame(mesh, texture, viewport, a, DepthFormat::kDepth24);
     uint64_t missed = 0, shared = 0;
-    for (size_t i = 0; i < oracle.triangle.size(); ++i) {
-      if (gl.triangle[i] != oracle.triangle[i] || gl.triangle[i] < 0) continue;
-      ++shared;
-      missed += !sameBits(gl.depth[i], oracle.depth[i]);
-    }
+    const auto compare = [&](const DrawnProbe& drawn) {
+      const Frame oracle =
+          oracleFrame(drawn.mesh, texture, drawn.viewport, a, DepthFormat::kDepth24);
+      const RasterReadback& gl = drawn.gl;
+      for (size_t i = 0; i < oracle.triangle.size(); ++i) {
+        if (gl.triangle[i] != oracle.triangle[i] || gl.triangle[i] < 0) continue;
+        ++shared;
+        missed += !sameBits(gl.depth[i], oracle.depth[i]);
+      }
+    };
+    if (randomCounts) compare(random);
+    if (squares) compare(*squares);
     z24.probes = shared;
     z24.members.push_back({std::string(name), missed});
   }
   result.arithmetic.depth.z24 = kZ24ConversionNames[z24.choose()].value;
-  result.z24Pinned = z24.pinned && result.coveragePinned && reproduced;
+  result.z24Pinned = z24.pinned && (squares || (result.coveragePinned && reproduced));
   z24.pinned = result.z24Pinned;
   z24.finding = (z24.pinned ? z24.chosen + ", bit for bit"
                             : std::string("not pinned: either of the two nearest values")) +
                 " (" + z24.memberSummary() + " depths)";
   return z24;
+}
+
+// The plane group (plane_probes.h), drawn where the folder holds it: its 32F draws join the
+// combinations' counts and `drawn`; returns the Z24 squares and the shift evidence.
+struct PlaneGroup {
+  DrawnProbe squares;
+  ShiftEvidence shifts;
+};
+std::optional<PlaneGroup> drawPlaneGroup(std::vector<Combination>& combinations,
+                                         std::vector<DrawnProbe>& drawn,
+                                         const reference::ResidentTexture& texture) {
+  const std::vector<PlaneProbe> probes = planeProbes();
+  if (!holdsOptionalGroup(probes.size())) return std::nullopt;
+  std::vector<RasterReadback> readbacks;
+  std::optional<DrawnProbe> squares;
+  for (const PlaneProbe& probe : probes) {
+    readbacks.push_back(drawTriangles(probe.mesh, probe.viewport, probe.format));
+    DrawnProbe d{probe.mesh, probe.viewport, readbacks.back()};
+    if (probe.format == DepthFormat::kDepth24) {
+      squares = std::move(d);
+      continue;
+    }
+    compareCombinations(d, combinations, texture);
+    drawn.push_back(std::move(d));
+  }
+  return PlaneGroup{std::move(*squares), shiftEvidence(probes, readbacks)};
 }
 
 }  // namespace
@@ -619,7 +677,12 @@ RasterFits fitRasterization(const Arithmetic& base) {
   const reference::ResidentTexture& texture = probeTexture.texture();
   const Viewport viewport{160, 120};
   std::vector<Combination> combinations = allCombinations(base, grid.candidates);
-  const auto drawn = drawAndCompare(rasterProbeMeshes(viewport), combinations, texture, viewport);
+  std::vector<DrawnProbe> drawn =
+      drawAndCompare(rasterProbeMeshes(viewport), combinations, texture, viewport);
+  const ClipSpaceMesh z24Mesh = randomTriangles(5, 120);
+  const DrawnProbe z24Drawn{z24Mesh, viewport,
+                            drawTriangles(z24Mesh, viewport, DepthFormat::kDepth24)};
+  const std::optional<PlaneGroup> group = drawPlaneGroup(combinations, drawn, texture);
 
   const Combination& chosen = closestCombination(combinations);
   const bool reproduced = chosen.counts.reproduces();
@@ -628,11 +691,19 @@ RasterFits fitRasterization(const Arithmetic& base) {
   addFamilyFits(result, grid, combinations, chosen);
 
   // The residuals of the combination taken: none when it reproduces everything.
-  if (!reproduced)
-    boundResiduals(result, chosen.arithmetic, grid.coarsestBits, drawn, texture, viewport);
+  if (!reproduced) boundResiduals(result, chosen.arithmetic, grid.coarsestBits, drawn, texture);
   result.attributes = attributesEvidence(chosen.counts, result);
   result.depth = depthEvidence(chosen.counts, result);
-  result.fits.push_back(fitZ24(result, reproduced, texture, viewport));
+  if (group) {
+    for (ParameterFit* fit : {&result.attributes, &result.depth}) fit->probe += kPlaneGroupProbe;
+    for (ParameterFit& fit : result.fits) {
+      if (fit.probe == kRasterProbe) fit.probe += kPlaneGroupProbe;
+      if (fit.parameter == "plane_evaluation") fit.finding += "; " + shiftFinding(group->shifts);
+    }
+  }
+  result.fits.push_back(fitZ24(result, reproduced, z24Drawn,
+                               group ? std::optional<DrawnProbe>(group->squares) : std::nullopt,
+                               texture));
   return result;
 }
 

@@ -12,7 +12,10 @@
 // 3, perspective 2, depth offset and clamp 2). A family is pinned when every combination that
 // reproduces every probe has the same member; when combinations with different members all do,
 // the probes cannot tell them apart, and the first is taken and said so. The Z24 conversion is
-// fitted last, from 120 more triangles drawn into Z24 under the chosen members.
+// fitted last, from 120 more triangles drawn into Z24 under the chosen members. Where the folder
+// holds the plane group (plane_probes.h), its triangles join the combinations, the shifted
+// copies' evidence goes into plane_evaluation's finding, and its constant-depth squares fit the
+// Z24 conversion whether or not the rest is reproduced.
 //
 // When no combination reproduces everything, the closest one (fewest pixels of another
 // triangle, then of other attributes, then of other depth) is taken, and the attributes and depth

@@ -114,6 +114,16 @@ std::optional<std::vector<uint32_t>> RecordedProbeDrawer::sweep(const FunctionSw
   return std::nullopt;
 }
 
+bool RecordedProbeDrawer::holdsGroup(size_t draws) {
+  if (next_ == count_) return false;
+  if (count_ - next_ < draws)
+    throw InputError(folder_, "holds " + std::to_string(count_) +
+                                  " probe draws, which ends inside a group of " +
+                                  std::to_string(draws) + " from draw " + std::to_string(next_) +
+                                  " (a folder cut short?)");
+  return true;
+}
+
 std::optional<std::vector<uint8_t>> RecordedProbeDrawer::denseAlphaTable() {
   const std::filesystem::path file = folder_ / kDenseAlphaTableName;
   std::error_code error;

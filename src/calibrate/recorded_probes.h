@@ -45,6 +45,9 @@ class RecordedProbeDrawer : public ProbeDrawer {
   // The sweep's results, where the folder's sweeps.json asks for it and its file is there;
   // InputError when the folder's sweep of that name asks for other inputs (another version).
   std::optional<std::vector<uint32_t>> sweep(const FunctionSweep& sweep) override;
+  // Whether the folder holds the group's draws: false where it ends where the group begins
+  // (drawn before the group existed); InputError where it ends inside the group.
+  bool holdsGroup(size_t draws) override;
 
  private:
   std::filesystem::path folder_;

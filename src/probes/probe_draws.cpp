@@ -266,6 +266,10 @@ RasterReadback drawTriangles(const ClipSpaceMesh& mesh, Viewport viewport, Depth
   return r;
 }
 
+bool holdsOptionalGroup(size_t draws) {
+  return currentDrawer ? currentDrawer->holdsGroup(draws) : true;
+}
+
 ProbeIdentity probeIdentity() { return currentDrawer ? currentDrawer->identity() : identityHere(); }
 
 std::optional<std::vector<uint32_t>> functionSweep(const FunctionSweep& sweep) {

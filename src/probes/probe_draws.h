@@ -85,7 +85,15 @@ class ProbeDrawer {
   virtual std::optional<std::vector<uint8_t>> denseAlphaTable() { return std::nullopt; }
   // A function sweep drawn beside the probes (probes/function_sweeps.h), if the drawer has it.
   virtual std::optional<std::vector<uint32_t>> sweep(const FunctionSweep&) { return std::nullopt; }
+  // Whether the next `draws` draws, a group added to the pack after folders were drawn without
+  // it, are there: always, but for a drawer replaying a folder that ends where the group begins.
+  virtual bool holdsGroup(size_t /*draws*/) { return true; }
 };
+
+// Whether the set drawer holds an optional group of `draws` draws that come next (true without
+// a drawer: this context draws them). A group comes after every draw that is not optional, so a
+// folder drawn before the group existed replays as it did.
+bool holdsOptionalGroup(size_t draws);
 
 // The set drawer's dense BC3 alpha table; none without a drawer (this context draws no such
 // probe: scripts/bc3-alpha-probe.py makes it for a GPU).

@@ -23,6 +23,7 @@ namespace vt {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 class VtCapture : public ::testing::Test {
  protected:
@@ -41,6 +42,34 @@ class VtCapture : public ::testing::Test {
     const HeadlessContext context;
     return context.renderer().find("llvmpipe") != std::string::npos &&
            __builtin_cpu_supports("fma");
+  }
+  // `vt calibrate --record-probes requests -o here.json`, and the requests copied into kit/ as
+  // the kit carries them (gpu-kit.sh leaves out results and sweeps' .delta files); with
+  // sweeps.json where `sweeps`.
+  void recordIntoKit(bool sweeps) {
+    const test::CommandResult here =
+        vt({"calibrate", "--record-probes", (dir_ / "requests").string(), "-o",
+            (dir_ / "here.json").string()});
+    ASSERT_EQ(here.exitCode, 0) << here.err;
+    std::filesystem::create_directory(dir_ / "kit");
+    for (const auto& entry : std::filesystem::directory_iterator(dir_ / "requests")) {
+      const std::string name = entry.path().filename().string();
+      if ((name.starts_with("probe-") || (sweeps && name == "sweeps.json")) &&
+          !name.ends_with(".result"))
+        std::filesystem::copy_file(entry.path(), dir_ / "kit" / name);
+    }
+  }
+  // `vt calibrate --probes drawn -o NAME`: the evidence by parameter, and "point" the point.
+  std::map<std::string, nlohmann::json> fitDrawn(const char* name) {
+    const test::CommandResult fitted =
+        vt({"calibrate", "--probes", (dir_ / "drawn").string(), "-o", (dir_ / name).string()});
+    EXPECT_EQ(fitted.exitCode, 0) << fitted.err;
+    const nlohmann::json model = nlohmann::json::parse(test::slurp(dir_ / name));
+    std::map<std::string, nlohmann::json> byName;
+    for (const nlohmann::json& p : model["calibration"]["parameters"])
+      byName[p["parameter"].get<std::string>()] = p;
+    byName["point"] = model["calibration"]["point"];
+    return byName;
   }
   test::ScratchDirectory dir_;
 };
@@ -188,31 +217,12 @@ TEST_F(VtCapture, ProbesDrawnByItGiveTheModelCalibrateMeasures) {
 // refused naming the rule.
 TEST_F(VtCapture, SweepsOfEveryFloatPinLlvmpipesLog2AndSqrt) {
   if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
-  const test::CommandResult here = vt({"calibrate", "--record-probes", (dir_ / "requests").string(),
-                                       "-o", (dir_ / "here.json").string()});
-  ASSERT_EQ(here.exitCode, 0) << here.err;
-  // The kit carries the requests only (gpu-kit.sh leaves out results and sweeps' .delta files).
-  std::filesystem::create_directory(dir_ / "kit");
-  for (const auto& entry : std::filesystem::directory_iterator(dir_ / "requests")) {
-    const std::string name = entry.path().filename().string();
-    if (!name.ends_with(".result") && !name.ends_with(".delta") && name != "probes.json")
-      std::filesystem::copy_file(entry.path(), dir_ / "kit" / name);
-  }
+  ASSERT_NO_FATAL_FAILURE(recordIntoKit(true));
   const test::CommandResult drawn =
       capture({"probes", (dir_ / "kit").string(), "-o", (dir_ / "drawn").string()});
   ASSERT_EQ(drawn.exitCode, 0) << drawn.err;
   EXPECT_THAT(drawn.out, HasSubstr("and 2 sweeps of 33554432 inputs on llvmpipe"));
-  const auto fit = [&](const char* name) {
-    const test::CommandResult fitted =
-        vt({"calibrate", "--probes", (dir_ / "drawn").string(), "-o", (dir_ / name).string()});
-    EXPECT_EQ(fitted.exitCode, 0) << fitted.err;
-    const nlohmann::json model = nlohmann::json::parse(test::slurp(dir_ / name));
-    std::map<std::string, nlohmann::json> byName;
-    for (const nlohmann::json& p : model["calibration"]["parameters"])
-      byName[p["parameter"].get<std::string>()] = p;
-    return byName;
-  };
-  auto parameters = fit("elsewhere.json");
+  auto parameters = fitDrawn("elsewhere.json");
   EXPECT_EQ(test::slurp(dir_ / "here.json"), test::slurp(dir_ / "elsewhere.json"));
   for (const char* function : {"log2", "sqrt"}) {
     SCOPED_TRACE(function);
@@ -238,7 +248,7 @@ TEST_F(VtCapture, SweepsOfEveryFloatPinLlvmpipesLog2AndSqrt) {
   };
   // log2 of input 5,000,000 (in [0.5, 1)) one ulp off: log2 is no longer pinned, by one value.
   change([](uint32_t bits) { return bits + 1; });
-  parameters = fit("changed.json");
+  parameters = fitDrawn("changed.json");
   EXPECT_FALSE(parameters["log2"]["pinned"].get<bool>());
   EXPECT_EQ(parameters["log2"]["mismatches"].get<uint64_t>(), 1u);
   EXPECT_THAT(parameters["log2"]["finding"].get<std::string>(),
@@ -253,6 +263,55 @@ TEST_F(VtCapture, SweepsOfEveryFloatPinLlvmpipesLog2AndSqrt) {
   EXPECT_THAT(refused.err, HasSubstr("the sweep of log2(x) over every float from 0.5"));
   EXPECT_THAT(refused.err, HasSubstr("returned NaN at input 5000000"));
   EXPECT_FALSE(std::filesystem::exists(dir_ / "nan.json"));
+}
+
+// The plane group (calibrate/plane_probes.h): drawn by vt-capture from the kit's requests and
+// fitted offline it pins llvmpipe's plane evaluation and Z24 conversion with it, and shows that
+// llvmpipe's values move when the triangle does; a folder drawn before the group (its probes.json
+// ends where the group begins, as the H100's) fits the same point without it; a folder that ends
+// inside the group is refused.
+TEST_F(VtCapture, ThePlaneGroupPinsLlvmpipeAndAFolderWithoutItFitsAsBefore) {
+  if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
+  ASSERT_NO_FATAL_FAILURE(recordIntoKit(false));
+  const test::CommandResult drawn =
+      capture({"probes", (dir_ / "kit").string(), "-o", (dir_ / "drawn").string()});
+  ASSERT_EQ(drawn.exitCode, 0) << drawn.err;
+  EXPECT_THAT(drawn.out, HasSubstr("drew 37 probe draws"));
+  auto withGroup = fitDrawn("with.json");
+  for (const char* family : {"plane_evaluation", "plane_setup", "attributes", "depth", "z24"}) {
+    SCOPED_TRACE(family);
+    EXPECT_TRUE(withGroup[family]["pinned"].get<bool>());
+  }
+  EXPECT_THAT(withGroup["plane_setup"]["probe"].get<std::string>(),
+              HasSubstr("shifted by 1 to 512 pixels"));
+  EXPECT_THAT(withGroup["plane_evaluation"]["finding"].get<std::string>(),
+              HasSubstr("change from a shift of 1: the planes are evaluated from a fixed origin"));
+  EXPECT_EQ(withGroup["z24"]["probe"].get<std::string>(),
+            "4,096 squares of constant depth and 120 random triangles drawn into a Z24 depth "
+            "buffer");
+  EXPECT_THAT(withGroup["z24"]["finding"].get<std::string>(),
+              HasSubstr("nearest_even 0 of 84735 differ, truncated 10999 of 84735 differ"));
+
+  // The first 22 draws alone, as a folder drawn before the group.
+  const std::filesystem::path description = dir_ / "drawn" / "probes.json";
+  nlohmann::json probes = nlohmann::json::parse(test::slurp(description));
+  ASSERT_EQ(probes["count"], 37);
+  probes["count"] = 22;
+  std::ofstream(description, std::ios::trunc) << probes.dump();
+  auto without = fitDrawn("without.json");
+  EXPECT_EQ(without["point"], withGroup["point"]);
+  EXPECT_EQ(without["z24"]["probe"].get<std::string>(),
+            "120 random triangles drawn into a Z24 depth buffer");
+  EXPECT_THAT(without["plane_evaluation"]["finding"].get<std::string>(), Not(HasSubstr("shifted")));
+
+  probes["count"] = 30;
+  std::ofstream(description, std::ios::trunc) << probes.dump();
+  const test::CommandResult cut =
+      vt({"calibrate", "--probes", (dir_ / "drawn").string(), "-o", (dir_ / "cut.json").string()});
+  EXPECT_EQ(cut.exitCode, 1);
+  EXPECT_THAT(cut.err, HasSubstr("holds 30 probe draws, which ends inside a group of 15 from "
+                                 "draw 22 (a folder cut short?)"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "cut.json"));
 }
 
 TEST_F(VtCapture, BadArgumentsAndInputs) {
