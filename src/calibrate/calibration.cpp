@@ -184,7 +184,7 @@ Calibration calibrate() {
   c.version = identity.version;
   c.vendor = identity.vendor;
   const ShaderMathFits math = fitShaderMath();
-  const FilterFit filter = fitFilter(math.conversion);
+  std::vector<FilterSample> filterSamples = drawFilterProbes();
   const ColourConversionFit colourFit = fitColourConversion();
   const ParameterFit& colour = colourFit.fit;
   const ParameterFit depthTest = fitDepthTest();
@@ -193,8 +193,10 @@ Calibration calibrate() {
   shaderMembers.log2 = math.log2Form;
   shaderMembers.texelConversion = math.conversion;
   shaderMembers.flushDenormals = math.flushesDenormals;
-  shaderMembers.filter = filter.filter;
   const RasterFits raster = fitRasterization(shaderMembers);
+  // Drawn after the first pack's last draw (raster's); the filter members draw no coordinate.
+  drawFilterProbesAtCacheSizes(filterSamples);
+  const FilterFit filter = fitFilter(filterSamples, math.conversion);
 
   // Start from gl45: what no probe pins keeps at most the specification's slack, and what a
   // probe measured narrows it to the residual.
@@ -213,6 +215,7 @@ Calibration calibrate() {
   m.log2Ulps = math.log2Ulps;
   m.sqrtUlps = math.sqrtUlps;
   m.arithmeticUlps = math.arithmeticUlps;
+  m.arithmetic.filter = filter.filter;
   m.filterPinned = filter.fit.pinned;
   m.subTexelBits = filter.fit.pinned ? 0 : filter.subTexelBits;
   m.filterErrorUnits = filter.fit.pinned ? 0 : filter.errorUnits;

@@ -12,15 +12,10 @@
 namespace vt::calibrate {
 namespace {
 
-struct Sampled {
-  ShaderProbe probe;
-  std::vector<glm::vec4> out;
-};
-
 // A texture of random texels (a fixed seed) sampled with textureLod at `coordinates`.
-Sampled sample(int width, int height, const std::vector<glm::vec2>& coordinates,
-               std::mt19937& random) {
-  Sampled s;
+FilterSample sample(int width, int height, const std::vector<glm::vec2>& coordinates,
+                    std::mt19937& random) {
+  FilterSample s;
   s.probe.body = "result = textureLod(uTexture, x.xy, 0.0);";
   s.probe.textureSize = {width, height};
   s.probe.linear = true;
@@ -34,9 +29,28 @@ Sampled sample(int width, int height, const std::vector<glm::vec2>& coordinates,
   return s;
 }
 
-std::vector<Sampled> probes() {
+// `count` normalized coordinates along a `side` texture: texel positions on a 2^-12 grid or,
+// every other one, on and one float beside 1/256-texel steps (exactly where `side` is a power of
+// two, else the nearest float).
+std::vector<float> stepPositions(int side, int count, std::mt19937& random) {
+  std::vector<float> positions;
+  for (int i = 0; i < count; ++i) {
+    const uint32_t r = static_cast<uint32_t>(random());
+    float v = static_cast<float>(r % (static_cast<uint32_t>(side) * 4096)) / 4096.0f;
+    if (i % 2 == 1) {
+      v = static_cast<float>(r % (static_cast<uint32_t>(side) * 256)) / 256.0f;
+      if (r & (1u << 30)) v = std::nextafter(v, (r & (1u << 31)) ? 0.0f : 1e6f);
+    }
+    positions.push_back(v / static_cast<float>(side));
+  }
+  return positions;
+}
+
+}  // namespace
+
+std::vector<FilterSample> drawFilterProbes() {
   std::mt19937 random(7);
-  std::vector<Sampled> result;
+  std::vector<FilterSample> result;
   constexpr int kSide = 16;
   std::vector<glm::vec2> steps;
   for (int i = 0; i < 32768; ++i) {
@@ -60,7 +74,25 @@ std::vector<Sampled> probes() {
   return result;
 }
 
-}  // namespace
+bool drawFilterProbesAtCacheSizes(std::vector<FilterSample>& samples) {
+  const glm::ivec2 sizes[] = {{16384, 2}, {2, 16384}, {4080, 4}};
+  if (!holdsOptionalGroup(std::size(sizes))) return false;
+  std::mt19937 random(16384);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (const glm::ivec2 size : sizes) {
+    std::vector<glm::vec2> coordinates;
+    for (int i = 0; i < 4096; ++i) coordinates.push_back(drawPoint([&] { return unit(random); }));
+    // On steps along the long side; the short side at random.
+    const int along = size.x > size.y ? 0 : 1;
+    for (const float u : stepPositions(size[along], 4096, random)) {
+      glm::vec2 t(unit(random));
+      t[along] = u;
+      coordinates.push_back(t);
+    }
+    samples.push_back(sample(size.x, size.y, coordinates, random));
+  }
+  return true;
+}
 
 bool reproducesSample(const ShaderProbe& probe, size_t i, const glm::vec4& got,
                       const Filter& filter, UnormConversion conversion) {
@@ -135,7 +167,8 @@ struct CornerSearch {
   uint64_t closestMisses = ~uint64_t{0};
 };
 
-CornerSearch searchCornerMembers(const std::vector<Sampled>& sampled, UnormConversion conversion) {
+CornerSearch searchCornerMembers(const std::vector<FilterSample>& sampled,
+                                 UnormConversion conversion) {
   CornerSearch search;
   Filter f{.weights = FilterWeights::kFixedPointCorners};
   for (int weightBits = 4; weightBits <= 12; ++weightBits)
@@ -150,7 +183,7 @@ CornerSearch searchCornerMembers(const std::vector<Sampled>& sampled, UnormConve
             f.output = output;
             // Counted until it misses more than the closest so far.
             uint64_t missed = 0;
-            for (const Sampled& s : sampled)
+            for (const FilterSample& s : sampled)
               for (size_t i = 0; i < s.out.size() && missed <= search.closestMisses; ++i)
                 missed += !reproducesSample(s.probe, i, s.out[i], f, conversion);
             if (missed == 0 && search.fitting.size() < 2) search.fitting.push_back(f);
@@ -174,17 +207,20 @@ std::string cornerMemberName(const Filter& f) {
 
 }  // namespace
 
-FilterFit fitFilter(UnormConversion conversion) {
-  const std::vector<Sampled> sampled = probes();
+FilterFit fitFilter(const std::vector<FilterSample>& sampled, UnormConversion conversion) {
   FilterFit result;
   result.fit.parameter = "filter";
   result.fit.probe =
       "GL_LINEAR samples: a 16 x 16 RGBA8 texture at 32,768 positions on and beside 1/256-texel "
       "steps, a 24 x 40 one at 16,384 random coordinates";
-  for (const Sampled& s : sampled) result.fit.probes += s.out.size();
+  if (sampled.size() > 2)
+    result.fit.probe +=
+        "; and at the cache's sizes, 16384 x 2, 2 x 16384 and 4080 x 4 textures at 8,192 "
+        "coordinates each";
+  for (const FilterSample& s : sampled) result.fit.probes += s.out.size();
   for (const NamedFilter& member : filterMembers()) {
     uint64_t missed = 0;
-    for (const Sampled& s : sampled)
+    for (const FilterSample& s : sampled)
       for (size_t i = 0; i < s.out.size(); ++i)
         missed += !reproducesSample(s.probe, i, s.out[i], member.filter, conversion);
     result.fit.members.push_back({member.name, missed});
@@ -214,7 +250,7 @@ FilterFit fitFilter(UnormConversion conversion) {
   double best = 1e30;
   for (int bits = 4; bits <= 12; ++bits) {
     double largest = 0;
-    for (const Sampled& s : sampled)
+    for (const FilterSample& s : sampled)
       for (size_t i = 0; i < s.out.size(); ++i) {
         const glm::dvec4 expected = snappedBilinear(s.probe, glm::vec2(s.probe.inputs[i]), bits);
         for (int c = 0; c < 4; ++c)

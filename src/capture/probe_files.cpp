@@ -11,6 +11,7 @@
 #include "common/input_file.h"
 #include "common/json_text.h"
 #include "common/posix_file.h"
+#include "common/resource_limits.h"
 #include "format/block_decoding.h"
 
 namespace vt::capture {
@@ -24,6 +25,10 @@ constexpr size_t kMaxInputs = size_t{1} << 22;
 constexpr int kMaxSide = 4096;
 constexpr size_t kMaxVertices = size_t{1} << 20;
 constexpr size_t kMaxBodyBytes = size_t{1} << 20;
+// A probe's texture: a side as long as a cache texture's (GL_LINEAR at the cache's sizes:
+// calibrate/filter_fit.h), at most 2^22 texels (16 MiB of RGBA8).
+constexpr int kMaxTextureSide = static_cast<int>(kMaxCacheSideTexels);
+constexpr size_t kMaxTexels = size_t{1} << 22;
 
 std::string stem(size_t index) {
   char name[32];
@@ -89,6 +94,16 @@ std::array<size_t, 2> sideField(const nlohmann::json& j, const char* key, size_t
           wholeNumber(pair[1], std::string(key) + "[1]", lo, hi, file)};
 }
 
+// The texture's size, refused where a side or the texel count is beyond the limits above.
+std::array<size_t, 2> textureSize(const nlohmann::json& j, int smallest,
+                                  const std::filesystem::path& file) {
+  const auto [w, h] = sideField(j, "texture_size", smallest, kMaxTextureSide, file);
+  if (w * h > kMaxTexels)
+    throw InputError(file, "texture_size " + std::to_string(w) + " x " + std::to_string(h) +
+                               " is more than 4,194,304 texels");
+  return {w, h};
+}
+
 struct RasterPixel {
   int32_t triangle;
   float s, t, dsdx, dtdx, dsdy, dtdy, depth;
@@ -117,13 +132,13 @@ bool sameRequest(const ProbeRequest& a, const ProbeRequest& b) {
 void writeProbeRequest(const std::filesystem::path& folder, size_t index,
                        const ProbeRequest& request) {
   const std::string name = stem(index);
-  nlohmann::ordered_json j = {{"format", "vt-probe"}, {"version", 1},
-                              {"kind", kindName(request.kind)}};
+  nlohmann::ordered_json j = {
+      {"format", "vt-probe"}, {"version", 1}, {"kind", kindName(request.kind)}};
   if (request.kind == ProbeRequest::Kind::kTriangles) {
     std::vector<float> vertices;
     for (const ClipVertex& v : request.mesh.vertices)
-      vertices.insert(vertices.end(), {v.position.x, v.position.y, v.position.z, v.position.w,
-                                       v.uv.x, v.uv.y});
+      vertices.insert(vertices.end(),
+                      {v.position.x, v.position.y, v.position.z, v.position.w, v.uv.x, v.uv.y});
     writeArray(folder / (name + ".vertices.f32"), vertices);
     writeArray(folder / (name + ".indices.u32"), request.mesh.indices);
     j["vertices"] = name + ".vertices.f32";
@@ -202,7 +217,7 @@ ProbeRequest readProbeRequest(const std::filesystem::path& folder, size_t index)
     p.linear = j.at("linear").get<bool>();
     p.clipped = j.at("clipped").get<bool>();
     if (j.contains("texels")) {
-      const auto [w, h] = sideField(j, "texture_size", 1, kMaxSide, file);
+      const auto [w, h] = textureSize(j, 1, file);
       p.textureSize = {static_cast<int>(w), static_cast<int>(h)};
       p.texels = readArray<glm::u8vec4>(folder / (name + ".texels.rgba8"), w * h, "texels");
     }
@@ -212,9 +227,8 @@ ProbeRequest readProbeRequest(const std::filesystem::path& folder, size_t index)
       if (format != "bc1" && format != "bc3")
         throw InputError(file, "block_format '" + format + "' is not bc1 or bc3");
       p.blockFormat = format == "bc1" ? PixelFormat::kBc1 : PixelFormat::kBc3;
-      const auto [w, h] = sideField(j, "texture_size", 4, kMaxSide, file);
-      if (w % 4 || h % 4)
-        throw InputError(file, "texture_size is not whole blocks from 4 x 4 to 4096 x 4096");
+      const auto [w, h] = textureSize(j, 4, file);
+      if (w % 4 || h % 4) throw InputError(file, "texture_size is not whole blocks of 4 x 4");
       p.textureSize = {static_cast<int>(w), static_cast<int>(h)};
       p.blocks = readArray<std::byte>(folder / (name + ".blocks." + format),
                                       (w / 4) * (h / 4) * blockBytes(p.blockFormat), "blocks");
@@ -239,7 +253,7 @@ void writeProbeResult(const std::filesystem::path& folder, size_t index,
       const calibrate::RasterReadback& r = result.raster;
       std::vector<RasterPixel> pixels(r.triangle.size());
       for (size_t i = 0; i < pixels.size(); ++i)
-        pixels[i] = {r.triangle[i], r.uv[i].x, r.uv[i].y, r.derivatives[i].x,
+        pixels[i] = {r.triangle[i],      r.uv[i].x,          r.uv[i].y,          r.derivatives[i].x,
                      r.derivatives[i].y, r.derivatives[i].z, r.derivatives[i].w, r.depth[i]};
       writeArray(file, pixels);
       return;

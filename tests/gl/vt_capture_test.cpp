@@ -265,20 +265,22 @@ TEST_F(VtCapture, SweepsOfEveryFloatPinLlvmpipesLog2AndSqrt) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "nan.json"));
 }
 
-// The plane group (calibrate/plane_probes.h): drawn by vt-capture from the kit's requests and
-// fitted offline it pins llvmpipe's plane evaluation and Z24 conversion with it, and shows that
-// llvmpipe's values move when the triangle does; a folder drawn before the group (its probes.json
+// The pack's groups, the plane group (calibrate/plane_probes.h) and GL_LINEAR at the cache's
+// sizes (calibrate/filter_fit.h): drawn by vt-capture from the kit's requests and fitted offline
+// they pin llvmpipe's plane evaluation, Z24 conversion and filter with them, and show that
+// llvmpipe's values move when the triangle does; a folder drawn before a group (its probes.json
 // ends where the group begins, as the H100's) fits the same point without it; a folder that ends
-// inside the group is refused.
-TEST_F(VtCapture, ThePlaneGroupPinsLlvmpipeAndAFolderWithoutItFitsAsBefore) {
+// inside a group is refused.
+TEST_F(VtCapture, TheGroupsPinLlvmpipeAndAFolderWithoutThemFitsAsBefore) {
   if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
   ASSERT_NO_FATAL_FAILURE(recordIntoKit(false));
   const test::CommandResult drawn =
       capture({"probes", (dir_ / "kit").string(), "-o", (dir_ / "drawn").string()});
   ASSERT_EQ(drawn.exitCode, 0) << drawn.err;
-  EXPECT_THAT(drawn.out, HasSubstr("drew 37 probe draws"));
+  EXPECT_THAT(drawn.out, HasSubstr("drew 40 probe draws"));
   auto withGroup = fitDrawn("with.json");
-  for (const char* family : {"plane_evaluation", "plane_setup", "attributes", "depth", "z24"}) {
+  for (const char* family :
+       {"plane_evaluation", "plane_setup", "attributes", "depth", "z24", "filter"}) {
     SCOPED_TRACE(family);
     EXPECT_TRUE(withGroup[family]["pinned"].get<bool>());
   }
@@ -286,6 +288,10 @@ TEST_F(VtCapture, ThePlaneGroupPinsLlvmpipeAndAFolderWithoutItFitsAsBefore) {
               HasSubstr("shifted by 1 to 512 pixels"));
   EXPECT_THAT(withGroup["plane_evaluation"]["finding"].get<std::string>(),
               HasSubstr("change from a shift of 1: the planes are evaluated from a fixed origin"));
+  EXPECT_THAT(withGroup["filter"]["probe"].get<std::string>(),
+              HasSubstr("at the cache's sizes, 16384 x 2, 2 x 16384 and 4080 x 4"));
+  EXPECT_THAT(withGroup["filter"]["finding"].get<std::string>(),
+              HasSubstr("fixed_point_8 0 of 73728 differ"));
   EXPECT_EQ(withGroup["z24"]["probe"].get<std::string>(),
             "4,096 squares of constant depth and 120 random triangles drawn into a Z24 depth "
             "buffer");
@@ -295,7 +301,15 @@ TEST_F(VtCapture, ThePlaneGroupPinsLlvmpipeAndAFolderWithoutItFitsAsBefore) {
   // The first 22 draws alone, as a folder drawn before the group.
   const std::filesystem::path description = dir_ / "drawn" / "probes.json";
   nlohmann::json probes = nlohmann::json::parse(test::slurp(description));
-  ASSERT_EQ(probes["count"], 37);
+  ASSERT_EQ(probes["count"], 40);
+  // Without the filter group (the last three draws).
+  probes["count"] = 37;
+  std::ofstream(description, std::ios::trunc) << probes.dump();
+  const auto withoutFilterGroup = fitDrawn("plane-group-only.json");
+  EXPECT_EQ(withoutFilterGroup.at("point"), withGroup["point"]);
+  EXPECT_THAT(withoutFilterGroup.at("filter")["probe"].get<std::string>(), Not(HasSubstr("cache")));
+  EXPECT_EQ(withoutFilterGroup.at("z24")["probe"], withGroup["z24"]["probe"]);
+
   probes["count"] = 22;
   std::ofstream(description, std::ios::trunc) << probes.dump();
   auto without = fitDrawn("without.json");
@@ -326,6 +340,20 @@ TEST_F(VtCapture, BadArgumentsAndInputs) {
       capture({"probes", (dir_ / "empty").string(), "-o", (dir_ / "out").string()});
   EXPECT_EQ(empty.exitCode, 1);
   EXPECT_THAT(empty.err, HasSubstr("holds no probe request"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out"));
+  // A texture as long as a cache's side is drawn (filter_fit.h), but not 2^23 texels.
+  std::filesystem::create_directories(dir_ / "large");
+  std::ofstream(dir_ / "large" / "probe-0000.json")
+      << R"({"format": "vt-probe", "version": 1, "kind": "shader", "body": "", "width": 1,
+            "input_count": 1, "linear": true, "clipped": false, "texels": "t",
+            "texture_size": [16384, 512]})";
+  std::ofstream(dir_ / "large" / "probe-0000.inputs.f32", std::ios::binary)
+      << std::string(16, '\0');
+  const test::CommandResult large =
+      capture({"probes", (dir_ / "large").string(), "-o", (dir_ / "out").string()});
+  EXPECT_EQ(large.exitCode, 1);
+  EXPECT_THAT(large.err, HasSubstr((dir_ / "large" / "probe-0000.json").string() +
+                                   ": texture_size 16384 x 512 is more than 4,194,304 texels"));
   EXPECT_FALSE(std::filesystem::exists(dir_ / "out"));
   const test::CommandResult scene = capture(
       {"scenes", (dir_ / "t.vt").string(), "--scenes", "nowhere", "-o", (dir_ / "o").string()});
