@@ -195,7 +195,8 @@ Calibration calibrate() {
   shaderMembers.flushDenormals = math.flushesDenormals;
   const RasterFits raster = fitRasterization(shaderMembers);
   // Drawn after the first pack's last draw (raster's); the filter members draw no coordinate.
-  drawFilterProbesAtCacheSizes(filterSamples);
+  drawFilterProbesAtCacheSizes(filterSamples,
+                               {decoding.decoding, decoding.colour.pinned, decoding.alpha.pinned});
   const FilterFit filter = fitFilter(filterSamples, math.conversion);
 
   // Start from gl45: what no probe pins keeps at most the specification's slack, and what a

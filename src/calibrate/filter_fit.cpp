@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include "common/random_draws.h"
+#include "format/block_decoding.h"
 #include "probes/probe_draws.h"
 #include "reference/linear_filter.h"
 
@@ -74,22 +76,73 @@ std::vector<FilterSample> drawFilterProbes() {
   return result;
 }
 
-bool drawFilterProbesAtCacheSizes(std::vector<FilterSample>& samples) {
-  const glm::ivec2 sizes[] = {{16384, 2}, {2, 16384}, {4080, 4}};
-  if (!holdsOptionalGroup(std::size(sizes))) return false;
-  std::mt19937 random(16384);
+namespace {
+
+// 4,096 random coordinates of full float precision and 4,096 on and beside 1/256-texel steps along
+// the texture's long side (the short side at random).
+std::vector<glm::vec2> cacheCoordinates(glm::ivec2 size, std::mt19937& random) {
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  for (const glm::ivec2 size : sizes) {
-    std::vector<glm::vec2> coordinates;
-    for (int i = 0; i < 4096; ++i) coordinates.push_back(drawPoint([&] { return unit(random); }));
-    // On steps along the long side; the short side at random.
-    const int along = size.x > size.y ? 0 : 1;
-    for (const float u : stepPositions(size[along], 4096, random)) {
-      glm::vec2 t(unit(random));
-      t[along] = u;
-      coordinates.push_back(t);
+  std::vector<glm::vec2> coordinates;
+  for (int i = 0; i < 4096; ++i) coordinates.push_back(drawPoint([&] { return unit(random); }));
+  const int along = size.x > size.y ? 0 : 1;
+  for (const float u : stepPositions(size[along], 4096, random)) {
+    glm::vec2 t(unit(random));
+    t[along] = u;
+    coordinates.push_back(t);
+  }
+  return coordinates;
+}
+
+// A texture of random blocks of `format` sampled with textureLod at `coordinates`; its texels
+// decoded with `decoding` (the fit reads texels), or none where `decoding` is not exact.
+FilterSample sampleBlocks(PixelFormat format, glm::ivec2 size,
+                          const std::vector<glm::vec2>& coordinates,
+                          const std::optional<BlockDecoding>& decoding, std::mt19937& random) {
+  FilterSample s;
+  s.probe.body = "result = textureLod(uTexture, x.xy, 0.0);";
+  s.probe.textureSize = size;
+  s.probe.linear = true;
+  s.probe.blockFormat = format;
+  const int blocksX = size.x / 4, blocksY = size.y / 4;
+  s.probe.blocks.resize(static_cast<size_t>(blocksX * blocksY) * blockBytes(format));
+  for (std::byte& b : s.probe.blocks) b = static_cast<std::byte>(random() & 0xff);
+  for (const glm::vec2 u : coordinates) s.probe.inputs.push_back(glm::vec4(u, 0.0f, 0.0f));
+  s.out = runShaderProbe(s.probe);
+  if (!decoding) return s;
+  s.probe.texels.resize(static_cast<size_t>(size.x * size.y));
+  for (int by = 0; by < blocksY; ++by)
+    for (int bx = 0; bx < blocksX; ++bx) {
+      const std::byte* block =
+          s.probe.blocks.data() + static_cast<size_t>(by * blocksX + bx) * blockBytes(format);
+      const std::array<BlockTexel, 16> texels = decodeBlock(format, block, *decoding);
+      for (int k = 0; k < 16; ++k) {
+        const BlockTexel& t = texels[static_cast<size_t>(k)];
+        s.probe.texels[static_cast<size_t>((by * 4 + k / 4) * size.x + bx * 4 + k % 4)] =
+            glm::u8vec4(t[0], t[1], t[2], t[3]);
+      }
     }
-    samples.push_back(sample(size.x, size.y, coordinates, random));
+  return s;
+}
+
+}  // namespace
+
+bool drawFilterProbesAtCacheSizes(std::vector<FilterSample>& samples,
+                                  const CacheDecoding& decoding) {
+  const glm::ivec2 sizes[] = {{16384, 2}, {2, 16384}, {4080, 4}};
+  const PixelFormat blockFormats[] = {PixelFormat::kBc1, PixelFormat::kBc3};
+  if (!holdsOptionalGroup(std::size(sizes) + std::size(blockFormats))) return false;
+  std::mt19937 random(16384);
+  for (const glm::ivec2 size : sizes)
+    samples.push_back(sample(size.x, size.y, cacheCoordinates(size, random), random));
+  // The GL renderer's compressed cache: 4096 texels wide (a power of two, so that coordinates on
+  // steps are exact).
+  const glm::ivec2 blockSize{4096, 8};
+  for (const PixelFormat format : blockFormats) {
+    const bool exact = format == PixelFormat::kBc1 ? decoding.colourPinned
+                                                   : decoding.colourPinned && decoding.alphaPinned;
+    FilterSample s = sampleBlocks(format, blockSize, cacheCoordinates(blockSize, random),
+                                  exact ? std::optional(decoding.decoding) : std::nullopt, random);
+    if (exact) samples.push_back(std::move(s));
   }
   return true;
 }
@@ -217,6 +270,17 @@ FilterFit fitFilter(const std::vector<FilterSample>& sampled, UnormConversion co
     result.fit.probe +=
         "; and at the cache's sizes, 16384 x 2, 2 x 16384 and 4080 x 4 textures at 8,192 "
         "coordinates each";
+  std::string blockTextures;
+  for (const FilterSample& s : sampled) {
+    if (s.probe.blockFormat == PixelFormat::kUnorm8) continue;
+    blockTextures += blockTextures.empty() ? "" : " and ";
+    blockTextures += s.probe.blockFormat == PixelFormat::kBc1 ? "BC1" : "BC3";
+  }
+  if (!blockTextures.empty())
+    result.fit.probe += "; " + blockTextures +
+                        " textures of 4096 x 8 at 8,192 each, decoded as the pinned decoding "
+                        "members say";
+
   for (const FilterSample& s : sampled) result.fit.probes += s.out.size();
   for (const NamedFilter& member : filterMembers()) {
     uint64_t missed = 0;

@@ -15,6 +15,7 @@
 #include <glm/glm.hpp>
 
 #include "calibrate/family_fit.h"
+#include "format/block_decoding.h"
 #include "probes/probe_draws.h"
 #include "render/arithmetic.h"
 
@@ -28,13 +29,21 @@ struct FilterSample {
 
 // The first pack's two draws (above), on the current GL context or the set drawer.
 std::vector<FilterSample> drawFilterProbes();
+// The block decoding the fit has found (decoding_fit.h), for textures of blocks.
+struct CacheDecoding {
+  BlockDecoding decoding;
+  bool colourPinned = false, alphaPinned = false;
+};
 // The filter group, drawn after every draw of the first pack where the drawer holds it
 // (probes/probe_draws.h, holdsOptionalGroup): textures of the cache's sizes, 16384 x 2, 2 x 16384
-// and 4080 x 4 (30 frames of 136 texels), each at 4,096 random coordinates of full float
-// precision and 4,096 on and beside 1/256-texel steps, where the coordinate's bits and the
-// position's rounding show as they do in a cache. Appends them to `samples`; false where the
-// folder was drawn before the group.
-bool drawFilterProbesAtCacheSizes(std::vector<FilterSample>& samples);
+// and 4080 x 4 (30 frames of 136 texels), and a BC1 and a BC3 texture of 4096 x 8 texels of random
+// blocks (the compressed cache), each at 4,096 random coordinates of full float precision and
+// 4,096 on and beside 1/256-texel steps, where the coordinate's bits and the position's rounding
+// show as they do in a cache. Appends them to `samples`, the block textures with their texels
+// decoded by `decoding` and only where it is pinned (BC1: colour; BC3: colour and alpha), as
+// then the filter alone is measured; false where the folder was drawn before the group.
+bool drawFilterProbesAtCacheSizes(std::vector<FilterSample>& samples,
+                                  const CacheDecoding& decoding);
 
 struct FilterFit {
   ParameterFit fit;
