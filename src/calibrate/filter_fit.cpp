@@ -5,6 +5,7 @@
 #include <cmath>
 #include <optional>
 #include <random>
+#include <span>
 
 #include "common/random_draws.h"
 #include "format/block_decoding.h"
@@ -14,19 +15,26 @@
 namespace vt::calibrate {
 namespace {
 
+// A GL_LINEAR probe of a `size` texture (its texels or blocks left to the caller) sampled with
+// textureLod at `coordinates`.
+ShaderProbe linearProbe(glm::ivec2 size, const std::vector<glm::vec2>& coordinates) {
+  ShaderProbe probe;
+  probe.body = "result = textureLod(uTexture, x.xy, 0.0);";
+  probe.textureSize = size;
+  probe.linear = true;
+  for (const glm::vec2 u : coordinates) probe.inputs.push_back(glm::vec4(u, 0.0f, 0.0f));
+  return probe;
+}
+
 // A texture of random texels (a fixed seed) sampled with textureLod at `coordinates`.
 FilterSample sample(int width, int height, const std::vector<glm::vec2>& coordinates,
                     std::mt19937& random) {
-  FilterSample s;
-  s.probe.body = "result = textureLod(uTexture, x.xy, 0.0);";
-  s.probe.textureSize = {width, height};
-  s.probe.linear = true;
+  FilterSample s{linearProbe({width, height}, coordinates), {}};
   for (int i = 0; i < width * height; ++i) {
     const uint32_t bits = static_cast<uint32_t>(random());
     s.probe.texels.push_back(
         glm::u8vec4(bits & 255, (bits >> 8) & 255, (bits >> 16) & 255, bits >> 24));
   }
-  for (const glm::vec2 u : coordinates) s.probe.inputs.push_back(glm::vec4(u, 0.0f, 0.0f));
   s.out = runShaderProbe(s.probe);
   return s;
 }
@@ -98,29 +106,15 @@ std::vector<glm::vec2> cacheCoordinates(glm::ivec2 size, std::mt19937& random) {
 FilterSample sampleBlocks(PixelFormat format, glm::ivec2 size,
                           const std::vector<glm::vec2>& coordinates,
                           const std::optional<BlockDecoding>& decoding, std::mt19937& random) {
-  FilterSample s;
-  s.probe.body = "result = textureLod(uTexture, x.xy, 0.0);";
-  s.probe.textureSize = size;
-  s.probe.linear = true;
+  FilterSample s{linearProbe(size, coordinates), {}};
   s.probe.blockFormat = format;
-  const int blocksX = size.x / 4, blocksY = size.y / 4;
-  s.probe.blocks.resize(static_cast<size_t>(blocksX * blocksY) * blockBytes(format));
+  s.probe.blocks.resize(static_cast<size_t>(size.x / 4 * (size.y / 4)) * blockBytes(format));
   for (std::byte& b : s.probe.blocks) b = static_cast<std::byte>(random() & 0xff);
-  for (const glm::vec2 u : coordinates) s.probe.inputs.push_back(glm::vec4(u, 0.0f, 0.0f));
   s.out = runShaderProbe(s.probe);
   if (!decoding) return s;
   s.probe.texels.resize(static_cast<size_t>(size.x * size.y));
-  for (int by = 0; by < blocksY; ++by)
-    for (int bx = 0; bx < blocksX; ++bx) {
-      const std::byte* block =
-          s.probe.blocks.data() + static_cast<size_t>(by * blocksX + bx) * blockBytes(format);
-      const std::array<BlockTexel, 16> texels = decodeBlock(format, block, *decoding);
-      for (int k = 0; k < 16; ++k) {
-        const BlockTexel& t = texels[static_cast<size_t>(k)];
-        s.probe.texels[static_cast<size_t>((by * 4 + k / 4) * size.x + bx * 4 + k % 4)] =
-            glm::u8vec4(t[0], t[1], t[2], t[3]);
-      }
-    }
+  decodeBlocks(format, static_cast<uint32_t>(size.x), static_cast<uint32_t>(size.y), s.probe.blocks,
+               std::as_writable_bytes(std::span(s.probe.texels)), *decoding);
   return s;
 }
 

@@ -49,9 +49,9 @@ void addTriangle(ClipSpaceMesh& mesh, Viewport viewport, const std::array<glm::d
                  const std::array<glm::dvec2, 3>& uv) {
   const double halfWidth = viewport.width / 2.0, halfHeight = viewport.height / 2.0;
   for (int v = 0; v < 3; ++v) {
-    const auto ndc = [](double value) { return static_cast<float>(value); };
-    const float x = ndc(window[v].x / halfWidth - 1), y = ndc(window[v].y / halfHeight - 1);
-    const float z = ndc(2 * depth[v] - 1);
+    const auto x = static_cast<float>(window[v].x / halfWidth - 1);
+    const auto y = static_cast<float>(window[v].y / halfHeight - 1);
+    const auto z = static_cast<float>(2 * depth[v] - 1);
     mesh.vertices.push_back({{x * w[v], y * w[v], z * w[v], w[v]},
                              {static_cast<float>(uv[v].x), static_cast<float>(uv[v].y)}});
     mesh.indices.push_back(static_cast<uint32_t>(mesh.vertices.size() - 1));
@@ -118,6 +118,12 @@ PlaneProbe constantDepthSquares() {
   return probe;
 }
 
+// The index of pixel (x, y) of `v`, or SIZE_MAX outside it.
+size_t pixelAt(Viewport v, int x, int y) {
+  return x >= 0 && y >= 0 && x < v.width && y < v.height ? static_cast<size_t>(y) * v.width + x
+                                                         : SIZE_MAX;
+}
+
 bool sameValues(const RasterReadback& a, size_t i, const RasterReadback& b, size_t j) {
   return sameBits(a.uv[i].x, b.uv[j].x) && sameBits(a.uv[i].y, b.uv[j].y) &&
          sameBits(a.derivatives[i].x, b.derivatives[j].x) &&
@@ -162,24 +168,19 @@ ShiftEvidence shiftEvidence(const std::vector<PlaneProbe>& probes,
       uint64_t differing = 0;
       // Both ways: every pixel of the copy against the base pixel behind it, and every base
       // pixel whose shifted pixel is not the copy's.
-      const auto at = [](Viewport v, int x, int y) {
-        return x >= 0 && y >= 0 && x < v.width && y < v.height
-                   ? static_cast<size_t>(y) * v.width + x
-                   : SIZE_MAX;
-      };
       for (int y = 0; y < probe.viewport.height; ++y)
         for (int x = 0; x < probe.viewport.width; ++x) {
-          const size_t p = at(probe.viewport, x, y);
+          const size_t p = pixelAt(probe.viewport, x, y);
           if (drawn[d].triangle[p] != static_cast<int32_t>(c)) continue;
           ++evidence.pixels;
-          const size_t q = at(base.viewport, x - shift.x, y - shift.y);
+          const size_t q = pixelAt(base.viewport, x - shift.x, y - shift.y);
           differing +=
               q == SIZE_MAX || reference.triangle[q] != 0 || !sameValues(drawn[d], p, reference, q);
         }
       for (int y = 0; y < base.viewport.height; ++y)
         for (int x = 0; x < base.viewport.width; ++x) {
-          if (reference.triangle[at(base.viewport, x, y)] != 0) continue;
-          const size_t p = at(probe.viewport, x + shift.x, y + shift.y);
+          if (reference.triangle[pixelAt(base.viewport, x, y)] != 0) continue;
+          const size_t p = pixelAt(probe.viewport, x + shift.x, y + shift.y);
           if (p == SIZE_MAX || drawn[d].triangle[p] != static_cast<int32_t>(c)) {
             ++evidence.pixels;
             ++differing;

@@ -214,18 +214,18 @@ std::array<BlockTexel, 2> decodeTexelRange(PixelFormat format, const std::byte* 
   return {lo, hi};
 }
 
-void decodeBlocks(PixelFormat format, uint32_t side, std::span<const std::byte> blocks,
-                  std::span<std::byte> rgba, BlockDecoding decoding) {
-  if (!isBlockCompressed(format) || side % 4 != 0)
-    throw std::invalid_argument("decodeBlocks: not a block format, or a side of " +
-                                std::to_string(side) + " texels");
-  const size_t perRow = side / 4, bytes = blockBytes(format);
-  const size_t rowStride = size_t{side} * 4;
-  if (rgba.size() != rowStride * side || blocks.size() != perRow * perRow * bytes)
+void decodeBlocks(PixelFormat format, uint32_t width, uint32_t height,
+                  std::span<const std::byte> blocks, std::span<std::byte> rgba,
+                  BlockDecoding decoding) {
+  const std::string size = std::to_string(width) + " x " + std::to_string(height) + " texels";
+  if (!isBlockCompressed(format) || width % 4 != 0 || height % 4 != 0)
+    throw std::invalid_argument("decodeBlocks: not a block format, or " + size);
+  const size_t perRow = width / 4, rows = height / 4, bytes = blockBytes(format);
+  const size_t rowStride = size_t{width} * 4;
+  if (rgba.size() != rowStride * height || blocks.size() != perRow * rows * bytes)
     throw std::invalid_argument("decodeBlocks: buffers of " + std::to_string(rgba.size()) +
-                                " and " + std::to_string(blocks.size()) + " bytes for a side of " +
-                                std::to_string(side));
-  for (size_t by = 0; by < perRow; ++by)
+                                " and " + std::to_string(blocks.size()) + " bytes for " + size);
+  for (size_t by = 0; by < rows; ++by)
     for (size_t bx = 0; bx < perRow; ++bx) {
       const std::array<BlockTexel, 16> decoded =
           decodeBlock(format, blocks.data() + (by * perRow + bx) * bytes, decoding);
@@ -234,6 +234,11 @@ void decodeBlocks(PixelFormat format, uint32_t side, std::span<const std::byte> 
         for (size_t k = 0; k < 4; ++k)
           texels[(t / 4) * rowStride + (t % 4) * 4 + k] = static_cast<std::byte>(decoded[t][k]);
     }
+}
+
+void decodeBlocks(PixelFormat format, uint32_t side, std::span<const std::byte> blocks,
+                  std::span<std::byte> rgba, BlockDecoding decoding) {
+  decodeBlocks(format, side, side, blocks, rgba, decoding);
 }
 
 }  // namespace vt

@@ -107,8 +107,12 @@ using BlockTexel = std::array<uint8_t, 4>;
 // Bytes of one block of `format` (8 for bc1, 16 for bc3).
 constexpr size_t blockBytes(PixelFormat format) { return format == PixelFormat::kBc1 ? 8 : 16; }
 
-// Decodes a stored page of side x side texels (side a multiple of 4) from its blocks (rows of
-// side / 4 blocks of increasing t, TextureDescription::storedPageBytes of them) into RGBA8.
+// Decodes a texture of width x height texels (multiples of 4) from its blocks (rows of width / 4
+// blocks of increasing t) into RGBA8 rows.
+void decodeBlocks(PixelFormat format, uint32_t width, uint32_t height,
+                  std::span<const std::byte> blocks, std::span<std::byte> rgba,
+                  BlockDecoding decoding = {});
+// The same for a stored page of side x side texels (TextureDescription::storedPageBytes blocks).
 void decodeBlocks(PixelFormat format, uint32_t side, std::span<const std::byte> blocks,
                   std::span<std::byte> rgba, BlockDecoding decoding = {});
 

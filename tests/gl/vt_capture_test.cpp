@@ -45,8 +45,8 @@ class VtCapture : public ::testing::Test {
   }
   // `vt calibrate --record-probes requests -o here.json`, and the requests copied into kit/ as
   // the kit carries them (gpu-kit.sh leaves out results and sweeps' .delta files); with
-  // sweeps.json where `sweeps`.
-  void recordIntoKit(bool sweeps) {
+  // sweeps.json where `sweeps`; then `vt-capture probes kit -o drawn`, its output in `printed`.
+  void drawKitProbes(bool sweeps, std::string& printed) {
     const test::CommandResult here =
         vt({"calibrate", "--record-probes", (dir_ / "requests").string(), "-o",
             (dir_ / "here.json").string()});
@@ -58,6 +58,10 @@ class VtCapture : public ::testing::Test {
           !name.ends_with(".result"))
         std::filesystem::copy_file(entry.path(), dir_ / "kit" / name);
     }
+    const test::CommandResult drawn =
+        capture({"probes", (dir_ / "kit").string(), "-o", (dir_ / "drawn").string()});
+    ASSERT_EQ(drawn.exitCode, 0) << drawn.err;
+    printed = drawn.out;
   }
   // `vt calibrate --probes drawn -o NAME`: the evidence by parameter, and "point" the point.
   std::map<std::string, nlohmann::json> fitDrawn(const char* name) {
@@ -217,11 +221,9 @@ TEST_F(VtCapture, ProbesDrawnByItGiveTheModelCalibrateMeasures) {
 // refused naming the rule.
 TEST_F(VtCapture, SweepsOfEveryFloatPinLlvmpipesLog2AndSqrt) {
   if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
-  ASSERT_NO_FATAL_FAILURE(recordIntoKit(true));
-  const test::CommandResult drawn =
-      capture({"probes", (dir_ / "kit").string(), "-o", (dir_ / "drawn").string()});
-  ASSERT_EQ(drawn.exitCode, 0) << drawn.err;
-  EXPECT_THAT(drawn.out, HasSubstr("and 2 sweeps of 33554432 inputs on llvmpipe"));
+  std::string printed;
+  ASSERT_NO_FATAL_FAILURE(drawKitProbes(true, printed));
+  EXPECT_THAT(printed, HasSubstr("and 2 sweeps of 33554432 inputs on llvmpipe"));
   auto parameters = fitDrawn("elsewhere.json");
   EXPECT_EQ(test::slurp(dir_ / "here.json"), test::slurp(dir_ / "elsewhere.json"));
   for (const char* function : {"log2", "sqrt"}) {
@@ -273,11 +275,9 @@ TEST_F(VtCapture, SweepsOfEveryFloatPinLlvmpipesLog2AndSqrt) {
 // inside a group is refused.
 TEST_F(VtCapture, TheGroupsPinLlvmpipeAndAFolderWithoutThemFitsAsBefore) {
   if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
-  ASSERT_NO_FATAL_FAILURE(recordIntoKit(false));
-  const test::CommandResult drawn =
-      capture({"probes", (dir_ / "kit").string(), "-o", (dir_ / "drawn").string()});
-  ASSERT_EQ(drawn.exitCode, 0) << drawn.err;
-  EXPECT_THAT(drawn.out, HasSubstr("drew 42 probe draws"));
+  std::string printed;
+  ASSERT_NO_FATAL_FAILURE(drawKitProbes(false, printed));
+  EXPECT_THAT(printed, HasSubstr("drew 42 probe draws"));
   auto withGroup = fitDrawn("with.json");
   for (const char* family :
        {"plane_evaluation", "plane_setup", "attributes", "depth", "z24", "filter"}) {
