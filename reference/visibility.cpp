@@ -400,4 +400,10 @@ PixelHit Visibility::at(int px, int py) const {
   return block(x0, y0)[static_cast<size_t>((px - x0) + kBlock * (py - y0))];
 }
 
+uint32_t z24Of(float z, Z24Conversion conversion) {
+  const float scaled = (z > 0.0f ? std::min(z, 1.0f) : 0.0f) * 16777215.0f;  // NaN gives 0
+  return static_cast<uint32_t>(conversion == Z24Conversion::kNearestEven ? std::nearbyint(scaled)
+                                                                         : scaled);
+}
+
 }  // namespace vt::reference

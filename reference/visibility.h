@@ -35,6 +35,12 @@
 
 namespace vt::reference {
 
+// The integer Z24 stores for a window depth z in [0, 1] under `conversion` (render/arithmetic.h):
+// z * (2^24 - 1) in float, rounded to nearest even or truncated, as the visibility's depth keys
+// store a clamped depth (depthKey in visibility.cpp). A z outside [0, 1] is clamped first (NaN
+// gives 0).
+uint32_t z24Of(float z, Z24Conversion conversion);
+
 // The winner at one pixel.
 struct PixelHit {
   int32_t triangle = -1;  // index into the set-up triangles, -1 for no geometry

@@ -160,6 +160,10 @@ std::vector<std::string> nonConformance(const PrecisionModel& m,
         "colour conversion (GL 4.5 core, section 2.3.5.2: one of the two nearest "
         "unorm values): " +
         colour.finding + "; probe: " + colour.probe);
+  for (const ParameterFit& f : fits)
+    if (f.parameter == "reciprocal" && f.largestResidual > kGlslReciprocalUlps)
+      lines.push_back("the reciprocal (GLSL 4.50, section 4.7.1: 1.0 / x within 2.5 ulps): " +
+                      f.finding + "; probe: " + f.probe);
   if (decoding.outsideRange > 0)
     lines.push_back(
         "block decoding (EXT_texture_compression_s3tc: the palette's fractions of the "
@@ -232,6 +236,7 @@ Calibration calibrate() {
   for (const ParameterFit& f : {math.log2, math.sqrt, math.texelConversion, math.lerp, filter.fit,
                                 colour, math.denormals, depthTest, decoding.colour, decoding.alpha})
     c.fits.push_back(f);
+  if (math.reciprocal) c.fits.push_back(*math.reciprocal);
   c.conformance = nonConformance(m, c.fits, decoding);
 
   const std::string by = "measured by vt calibrate on " + c.renderer + ": ";

@@ -13,8 +13,10 @@
 #include "calibrate/plane_probes.h"
 #include "calibrate/probe_texture.h"
 #include "common/random_draws.h"
+#include "probes/function_sweeps.h"
 #include "probes/probe_draws.h"
 #include "reference/renderer.h"
+#include "reference/visibility.h"
 #include "render/precision_model.h"
 #include "scene/camera.h"
 #include "scene/captured_triangles.h"
@@ -598,9 +600,13 @@ ParameterFit depthEvidence(const RasterCounts& c, const RasterFits& result) {
 
 // Z24 under the members taken: sets result.arithmetic's conversion and z24Pinned; returns the
 // family's evidence. From 120 random triangles, which show the conversion only where the
-// combination reproduced every other probe, and from the plane group's constant-depth squares
-// where the folder holds them, whose window depth every member computes exactly (compared
-// wherever the implementation drew the oracle's square).
+// combination reproduced every other probe; from the plane group's constant-depth squares where
+// the folder holds them, whose window depth every member computes exactly (compared wherever the
+// implementation drew the oracle's square); and from the pack's gl_FragDepth sweeps where the
+// folder holds them: every float of [0.5, 1) and of [2^-8, 2^-7) written as the depth
+// (probes/function_sweeps.h). Where the sweeps were drawn, the finding also counts how many of
+// their values the exact product z (2^24 - 1), rounded to nearest, misses: a conversion no member
+// states yet, which the next GPU's sweeps decide.
 ParameterFit fitZ24(RasterFits& result, bool reproduced, const DrawnProbe& random,
                     const std::optional<DrawnProbe>& squares,
                     const reference::ResidentTexture& texture) {
@@ -612,6 +618,27 @@ ParameterFit fitZ24(RasterFits& result, bool reproduced, const DrawnProbe& rando
                   ? "4,096 squares of constant depth and 120 random triangles drawn into a Z24 "
                     "depth buffer"
                   : "4,096 squares of constant depth drawn into a Z24 depth buffer";
+  struct Written {
+    uint32_t first;
+    std::vector<uint32_t> stored;
+  };
+  std::vector<Written> written;
+  for (const char* name : {"frag_depth", "frag_depth_low"}) {
+    const FunctionSweep& sweep = *packSweep(name);
+    if (std::optional<std::vector<uint32_t>> stored = functionSweep(sweep))
+      written.push_back({sweep.first, std::move(*stored)});
+  }
+  if (!written.empty())
+    z24.probe += "; gl_FragDepth of every float of [0.5, 1) and of [2^-8, 2^-7) into Z24";
+  const auto sweptMisses = [&](auto&& expected) {
+    uint64_t missed = 0;
+    for (const Written& w : written)
+      for (uint32_t i = 0; i < w.stored.size(); ++i)
+        missed += w.stored[i] != expected(std::bit_cast<float>(w.first + i));
+    return missed;
+  };
+  uint64_t sweptValues = 0;
+  for (const Written& w : written) sweptValues += w.stored.size();
   for (const auto& [conversion, name] : kZ24ConversionNames) {
     Arithmetic a = result.arithmetic;
     a.depth.z24 = conversion;
@@ -628,15 +655,26 @@ ParameterFit fitZ24(RasterFits& result, bool reproduced, const DrawnProbe& rando
     };
     if (randomCounts) compare(random);
     if (squares) compare(*squares);
-    z24.probes = shared;
+    missed += sweptMisses([&](float z) { return reference::z24Of(z, conversion); });
+    z24.probes = shared + sweptValues;
     z24.members.push_back({std::string(name), missed});
   }
   result.arithmetic.depth.z24 = kZ24ConversionNames[z24.choose()].value;
-  result.z24Pinned = z24.pinned && (squares || (result.coveragePinned && reproduced));
+  result.z24Pinned =
+      z24.pinned && (squares || !written.empty() || (result.coveragePinned && reproduced));
   z24.pinned = result.z24Pinned;
   z24.finding = (z24.pinned ? z24.chosen + ", bit for bit"
                             : std::string("not pinned: either of the two nearest values")) +
                 " (" + z24.memberSummary() + " depths)";
+  if (!written.empty()) {
+    // Exact in double: a 24-bit mantissa times 2^24 - 1 needs at most 48 bits.
+    const uint64_t exact = sweptMisses([](float z) {
+      return static_cast<uint32_t>(std::nearbyint(static_cast<double>(z) * 16777215.0));
+    });
+    z24.finding += "; on the gl_FragDepth sweeps the exact product z (2^24 - 1) rounded to "
+                   "nearest: " +
+                   differ(exact, sweptValues);
+  }
   return z24;
 }
 

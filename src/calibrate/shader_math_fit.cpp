@@ -51,12 +51,35 @@ struct Returned {
 Returned returned(const std::vector<glm::vec4>& inputs, const std::vector<glm::vec4>& out,
                   int channel, const std::string& function) {
   Returned r{inputs, out, channel, std::nullopt};
-  for (const FunctionSweep& sweep : functionSweeps())
-    if (sweep.name == function) {
-      r.swept = functionSweep(sweep);
-      r.first = sweep.first;
-    }
+  if (const FunctionSweep* sweep = packSweep(function)) {
+    r.swept = functionSweep(*sweep);
+    r.first = sweep->first;
+  }
   return r;
+}
+
+std::optional<ParameterFit> fitReciprocal() {
+  const FunctionSweep& sweep = *packSweep("reciprocal");
+  const std::optional<std::vector<uint32_t>> bits = functionSweep(sweep);
+  if (!bits) return std::nullopt;
+  uint64_t missed = 0;
+  double ulps = 0;
+  for (uint32_t i = 0; i < bits->size(); ++i) {
+    const float x = std::bit_cast<float>(sweep.first + i);
+    const float y = std::bit_cast<float>((*bits)[i]);
+    missed += !sameBits(y, 1.0f / x);
+    ulps = std::max(ulps, ulpsFrom(y, 1.0 / static_cast<double>(x)));
+  }
+  ParameterFit fit{"reciprocal", "1.0 / x of every float of [1, 2)", bits->size(),
+                   {{"ieee", missed}}};
+  fit.choose();
+  fit.unit = "ulps";
+  if (!fit.pinned) fit.largestResidual = ulps;
+  fit.finding = missed == 0 ? "IEEE division, correctly rounded, bit for bit"
+                            : differ(missed, bits->size()) + " from IEEE division, largest " +
+                                  std::to_string(ulps) + " ulps (GLSL 4.50 allows " +
+                                  std::to_string(kGlslReciprocalUlps) + ")";
+  return fit;
 }
 
 void fitLog2AndSqrt(ShaderMathFits& m) {
@@ -224,6 +247,7 @@ ShaderMathFits fitShaderMath() {
   ShaderMathFits m;
   fitLog2AndSqrt(m);
   fitConversionAndLerps(m);
+  m.reciprocal = fitReciprocal();
   return m;
 }
 

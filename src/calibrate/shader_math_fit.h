@@ -12,14 +12,25 @@
 //                model's arithmetic_ulps: a relative error per operation)
 //   denormals    a denormal times a 1 read from the inputs, in a draw the clipper cuts and in one
 //                it leaves whole: flushed or kept, or free where the two differ
+//   reciprocal   1.0 / x of every float of [1, 2), where the folder holds the pack's sweep
+//                (probes/function_sweeps.h): IEEE division bit for bit, or its residual in ulps.
+//                Evidence only, for now: the oracle's perspective member reciprocal_times takes
+//                1 / q in IEEE division (reference/triangle_setup.h), and where the attributes
+//                are not reproduced their bound comes from the triangles themselves.
+
+#include <optional>
 
 #include "calibrate/family_fit.h"
 #include "render/arithmetic.h"
 
 namespace vt::calibrate {
 
+// GLSL 4.50 section 4.7.1: 1.0 / x within 2.5 ulps for x in [2^-126, 2^126].
+inline constexpr double kGlslReciprocalUlps = 2.5;
+
 struct ShaderMathFits {
   ParameterFit log2, sqrt, texelConversion, lerp, denormals;
+  std::optional<ParameterFit> reciprocal;  // where the reciprocal sweep was drawn
   Log2Form log2Form = Log2Form::kLibm;    // the chosen member
   double log2Absolute = 0, log2Ulps = 0;  // residuals against the true log2 (unpinned only)
   double sqrtUlps = 0;

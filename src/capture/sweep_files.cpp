@@ -19,6 +19,8 @@ static_assert(std::endian::native == std::endian::little, "sweep files are littl
 constexpr size_t kMaxSweeps = 8;
 constexpr size_t kMaxExpressionBytes = 256;
 constexpr size_t kMaxNameBytes = 32;
+// The one target a request names; a sweep of the result's bits names none, as before targets.
+constexpr const char* kDepth24Target = "depth24";
 
 std::filesystem::path resultFile(const std::filesystem::path& folder,
                                  const calibrate::FunctionSweep& sweep) {
@@ -51,7 +53,7 @@ void refuseUnknownFields(const nlohmann::json& j, const std::set<std::string>& k
 calibrate::FunctionSweep readSweep(const nlohmann::json& j, const std::filesystem::path& file,
                                    const std::string& where) {
   if (!j.is_object()) throw InputError(file, where + "is not an object");
-  refuseUnknownFields(j, {"name", "expression", "first", "count"}, file, where);
+  refuseUnknownFields(j, {"name", "expression", "first", "count", "target"}, file, where);
   calibrate::FunctionSweep s;
   s.name = j.at("name").get<std::string>();
   if (!validName(s.name))
@@ -67,6 +69,12 @@ calibrate::FunctionSweep readSweep(const nlohmann::json& j, const std::filesyste
   if (uint64_t{s.first} + s.count > (uint64_t{1} << 32))
     throw InputError(file,
                      where + "the inputs run past the last float bits (first + count > 2^32)");
+  if (j.contains("target")) {
+    if (j.at("target") != kDepth24Target)
+      throw InputError(file, where + "field target is not \"" + kDepth24Target +
+                                 "\" (a sweep without it writes the result's bits)");
+    s.target = calibrate::SweepTarget::kDepth24;
+  }
   return s;
 }
 
@@ -75,9 +83,11 @@ calibrate::FunctionSweep readSweep(const nlohmann::json& j, const std::filesyste
 void writeSweepRequests(const std::filesystem::path& folder,
                         const std::vector<calibrate::FunctionSweep>& sweeps) {
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
-  for (const calibrate::FunctionSweep& s : sweeps)
+  for (const calibrate::FunctionSweep& s : sweeps) {
     list.push_back(
         {{"name", s.name}, {"expression", s.expression}, {"first", s.first}, {"count", s.count}});
+    if (s.target == calibrate::SweepTarget::kDepth24) list.back()["target"] = kDepth24Target;
+  }
   const nlohmann::ordered_json j = {{"format", "vt-sweeps"}, {"version", 1}, {"sweeps", list}};
   writeFileAtomically(folder / "sweeps.json", j.dump(1) + "\n");
 }

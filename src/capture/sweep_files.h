@@ -2,8 +2,9 @@
 // The probe pack's function sweeps (probes/function_sweeps.h) as files of a probe folder
 // (capture/probe_files.h):
 //   sweeps.json        {"format": "vt-sweeps", "version": 1, "sweeps": [{"name", "expression",
-//                      "first", "count"}, ...]}: what to sweep; `vt calibrate --record-probes`
-//                      writes it with the requests, `vt-capture probes` draws it
+//                      "first", "count"[, "target": "depth24"]}, ...]}: what to sweep (a
+//                      depth sweep names its target); `vt calibrate --record-probes` writes it
+//                      with the requests, `vt-capture probes` draws it
 //   sweep-NAME.delta   what the implementation returned: "count" little-endian uint32, the first
 //                      result's bits, then each result's minus its predecessor's (mod 2^32).
 //                      Neighbours of a smooth function differ little, so the file compresses

@@ -76,18 +76,18 @@ std::string fragmentSource(const ShaderProbe& probe, const char* outputType) {
 }
 
 std::string sweepFragment(const FunctionSweep& sweep) {
-  return "#version 450 core\n"
-         "layout(location = 0) uniform uint uFirst;\n"
-         "layout(location = 0) out uint outBits;\n"
+  const bool depth = sweep.target == SweepTarget::kDepth24;
+  return std::string("#version 450 core\n") +
+         "layout(location = 0) uniform uint uFirst;\n" +
+         (depth ? "" : "layout(location = 0) out uint outBits;\n") +
          "void main() {\n"
          "  uint i = uint(gl_FragCoord.y) * " +
          std::to_string(kSweepWidth) +
          "u + uint(gl_FragCoord.x);\n"
          "  precise float x = uintBitsToFloat(uFirst + i);\n"
          "  precise float result = " +
-         sweep.expression +
-         ";\n"
-         "  outBits = floatBitsToUint(result);\n"
+         sweep.expression + ";\n" +
+         (depth ? "  gl_FragDepth = result;\n" : "  outBits = floatBitsToUint(result);\n") +
          "}\n";
 }
 
@@ -177,24 +177,42 @@ std::vector<uint32_t> drawFunctionSweepHere(const FunctionSweep& sweep) {
   const auto width = static_cast<GLsizei>(kSweepWidth);
   const auto height = static_cast<GLsizei>(sweep.count / kSweepWidth);
   const GlProgram program(kFullScreenVertex, sweepFragment(sweep));
+  const bool depth = sweep.target == SweepTarget::kDepth24;
   Names names;
-  const GLuint target = names.texture(GL_R32UI, width, height);
+  const GLuint target = names.texture(depth ? GL_DEPTH_COMPONENT24 : GL_R32UI, width, height);
   const GLuint framebuffer = names.framebuffer();
-  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, target, 0);
+  glNamedFramebufferTexture(framebuffer, depth ? GL_DEPTH_ATTACHMENT : GL_COLOR_ATTACHMENT0,
+                            target, 0);
+  if (depth) glNamedFramebufferDrawBuffer(framebuffer, GL_NONE);
   GLuint array = 0;
   glCreateVertexArrays(1, &array);
   names.arrays.push_back(array);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glViewport(0, 0, width, height);
-  glDisable(GL_DEPTH_TEST);
+  if (depth) {
+    // Every fragment writes its value whatever the buffer held: GL_ALWAYS, depth writes on.
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    glDepthMask(GL_TRUE);
+  } else {
+    glDisable(GL_DEPTH_TEST);
+  }
   glDisable(GL_DITHER);
   glUseProgram(program.id());
   glProgramUniform1ui(program.id(), 0, sweep.first);
   glBindVertexArray(array);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   std::vector<uint32_t> bits(sweep.count);
-  glGetTextureImage(target, 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                    static_cast<GLsizei>(bits.size() * sizeof(uint32_t)), bits.data());
+  const auto bytes = static_cast<GLsizei>(bits.size() * sizeof(uint32_t));
+  if (depth) {
+    glDisable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    // The stored integer in the top 24 bits of a 32-bit unorm (as readDepth reads Z24).
+    glGetTextureImage(target, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, bytes, bits.data());
+    for (uint32_t& b : bits) b >>= 8;
+  } else {
+    glGetTextureImage(target, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, bytes, bits.data());
+  }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glUseProgram(0);
   requireNoError("function sweep");
@@ -275,6 +293,15 @@ ProbeIdentity probeIdentity() { return currentDrawer ? currentDrawer->identity()
 std::optional<std::vector<uint32_t>> functionSweep(const FunctionSweep& sweep) {
   std::optional<std::vector<uint32_t>> bits =
       currentDrawer ? currentDrawer->sweep(sweep) : drawFunctionSweepHere(sweep);
+  // A depth sweep stores 24-bit integers: a larger one is no Z24 value.
+  if (sweep.target == SweepTarget::kDepth24) {
+    for (size_t i = 0; bits && i < bits->size(); ++i)
+      if ((*bits)[i] > 0xffffffu)
+        throw std::runtime_error("the depth sweep " + sweep.name + " returned " +
+                                 std::to_string((*bits)[i]) + " at input " + std::to_string(i) +
+                                 ", which is no 24-bit depth value; no model written");
+    return bits;
+  }
   // The pack's functions have finite exact results over their intervals (function_sweeps.h).
   for (size_t i = 0; bits && i < bits->size(); ++i)
     if (const float v = std::bit_cast<float>((*bits)[i]); !std::isfinite(v))

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <sstream>
 
 #include "calibrate/recorded_probes.h"
 #include "capture/probe_files.h"
@@ -41,11 +42,22 @@ TEST(SweepFiles, ResultsAreDeltaCodedAndReadBackEqual) {
   EXPECT_EQ(capture::readSweepResult(dir.path(), kSweep), bits);
   EXPECT_EQ(capture::readSweepResult(dir.path(), {"sqrt", "sqrt(x)", 0, 4096}), std::nullopt);
 
-  capture::writeSweepRequests(dir.path(), {kSweep, {"sqrt", "sqrt(x)", 0x3f800000u, 4096}});
+  const calibrate::FunctionSweep depth = {"frag_depth", "x", 0x3f000000u, 4096,
+                                          calibrate::SweepTarget::kDepth24};
+  capture::writeSweepRequests(dir.path(),
+                              {kSweep, {"sqrt", "sqrt(x)", 0x3f800000u, 4096}, depth});
   const auto read = capture::readSweepRequests(dir.path());
-  ASSERT_EQ(read.size(), 2u);
+  ASSERT_EQ(read.size(), 3u);
   EXPECT_EQ(read[0], kSweep);
   EXPECT_EQ(read[1].name, "sqrt");
+  EXPECT_EQ(read[1].target, calibrate::SweepTarget::kFloatBits);
+  EXPECT_EQ(read[2], depth);
+  // Only the depth sweep names a target: a request for the result's bits reads as before.
+  std::stringstream text;
+  text << std::ifstream(dir / "sweeps.json").rdbuf();
+  const std::string json = text.str();
+  EXPECT_NE(json.find("\"target\": \"depth24\""), std::string::npos);
+  EXPECT_EQ(json.find("\"target\""), json.rfind("\"target\""));
 }
 
 TEST(SweepFiles, AFolderWithoutSweepsAsksForNone) {
@@ -69,6 +81,8 @@ TEST(SweepFiles, MalformedRequestsAreRefusedNamingTheFileAndTheField) {
        "sweep 0: field name is not 1 to 32 of a-z, 0-9 and _"},
       {head + log2 + R"j("count": 4096, "colour": 1}]})j",
        "sweep 0: field colour is not a field of a sweep here"},
+      {head + log2 + R"j("count": 4096, "target": "stencil"}]})j",
+       "sweep 0: field target is not \"depth24\""},
       {head + log2 + R"j("count": 4096}, )j" + log2 + R"j("count": 8192}]})j",
        "sweep 1: a second sweep named log2"},
       {head + R"j({"name": 7}]})j", "sweeps.json: "},
@@ -109,7 +123,7 @@ TEST(SweepFiles, ASweepForOtherInputsIsRefusedByTheReplay) {
               ThrowsMessage<InputError>(
                   AllOf(StartsWith((dir / "sweeps.json").string() + ": "),
                         HasSubstr("sweep log2 is not the one this vt calibrate asks for"))));
-  EXPECT_EQ(drawer.sweep(calibrate::functionSweeps().back()), std::nullopt);  // sqrt: not listed
+  EXPECT_EQ(drawer.sweep(calibrate::functionSweeps().back()), std::nullopt);  // not listed
 }
 
 // A sweep the folder lists but whose results it lacks is refused, naming sweeps.json and the

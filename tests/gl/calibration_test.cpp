@@ -150,7 +150,8 @@ TEST(Calibration, IsDeterministicAndItsFileReadsBackAsTheModel) {
   test::ScratchDirectory dir;
   std::ofstream(dir / "model.json") << json;
   EXPECT_EQ(readModelFile(dir / "model.json"), first.model);
-  EXPECT_EQ(first.fits.size(), 21u);  // the families of the evidence, plane_positions included
+  // The families of the evidence, plane_positions and the reciprocal included.
+  EXPECT_EQ(first.fits.size(), 22u);
   for (const calibrate::ParameterFit& fit : first.fits) EXPECT_GT(fit.probes, 0u) << fit.parameter;
 }
 

@@ -215,15 +215,17 @@ TEST_F(VtCapture, ProbesDrawnByItGiveTheModelCalibrateMeasures) {
   EXPECT_THAT(cut.err, HasSubstr("probe-0001.result"));
 }
 
-// The probe pack's sweeps: log2 of every float of [0.5, 2) and sqrt of every float of [1, 4),
-// drawn by vt-capture from the pixel index and fitted offline, pin llvmpipe's log2 and sqrt over
-// all 2^24 inputs each; one value changed after drawing unpins log2 and is counted, and a NaN is
-// refused naming the rule.
-TEST_F(VtCapture, SweepsOfEveryFloatPinLlvmpipesLog2AndSqrt) {
+// The probe pack's sweeps: log2 of every float of [0.5, 2), sqrt of every float of [1, 4), the
+// reciprocal of every float of [1, 2) and gl_FragDepth of every float of [0.5, 1) and of
+// [2^-8, 2^-7) into Z24, drawn by vt-capture from the pixel index and fitted offline, pin
+// llvmpipe's log2, sqrt, reciprocal and Z24 conversion over every input; one value changed after
+// drawing unpins its family and is counted, and a NaN or a depth beyond 24 bits is refused naming
+// the rule.
+TEST_F(VtCapture, SweepsOfEveryFloatPinLlvmpipesFunctionsAndZ24) {
   if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
   std::string printed;
   ASSERT_NO_FATAL_FAILURE(drawKitProbes(true, printed));
-  EXPECT_THAT(printed, HasSubstr("and 2 sweeps of 33554432 inputs on llvmpipe"));
+  EXPECT_THAT(printed, HasSubstr("and 5 sweeps of 58720256 inputs on llvmpipe"));
   auto parameters = fitDrawn("elsewhere.json");
   EXPECT_EQ(test::slurp(dir_ / "here.json"), test::slurp(dir_ / "elsewhere.json"));
   for (const char* function : {"log2", "sqrt"}) {
@@ -233,31 +235,62 @@ TEST_F(VtCapture, SweepsOfEveryFloatPinLlvmpipesLog2AndSqrt) {
     EXPECT_THAT(parameters[function]["probe"].get<std::string>(),
                 HasSubstr("log2 of every float of [0.5, 2), sqrt of every float of [1, 4)"));
   }
+  EXPECT_TRUE(parameters["reciprocal"]["pinned"].get<bool>());
+  EXPECT_EQ(parameters["reciprocal"]["probes"].get<uint64_t>(), 1u << 23);
+  EXPECT_EQ(parameters["reciprocal"]["finding"].get<std::string>(),
+            "IEEE division, correctly rounded, bit for bit");
+  EXPECT_TRUE(parameters["z24"]["pinned"].get<bool>());
+  EXPECT_GT(parameters["z24"]["probes"].get<uint64_t>(), 1u << 24);
+  // In [0.5, 1) the float product is whole (rounding and truncation agree there); in the lower
+  // binade they part, and the exact product parts from llvmpipe's float product at the ties.
+  EXPECT_THAT(parameters["z24"]["finding"].get<std::string>(),
+              HasSubstr("nearest_even 0 of 16861951 differ, truncated 4172536 of 16861951"));
+  EXPECT_THAT(parameters["z24"]["finding"].get<std::string>(),
+              HasSubstr("the exact product z (2^24 - 1) rounded to nearest: 32768 of 16777216"));
 
-  // The log2 sweep's file decoded, changed and coded again (capture/sweep_files.h).
-  const std::filesystem::path log2File = dir_ / "drawn" / "sweep-log2.delta";
-  const auto change = [&](const std::function<uint32_t(uint32_t)>& into) {
-    std::vector<uint32_t> values(std::filesystem::file_size(log2File) / 4);
-    std::ifstream(log2File, std::ios::binary)
+  // A sweep's file decoded, changed at input `at` and coded again (capture/sweep_files.h).
+  const auto change = [&](const char* sweep, size_t at,
+                          const std::function<uint32_t(uint32_t)>& into) {
+    const std::filesystem::path file = dir_ / "drawn" / (std::string("sweep-") + sweep + ".delta");
+    std::vector<uint32_t> values(std::filesystem::file_size(file) / 4);
+    std::ifstream(file, std::ios::binary)
         .read(reinterpret_cast<char*>(values.data()),
               static_cast<std::streamsize>(values.size() * 4));
     for (size_t i = 1; i < values.size(); ++i) values[i] += values[i - 1];
-    values[5000000] = into(values[5000000]);
+    values[at] = into(values[at]);
     for (size_t i = values.size() - 1; i > 0; --i) values[i] -= values[i - 1];
-    std::ofstream(log2File, std::ios::binary | std::ios::trunc)
+    std::ofstream(file, std::ios::binary | std::ios::trunc)
         .write(reinterpret_cast<const char*>(values.data()),
                static_cast<std::streamsize>(values.size() * 4));
   };
-  // log2 of input 5,000,000 (in [0.5, 1)) one ulp off: log2 is no longer pinned, by one value.
-  change([](uint32_t bits) { return bits + 1; });
+  // log2 of input 5,000,000 (in [0.5, 1)) one ulp off: log2 is no longer pinned, by one value;
+  // the reciprocal of input 123 likewise; a stored depth one step off unpins Z24.
+  change("log2", 5000000, [](uint32_t bits) { return bits + 1; });
+  change("reciprocal", 123, [](uint32_t bits) { return bits - 1; });
+  change("frag_depth_low", 7, [](uint32_t stored) { return stored + 1; });
   parameters = fitDrawn("changed.json");
   EXPECT_FALSE(parameters["log2"]["pinned"].get<bool>());
   EXPECT_EQ(parameters["log2"]["mismatches"].get<uint64_t>(), 1u);
   EXPECT_THAT(parameters["log2"]["finding"].get<std::string>(),
               HasSubstr("polynomial_fused 1 of 16842752 differ"));
+  EXPECT_FALSE(parameters["reciprocal"]["pinned"].get<bool>());
+  EXPECT_THAT(parameters["reciprocal"]["finding"].get<std::string>(),
+              HasSubstr("1 of 8388608 differ from IEEE division, largest 1."));
+  EXPECT_FALSE(parameters["z24"]["pinned"].get<bool>());
+  EXPECT_EQ(parameters["z24"]["mismatches"].get<uint64_t>(), 1u);
 
-  // NaN in its place.
-  change([](uint32_t) { return std::bit_cast<uint32_t>(std::numeric_limits<float>::quiet_NaN()); });
+  // A stored depth beyond 24 bits.
+  change("frag_depth_low", 7, [](uint32_t) { return 1u << 24; });
+  const test::CommandResult deep =
+      vt({"calibrate", "--probes", (dir_ / "drawn").string(), "-o", (dir_ / "deep.json").string()});
+  EXPECT_EQ(deep.exitCode, 1);
+  EXPECT_THAT(deep.err, HasSubstr("the depth sweep frag_depth_low returned 16777216 at input 7, "
+                                  "which is no 24-bit depth value"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "deep.json"));
+
+  // NaN in log2's place.
+  change("log2", 5000000,
+         [](uint32_t) { return std::bit_cast<uint32_t>(std::numeric_limits<float>::quiet_NaN()); });
   const test::CommandResult refused =
       vt({"calibrate", "--probes", (dir_ / "drawn").string(), "-o", (dir_ / "nan.json").string()});
   EXPECT_EQ(refused.exitCode, 1);
