@@ -7,6 +7,7 @@
 
 #include "calibrate/decoding_fit.h"
 #include "calibrate/filter_fit.h"
+#include "calibrate/noperspective_fit.h"
 #include "calibrate/raster_fit.h"
 #include "calibrate/shader_math_fit.h"
 #include "probes/probe_draws.h"
@@ -202,6 +203,8 @@ Calibration calibrate() {
   drawFilterProbesAtCacheSizes(filterSamples,
                                {decoding.decoding, decoding.colour.pinned, decoding.alpha.pinned});
   const FilterFit filter = fitFilter(filterSamples, math.conversion);
+  // The noperspective group comes after the filter group's draws.
+  const std::optional<ParameterFit> noperspective = fitNoperspectivePlanes(raster.arithmetic);
 
   // Start from gl45: what no probe pins keeps at most the specification's slack, and what a
   // probe measured narrows it to the residual.
@@ -237,6 +240,7 @@ Calibration calibrate() {
                                 colour, math.denormals, depthTest, decoding.colour, decoding.alpha})
     c.fits.push_back(f);
   if (math.reciprocal) c.fits.push_back(*math.reciprocal);
+  if (noperspective) c.fits.push_back(*noperspective);
   c.conformance = nonConformance(m, c.fits, decoding);
 
   const std::string by = "measured by vt calibrate on " + c.renderer + ": ";

@@ -5,7 +5,10 @@
 //   shader math    log2, sqrt, texel values, the `precise` lerps, denormals (shader_math_fit.h)
 //   GL_LINEAR      every member of the filter family (filter_fit.h)
 //   rasterization  coverage, viewport, plane setup and evaluation, perspective, depth
-//                  (raster_fit.h)
+//                  (raster_fit.h); the planes of noperspective coordinates, evidence where the
+//                  folder holds that group (noperspective_fit.h)
+//   reciprocal     1.0 / x over a binade, evidence where the folder holds the sweep
+//                  (shader_math_fit.h)
 //   colour         floats between two unorm8 values written to an RGBA8 target: always the
 //                  nearest, else either (GL 4.5 section 2.3.5.2)
 //   depth test     a far quad drawn after a near one and a near one after a far one, 32F depth,

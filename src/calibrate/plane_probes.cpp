@@ -132,7 +132,42 @@ bool sameValues(const RasterReadback& a, size_t i, const RasterReadback& b, size
          sameBits(a.derivatives[i].w, b.derivatives[j].w) && sameBits(a.depth[i], b.depth[j]);
 }
 
+// `count` random triangles with their vertices on the 1/256 grid of a 256 x 256 viewport, within
+// `reach` pixels of a centre (the whole viewport for reach 0), window depths multiples of 2^-24
+// in [0.25, 0.75), w of 0.5, 1, 2 or 4 and random coordinates.
+NoperspectiveProbe randomGridTriangles(std::string name, unsigned seed, int count, int reach) {
+  NoperspectiveProbe probe{std::move(name), {}, {}, {256, 256}};
+  std::mt19937 random(seed);
+  const auto grid = [&](int lo, int hi) {  // a multiple of 1/256 in [lo, hi)
+    return std::uniform_int_distribution<int>(lo * 256, hi * 256 - 1)(random) / 256.0;
+  };
+  std::uniform_int_distribution<uint32_t> depth(uint32_t{1} << 22, 3 * (uint32_t{1} << 22) - 1);
+  std::uniform_real_distribution<float> coordinate(0.0f, 1.0f);
+  constexpr float kW[4] = {0.5f, 1, 2, 4};
+  for (int k = 0; k < count; ++k) {
+    std::array<glm::dvec2, 3> window, uv;
+    Depths z;
+    std::array<float, 3> w;
+    const glm::dvec2 centre(grid(reach, 256 - reach), grid(reach, 256 - reach));
+    for (int v = 0; v < 3; ++v) {
+      window[v] = reach == 0 ? glm::dvec2(grid(0, 256), grid(0, 256))
+                             : centre + glm::dvec2(grid(-reach, reach), grid(-reach, reach));
+      z[v] = depth(random) * kDepthUnit;
+      w[v] = kW[random() % 4];
+      uv[v] = glm::dvec2(coordinate(random), coordinate(random));
+    }
+    addTriangle(probe.drawn, probe.viewport, window, z, w, uv);
+    addTriangle(probe.divided, probe.viewport, window, z, {1, 1, 1}, uv);
+  }
+  return probe;
+}
+
 }  // namespace
+
+std::vector<NoperspectiveProbe> noperspectiveProbes() {
+  return {randomGridTriangles("small triangles", 31, 400, 16),
+          randomGridTriangles("large triangles", 32, 60, 0)};
+}
 
 std::vector<PlaneProbe> planeProbes() {
   const Viewport cell{128, 128};

@@ -18,6 +18,13 @@
 //
 // The group comes after the first probes (probes/probe_draws.h, holdsOptionalGroup): a folder
 // drawn before it fits as before.
+//
+// The noperspective group, after the filter group (filter_fit.h): random triangles whose vertices
+// lie on the 1/256 grid with window depths that are multiples of 2^-24, and w of 0.5, 1, 2 or 4
+// at each vertex, drawn with `noperspective` coordinates. Dividing by a power of two is exact, so
+// the oracle draws the same triangles divided through (w = 1, where 1/w is 1 at every pixel and
+// the perspective division changes nothing): the implementation's planes and their evaluation
+// on triangles of every shape, without its reciprocal or division in the way.
 
 #include <string>
 #include <vector>
@@ -38,6 +45,16 @@ struct PlaneProbe {
 
 // The group, in the order it is drawn: the 32F draws of T, then the Z24 squares (last).
 std::vector<PlaneProbe> planeProbes();
+
+struct NoperspectiveProbe {
+  std::string name;       // "small triangles", "large triangles"
+  ClipSpaceMesh drawn;    // drawn with noperspective coordinates: w of 0.5 to 4 at its vertices
+  ClipSpaceMesh divided;  // the same vertices divided by their w, exactly: w = 1
+  Viewport viewport;
+};
+// The noperspective group, in the order it is drawn: 400 triangles of at most 32 pixels a side,
+// then 60 of any size, each in 256 x 256 pixels.
+std::vector<NoperspectiveProbe> noperspectiveProbes();
 
 // Whether T's values move with it: every shifted copy of T compared, pixel by pixel, with the
 // base copy at the pixel as far back (triangle, coordinates, derivatives and depth bit for bit).

@@ -25,6 +25,16 @@
 namespace vt::calibrate {
 namespace {}  // namespace
 
+Frame oracleFrame(const ClipSpaceMesh& mesh, const reference::ResidentTexture& texture,
+                  Viewport viewport, const Arithmetic& arithmetic, DepthFormat format) {
+  RenderSettings settings;
+  settings.debugChannels = true;
+  settings.viewport = viewport;
+  settings.arithmetic = arithmetic;
+  settings.depthFormat = format;
+  return reference::renderFrame(mesh, texture, settings);
+}
+
 void compareRaster(const RasterReadback& gl, const Frame& oracle, RasterCounts& c) {
   for (size_t i = 0; i < oracle.triangle.size(); ++i) {
     ++c.pixels;
@@ -316,17 +326,6 @@ const char* const kPlaneGroupProbe =
     "1 and near 2^-10, its vertices rotated, at w 0.5, 2 and 3";
 const char* const kPixelsCounted =
     " pixels, in coverage, coordinates or depth, with the member's best combination";
-
-// The oracle's frame of a probe mesh, with debug channels (triangle, coordinates, derivatives).
-Frame oracleFrame(const ClipSpaceMesh& mesh, const reference::ResidentTexture& texture,
-                  Viewport viewport, const Arithmetic& arithmetic, DepthFormat format) {
-  RenderSettings settings;
-  settings.debugChannels = true;
-  settings.viewport = viewport;
-  settings.arithmetic = arithmetic;
-  settings.depthFormat = format;
-  return reference::renderFrame(mesh, texture, settings);
-}
 
 // Every combination of the coverage candidates and the other families' members, on `base`.
 std::vector<Combination> allCombinations(const Arithmetic& base,

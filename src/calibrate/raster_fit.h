@@ -29,6 +29,10 @@
 #include "render/frame.h"
 #include "render/precision_model.h"
 
+namespace vt::reference {
+class ResidentTexture;
+}
+
 namespace vt::calibrate {
 
 // What an arithmetic's frame misses of an implementation's readbacks of the same probes: pixels
@@ -48,6 +52,10 @@ struct RasterCounts {
 };
 // Adds what `oracle` (drawn with debug channels) misses of `gl` to `counts`.
 void compareRaster(const RasterReadback& gl, const Frame& oracle, RasterCounts& counts);
+
+// The oracle's frame of a probe mesh, with debug channels (triangle, coordinates, derivatives).
+Frame oracleFrame(const ClipSpaceMesh& mesh, const reference::ResidentTexture& texture,
+                  Viewport viewport, const Arithmetic& arithmetic, DepthFormat format);
 
 struct RasterFits {
   std::vector<ParameterFit> fits;  // coverage, subpixel_bits, viewport, plane_setup,

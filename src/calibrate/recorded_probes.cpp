@@ -20,12 +20,14 @@ ProbeRequest shaderRequest(ProbeRequest::Kind kind, const ShaderProbe& probe) {
   return r;
 }
 
-ProbeRequest trianglesRequest(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format) {
+ProbeRequest trianglesRequest(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format,
+                              Interpolation interpolation) {
   ProbeRequest r;
   r.kind = ProbeRequest::Kind::kTriangles;
   r.mesh = mesh;
   r.viewport = viewport;
   r.depth = format;
+  r.interpolation = interpolation;
   return r;
 }
 
@@ -63,8 +65,8 @@ std::vector<glm::u8vec4> RecordingProbeDrawer::colour(const ShaderProbe& probe) 
   return record(folder_, next_, shaderRequest(ProbeRequest::Kind::kColour, probe)).bytes;
 }
 RasterReadback RecordingProbeDrawer::triangles(const ClipSpaceMesh& mesh, Viewport viewport,
-                                               DepthFormat format) {
-  return record(folder_, next_, trianglesRequest(mesh, viewport, format)).raster;
+                                               DepthFormat format, Interpolation interpolation) {
+  return record(folder_, next_, trianglesRequest(mesh, viewport, format, interpolation)).raster;
 }
 std::optional<std::vector<uint32_t>> RecordingProbeDrawer::sweep(const FunctionSweep& sweep) {
   std::vector<uint32_t> bits = drawFunctionSweepHere(sweep);
@@ -92,8 +94,9 @@ std::vector<glm::u8vec4> RecordedProbeDrawer::colour(const ShaderProbe& probe) {
   return replay(folder_, count_, next_, shaderRequest(ProbeRequest::Kind::kColour, probe)).bytes;
 }
 RasterReadback RecordedProbeDrawer::triangles(const ClipSpaceMesh& mesh, Viewport viewport,
-                                              DepthFormat format) {
-  return replay(folder_, count_, next_, trianglesRequest(mesh, viewport, format)).raster;
+                                              DepthFormat format, Interpolation interpolation) {
+  return replay(folder_, count_, next_, trianglesRequest(mesh, viewport, format, interpolation))
+      .raster;
 }
 
 std::optional<std::vector<uint32_t>> RecordedProbeDrawer::sweep(const FunctionSweep& sweep) {

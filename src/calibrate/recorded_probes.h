@@ -17,8 +17,8 @@ class RecordingProbeDrawer : public ProbeDrawer {
   explicit RecordingProbeDrawer(std::filesystem::path folder);
   std::vector<glm::vec4> shader(const ShaderProbe& probe) override;
   std::vector<glm::u8vec4> colour(const ShaderProbe& probe) override;
-  RasterReadback triangles(const ClipSpaceMesh& mesh, Viewport viewport,
-                           DepthFormat format) override;
+  RasterReadback triangles(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format,
+                           Interpolation interpolation) override;
   ProbeIdentity identity() override { return identityHere(); }
   std::optional<std::vector<uint32_t>> sweep(const FunctionSweep& sweep) override;
   // Writes probes.json with the number of draws recorded, and sweeps.json with the sweeps.
@@ -36,8 +36,8 @@ class RecordedProbeDrawer : public ProbeDrawer {
   explicit RecordedProbeDrawer(std::filesystem::path folder);
   std::vector<glm::vec4> shader(const ShaderProbe& probe) override;
   std::vector<glm::u8vec4> colour(const ShaderProbe& probe) override;
-  RasterReadback triangles(const ClipSpaceMesh& mesh, Viewport viewport,
-                           DepthFormat format) override;
+  RasterReadback triangles(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format,
+                           Interpolation interpolation) override;
   ProbeIdentity identity() override { return identity_; }
   // The folder's bc3-alpha.u8 (scripts/bc3-alpha-probe.py table), if it has one; InputError
   // naming it when it is not 65,536 x 6 bytes.

@@ -115,7 +115,8 @@ bool sameRequest(const ProbeRequest& a, const ProbeRequest& b) {
   if (a.kind != b.kind) return false;
   if (a.kind == ProbeRequest::Kind::kTriangles) {
     if (a.viewport.width != b.viewport.width || a.viewport.height != b.viewport.height ||
-        a.depth != b.depth || a.mesh.indices != b.mesh.indices ||
+        a.depth != b.depth || a.interpolation != b.interpolation ||
+        a.mesh.indices != b.mesh.indices ||
         a.mesh.vertices.size() != b.mesh.vertices.size())
       return false;
     return std::memcmp(a.mesh.vertices.data(), b.mesh.vertices.data(),
@@ -147,6 +148,9 @@ void writeProbeRequest(const std::filesystem::path& folder, size_t index,
     j["index_count"] = request.mesh.indices.size();
     j["viewport"] = {request.viewport.width, request.viewport.height};
     j["depth"] = request.depth == DepthFormat::kDepth24 ? "depth24" : "depth32f";
+    // Written only where not the default, so that the first pack's requests read as before.
+    if (request.interpolation == calibrate::Interpolation::kNoPerspective)
+      j["interpolation"] = "noperspective";
   } else {
     const calibrate::ShaderProbe& p = request.shader;
     writeArray(folder / (name + ".inputs.f32"), p.inputs);
@@ -193,6 +197,12 @@ ProbeRequest readProbeRequest(const std::filesystem::path& folder, size_t index)
       if (depth != "depth24" && depth != "depth32f")
         throw InputError(file, "depth '" + depth + "' is not depth24 or depth32f");
       r.depth = depth == "depth24" ? DepthFormat::kDepth24 : DepthFormat::kDepth32F;
+      if (j.contains("interpolation")) {
+        if (j.at("interpolation") != "noperspective")
+          throw InputError(file, "interpolation is not noperspective (perspective is the default "
+                                 "and is not named)");
+        r.interpolation = calibrate::Interpolation::kNoPerspective;
+      }
       const std::vector<float> v =
           readArray<float>(folder / (name + ".vertices.f32"), vertexCount * 6, "vertices");
       for (size_t k = 0; k < vertexCount; ++k)
@@ -335,7 +345,8 @@ ProbeResult drawHere(const ProbeRequest& request) {
       result.bytes = calibrate::drawColourProbeHere(request.shader);
       break;
     case ProbeRequest::Kind::kTriangles:
-      result.raster = calibrate::drawTrianglesHere(request.mesh, request.viewport, request.depth);
+      result.raster = calibrate::drawTrianglesHere(request.mesh, request.viewport, request.depth,
+                                                   request.interpolation);
       break;
   }
   return result;

@@ -35,6 +35,7 @@ struct ProbeRequest {
   ClipSpaceMesh mesh;             // kTriangles
   Viewport viewport;
   DepthFormat depth = DepthFormat::kDepth32F;
+  calibrate::Interpolation interpolation = calibrate::Interpolation::kPerspective;  // kTriangles
 };
 
 struct ProbeResult {

@@ -277,9 +277,10 @@ std::vector<glm::u8vec4> runColourProbe(const ShaderProbe& probe) {
   return currentDrawer ? currentDrawer->colour(probe) : drawColourProbeHere(probe);
 }
 
-RasterReadback drawTriangles(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format) {
-  RasterReadback r = currentDrawer ? currentDrawer->triangles(mesh, viewport, format)
-                                   : drawTrianglesHere(mesh, viewport, format);
+RasterReadback drawTriangles(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format,
+                             Interpolation interpolation) {
+  RasterReadback r = currentDrawer ? currentDrawer->triangles(mesh, viewport, format, interpolation)
+                                   : drawTrianglesHere(mesh, viewport, format, interpolation);
   refuseNonFinite(r, mesh.indices.size() / 3);
   return r;
 }
@@ -383,11 +384,13 @@ void readDepth(GLuint depth, bool z24, std::vector<float>& out) {
 
 }  // namespace
 
-RasterReadback drawTrianglesHere(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format) {
-  static const char* kVertex = R"(#version 450 core
+RasterReadback drawTrianglesHere(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format,
+                                 Interpolation interpolation) {
+  const std::string qualifier =
+      interpolation == Interpolation::kNoPerspective ? "noperspective " : "";
+  const std::string vertex = "#version 450 core\n" + qualifier + R"(out vec2 vUV;
 layout(location = 0) in vec4 aClipPosition;
 layout(location = 1) in vec2 aUV;
-out vec2 vUV;
 flat out float vTriangle;
 void main() {
   vUV = aUV;
@@ -398,8 +401,7 @@ void main() {
   // The triangle as a flat float from its vertices (each triangle has its own three, in order),
   // not gl_PrimitiveID, into a float target: an implementation that loses integer clears
   // (softpipe, tests/gl/softpipe_rules_test.cpp) is still measured.
-  static const char* kFragment = R"(#version 450 core
-in vec2 vUV;
+  const std::string fragment = "#version 450 core\n" + qualifier + R"(in vec2 vUV;
 flat in float vTriangle;
 layout(location = 0) out vec4 outTriangle;
 layout(location = 1) out vec4 outUV;
@@ -410,7 +412,7 @@ void main() {
   outDerivatives = vec4(dFdxFine(vUV), dFdyFine(vUV));
 }
 )";
-  const GlProgram program(kVertex, kFragment);
+  const GlProgram program(vertex, fragment);
   const int width = viewport.width, height = viewport.height;
   Names names;
   const GLuint triangles = names.texture(GL_RGBA32F, width, height);

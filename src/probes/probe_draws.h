@@ -48,7 +48,10 @@ std::vector<glm::u8vec4> runColourProbe(const ShaderProbe& probe);
 // What a draw of `mesh` leaves per pixel (bottom row first): the triangle that passed GL_LESS
 // against a depth buffer (32F or Z24) cleared to 1 (-1 for none; each triangle must have its own
 // three vertices, in order, as randomTriangles in calibration.cpp makes them), its texture
-// coordinates, their fine derivatives (ds/dx, dt/dx, ds/dy, dt/dy) and the depth stored.
+// coordinates, their fine derivatives (ds/dx, dt/dx, ds/dy, dt/dy) and the depth stored. The
+// coordinates are interpolated perspective-correct (GLSL's default), or `noperspective`: linearly
+// in window space.
+enum class Interpolation { kPerspective, kNoPerspective };
 struct RasterReadback {
   std::vector<int32_t> triangle;
   std::vector<glm::vec2> uv;
@@ -61,7 +64,8 @@ struct RasterReadback {
 ClipSpaceMesh randomTriangles(unsigned seed, int triangles);
 
 RasterReadback drawTriangles(const ClipSpaceMesh& mesh, Viewport viewport,
-                             DepthFormat format = DepthFormat::kDepth32F);
+                             DepthFormat format = DepthFormat::kDepth32F,
+                             Interpolation interpolation = Interpolation::kPerspective);
 
 // The implementation's names (GL_RENDERER, GL_VERSION, GL_VENDOR).
 struct ProbeIdentity {
@@ -79,7 +83,7 @@ class ProbeDrawer {
   virtual std::vector<glm::vec4> shader(const ShaderProbe& probe) = 0;
   virtual std::vector<glm::u8vec4> colour(const ShaderProbe& probe) = 0;
   virtual RasterReadback triangles(const ClipSpaceMesh& mesh, Viewport viewport,
-                                   DepthFormat format) = 0;
+                                   DepthFormat format, Interpolation interpolation) = 0;
   virtual ProbeIdentity identity() = 0;
   // A dense BC3 alpha table measured beside the probes (decoding_fit.h), if the drawer has one.
   virtual std::optional<std::vector<uint8_t>> denseAlphaTable() { return std::nullopt; }
@@ -113,7 +117,8 @@ class UsingProbeDrawer {
 // The draws on the current context, whatever drawer is set.
 std::vector<glm::vec4> drawShaderProbeHere(const ShaderProbe& probe);
 std::vector<glm::u8vec4> drawColourProbeHere(const ShaderProbe& probe);
-RasterReadback drawTrianglesHere(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format);
+RasterReadback drawTrianglesHere(const ClipSpaceMesh& mesh, Viewport viewport, DepthFormat format,
+                                 Interpolation interpolation = Interpolation::kPerspective);
 ProbeIdentity identityHere();
 
 }  // namespace vt::calibrate

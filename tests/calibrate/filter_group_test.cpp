@@ -19,7 +19,9 @@ class AnsweringDrawer : public ProbeDrawer {
     return std::vector<glm::vec4>(probe.inputs.size(), glm::vec4(0));
   }
   std::vector<glm::u8vec4> colour(const ShaderProbe&) override { return {}; }
-  RasterReadback triangles(const ClipSpaceMesh&, Viewport, DepthFormat) override { return {}; }
+  RasterReadback triangles(const ClipSpaceMesh&, Viewport, DepthFormat, Interpolation) override {
+    return {};
+  }
   ProbeIdentity identity() override { return {}; }
   bool holdsGroup(size_t draws) override {
     groups.push_back(draws);

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
 namespace vt::calibrate {
 namespace {
@@ -144,6 +145,44 @@ TEST(PlaneProbes, ShiftEvidenceFindsOneChangedValueOrPixel) {
   EXPECT_EQ(e.pixels, 14u * 210u - 1 + 1);
   EXPECT_EQ(e.differing, 1u);
   EXPECT_EQ(e.smallestShift, 256);
+}
+
+// The noperspective group: the oracle draws the divided mesh in place of the drawn one, which
+// holds only where dividing by w is exact (either way an implementation divides) and the divided
+// vertices land on the 1/256 grid with float window depths.
+TEST(PlaneProbes, NoperspectiveTrianglesDivideByTheirWExactly) {
+  const std::vector<NoperspectiveProbe> probes = noperspectiveProbes();
+  ASSERT_EQ(probes.size(), 2u);
+  EXPECT_EQ(probes[0].drawn.indices.size(), 3u * 400u);
+  EXPECT_EQ(probes[1].drawn.indices.size(), 3u * 60u);
+  std::set<float> ws;
+  for (const NoperspectiveProbe& probe : probes) {
+    SCOPED_TRACE(probe.name);
+    ASSERT_EQ(probe.drawn.vertices.size(), probe.divided.vertices.size());
+    EXPECT_EQ(probe.drawn.indices, probe.divided.indices);
+    for (size_t i = 0; i < probe.drawn.vertices.size(); ++i) {
+      const ClipVertex &v = probe.drawn.vertices[i], &d = probe.divided.vertices[i];
+      const float w = v.position.w;
+      ws.insert(w);
+      ASSERT_EQ(d.position.w, 1.0f);
+      EXPECT_EQ(d.uv, v.uv);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(v.position[k] / w, d.position[k]);
+        EXPECT_EQ(v.position[k] * (1.0f / w), d.position[k]);
+      }
+      const auto [xFused, xUnfused] = window(d.position.x, 1, probe.viewport.width / 2.0f);
+      const auto [yFused, yUnfused] = window(d.position.y, 1, probe.viewport.height / 2.0f);
+      const auto [zFused, zUnfused] = window(d.position.z, 1, 0.5f);
+      EXPECT_EQ(xFused, xUnfused);
+      EXPECT_EQ(zFused, zUnfused);
+      EXPECT_EQ(xFused * 256.0f, std::floor(xFused * 256.0f));
+      EXPECT_EQ(yFused * 256.0f, std::floor(yFused * 256.0f));
+      EXPECT_TRUE(xFused >= 0 && xFused < 256 && yFused >= 0 && yFused < 256);
+      EXPECT_TRUE(zFused >= 0.25f && zFused < 0.75f);
+      EXPECT_EQ(zFused * 0x1p24f, std::floor(zFused * 0x1p24f));
+    }
+  }
+  EXPECT_EQ(ws, (std::set<float>{0.5f, 1.0f, 2.0f, 4.0f}));
 }
 
 }  // namespace

@@ -150,8 +150,9 @@ TEST(Calibration, IsDeterministicAndItsFileReadsBackAsTheModel) {
   test::ScratchDirectory dir;
   std::ofstream(dir / "model.json") << json;
   EXPECT_EQ(readModelFile(dir / "model.json"), first.model);
-  // The families of the evidence, plane_positions and the reciprocal included.
-  EXPECT_EQ(first.fits.size(), 22u);
+  // The families of the evidence, plane_positions, the reciprocal and the noperspective planes
+  // included.
+  EXPECT_EQ(first.fits.size(), 23u);
   for (const calibrate::ParameterFit& fit : first.fits) EXPECT_GT(fit.probes, 0u) << fit.parameter;
 }
 

@@ -300,17 +300,18 @@ TEST_F(VtCapture, SweepsOfEveryFloatPinLlvmpipesFunctionsAndZ24) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "nan.json"));
 }
 
-// The pack's groups, the plane group (calibrate/plane_probes.h) and GL_LINEAR at the cache's
-// sizes (calibrate/filter_fit.h): drawn by vt-capture from the kit's requests and fitted offline
-// they pin llvmpipe's plane evaluation, Z24 conversion and filter with them, and show that
-// llvmpipe's values move when the triangle does; a folder drawn before a group (its probes.json
-// ends where the group begins, as the H100's) fits the same point without it; a folder that ends
-// inside a group is refused.
+// The pack's groups, the plane group (calibrate/plane_probes.h), GL_LINEAR at the cache's sizes
+// (calibrate/filter_fit.h) and the noperspective group (calibrate/noperspective_fit.h): drawn by
+// vt-capture from the kit's requests and fitted offline they pin llvmpipe's plane evaluation, Z24
+// conversion and filter with them, show that llvmpipe's values move when the triangle does, and
+// reproduce its noperspective coordinates by the members its perspective ones chose; a folder
+// drawn before a group (its probes.json ends where the group begins, as the H100's) fits the same
+// point without it; a folder that ends inside a group is refused.
 TEST_F(VtCapture, TheGroupsPinLlvmpipeAndAFolderWithoutThemFitsAsBefore) {
   if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
   std::string printed;
   ASSERT_NO_FATAL_FAILURE(drawKitProbes(false, printed));
-  EXPECT_THAT(printed, HasSubstr("drew 42 probe draws"));
+  EXPECT_THAT(printed, HasSubstr("drew 44 probe draws"));
   auto withGroup = fitDrawn("with.json");
   for (const char* family :
        {"plane_evaluation", "plane_setup", "attributes", "depth", "z24", "filter"}) {
@@ -332,12 +333,24 @@ TEST_F(VtCapture, TheGroupsPinLlvmpipeAndAFolderWithoutThemFitsAsBefore) {
             "buffer");
   EXPECT_THAT(withGroup["z24"]["finding"].get<std::string>(),
               HasSubstr("nearest_even 0 of 84735 differ, truncated 10999 of 84735 differ"));
+  // Vertices on the 1/256 grid: snapped and unsnapped positions coincide on llvmpipe's grid.
+  EXPECT_TRUE(withGroup["noperspective_planes"]["pinned"].get<bool>());
+  EXPECT_EQ(withGroup["noperspective_planes"]["chosen"], "first_vertex/unsnapped/fused");
+  EXPECT_THAT(withGroup["noperspective_planes"]["finding"].get<std::string>(),
+              HasSubstr("first_vertex/snapped/fused 0 of 131072 differ, "
+                        "first_vertex/snapped/unfused 63778 of 131072 differ"));
 
   // The first 22 draws alone, as a folder drawn before the group.
   const std::filesystem::path description = dir_ / "drawn" / "probes.json";
   nlohmann::json probes = nlohmann::json::parse(test::slurp(description));
-  ASSERT_EQ(probes["count"], 42);
-  // Without the filter group (the last five draws).
+  ASSERT_EQ(probes["count"], 44);
+  // Without the noperspective group (the last two draws).
+  probes["count"] = 42;
+  std::ofstream(description, std::ios::trunc) << probes.dump();
+  const auto withoutNoperspective = fitDrawn("no-noperspective.json");
+  EXPECT_EQ(withoutNoperspective.at("point"), withGroup["point"]);
+  EXPECT_FALSE(withoutNoperspective.contains("noperspective_planes"));
+  // Without the filter group (the five draws before).
   probes["count"] = 37;
   std::ofstream(description, std::ios::trunc) << probes.dump();
   const auto withoutFilterGroup = fitDrawn("plane-group-only.json");

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "cli/run_command.h"
 #include "test_json.h"
 #include "test_support.h"
 #include "vt/oracle.h"
