@@ -133,7 +133,12 @@ inline void quadPairAttributes(const SetupTriangle& t, int qx, int qy,
     su = s / q;
     tv = tt / q;
   } else {
-    const Float8 recip = Float8(1.0f) / q;
+    Float8 recip(0.0f);
+    if (arithmetic.reciprocal.table) {  // a measured table: looked up lane by lane
+      for (int k = 0; k < 8; ++k) recip.v[k] = arithmetic.reciprocal.of(q[k]);
+    } else {
+      recip = Float8(1.0f) / q;
+    }
     su = s * recip;
     tv = tt * recip;
   }

@@ -177,7 +177,7 @@ inline PixelAttributes attributesAt(const SetupTriangle& t, int px, int py,
                                     const Arithmetic& arithmetic) {
   const PlaneEvaluation evaluation = arithmetic.planeEvaluation;
   const float q = evaluatePlane(t.oneOverW, px, py, evaluation);
-  const float recip = 1.0f / q;
+  const float recip = arithmetic.reciprocal.of(q);
   const float s = evaluatePlane(t.s, px, py, evaluation),
               tt = evaluatePlane(t.t, px, py, evaluation);
   if (arithmetic.perspective == Perspective::kDivided) return {glm::vec2(s / q, tt / q), recip};

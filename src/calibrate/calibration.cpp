@@ -198,6 +198,7 @@ Calibration calibrate() {
   shaderMembers.log2 = math.log2Form;
   shaderMembers.texelConversion = math.conversion;
   shaderMembers.flushDenormals = math.flushesDenormals;
+  shaderMembers.reciprocal = math.measuredReciprocal;  // offered beside IEEE 1 / q
   const RasterFits raster = fitRasterization(shaderMembers);
   // Drawn after the first pack's last draw (raster's); the filter members draw no coordinate.
   drawFilterProbesAtCacheSizes(filterSamples,

@@ -3,7 +3,8 @@
 // implementation only after a fingerprint of it, a handful of probe draws on the current GL
 // context, reproduces the model's arithmetic bit for bit. The renderer's name decides nothing.
 //
-// The fingerprint (well under a second): log2 of 4,096 floats of every exponent; 256 texel
+// The fingerprint (well under a second): log2 of 4,096 floats of every exponent, and their
+// reciprocals where the model's is a measured table (render/measured_reciprocal.h); 256 texel
 // fetches of unorm8 values; 4,096 GL_LINEAR samples of a 24 x 40 texture at random coordinates;
 // 40 random triangles at 64 x 48 (which triangle, texture coordinates, fine derivatives, 32F
 // depth); and, where the model pins it, a denormal product in a clipped and an unclipped draw.

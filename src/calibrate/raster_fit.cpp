@@ -340,7 +340,12 @@ std::vector<Combination> allCombinations(const Arithmetic& base,
             continue;
           for (const auto& [evaluation, evaluationName] : kPlaneEvaluationNames)
             for (const auto& [perspective, perspectiveName] : kPerspectiveNames)
+              for (const bool measured : {false, true})
               for (const bool offsetAndClamp : {true, false}) {
+                // A measured reciprocal, where the shader fit offers one (reciprocal_times only).
+                if (measured &&
+                    (!base.reciprocal.table || perspective != Perspective::kReciprocalTimes))
+                  continue;
                 Arithmetic a = base;
                 a.coverage = coverage;
                 a.fusedViewport = fusedViewport;
@@ -348,6 +353,7 @@ std::vector<Combination> allCombinations(const Arithmetic& base,
                 a.planePositions = positions;
                 a.planeEvaluation = evaluation;
                 a.perspective = perspective;
+                a.reciprocal = measured ? base.reciprocal : Reciprocal{};
                 a.depth.offsetAndClamp = offsetAndClamp;
                 combinations.push_back({a, {}});
               }
@@ -499,6 +505,15 @@ void addFamilyFits(RasterFits& result, const GridResult& grid,
       "perspective", combinations, chosen, [](const Arithmetic& a) { return a.perspective; },
       [](Perspective p) { return std::string(vt::nameOf(kPerspectiveNames, p)); },
       valuesOf(kPerspectiveNames)));
+  // Where the shader fit offered a measured reciprocal (shader_math_fit.h).
+  if (chosen.arithmetic.reciprocal.table ||
+      std::any_of(combinations.begin(), combinations.end(),
+                  [](const Combination& c) { return c.arithmetic.reciprocal.table != nullptr; }))
+    result.fits.push_back(familyFit(
+        "perspective_reciprocal", combinations, chosen,
+        [](const Arithmetic& a) { return a.reciprocal.table != nullptr; },
+        [](bool measured) { return std::string(measured ? "measured" : "ieee"); },
+        std::vector<bool>{false, true}));
   result.fits.push_back(familyFit(
       "depth_offset", combinations, chosen,
       [](const Arithmetic& a) { return a.depth.offsetAndClamp; },
@@ -764,6 +779,7 @@ std::string rasterMemberOf(const std::string& family, const Arithmetic& a) {
   if (family == "plane_evaluation")
     return std::string(vt::nameOf(kPlaneEvaluationNames, a.planeEvaluation));
   if (family == "perspective") return std::string(vt::nameOf(kPerspectiveNames, a.perspective));
+  if (family == "perspective_reciprocal") return a.reciprocal.table ? "measured" : "ieee";
   if (family == "depth_offset")
     return a.depth.offsetAndClamp ? "offset_and_clamp" : "as_interpolated";
   if (family == "z24") return std::string(vt::nameOf(kZ24ConversionNames, a.depth.z24));

@@ -58,9 +58,9 @@ Returned returned(const std::vector<glm::vec4>& inputs, const std::vector<glm::v
   return r;
 }
 
-std::optional<ParameterFit> fitReciprocal() {
+std::optional<ParameterFit> fitReciprocal(Reciprocal& measured) {
   const FunctionSweep& sweep = *packSweep("reciprocal");
-  const std::optional<std::vector<uint32_t>> bits = functionSweep(sweep);
+  std::optional<std::vector<uint32_t>> bits = functionSweep(sweep);
   if (!bits) return std::nullopt;
   uint64_t missed = 0;
   double ulps = 0;
@@ -79,6 +79,13 @@ std::optional<ParameterFit> fitReciprocal() {
                             : differ(missed, bits->size()) + " from IEEE division, largest " +
                                   std::to_string(ulps) + " ulps (GLSL 4.50 allows " +
                                   std::to_string(kGlslReciprocalUlps) + ")";
+  // A table of results in [0.5, 1] becomes a member; one beyond is far outside GLSL's 2.5 ulps
+  // and reported as such (calibration.h's conformance).
+  if (missed > 0 && fit.largestResidual <= kGlslReciprocalUlps) {
+    measured.table = std::make_shared<const MeasuredReciprocal>(std::move(*bits));
+    fit.finding += "; the measured table " + measured.table->checksum() +
+                   " is offered to the perspective probes";
+  }
   return fit;
 }
 
@@ -247,7 +254,7 @@ ShaderMathFits fitShaderMath() {
   ShaderMathFits m;
   fitLog2AndSqrt(m);
   fitConversionAndLerps(m);
-  m.reciprocal = fitReciprocal();
+  m.reciprocal = fitReciprocal(m.measuredReciprocal);
   return m;
 }
 

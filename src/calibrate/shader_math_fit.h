@@ -13,10 +13,10 @@
 //   denormals    a denormal times a 1 read from the inputs, in a draw the clipper cuts and in one
 //                it leaves whole: flushed or kept, or free where the two differ
 //   reciprocal   1.0 / x of every float of [1, 2), where the folder holds the pack's sweep
-//                (probes/function_sweeps.h): IEEE division bit for bit, or its residual in ulps.
-//                Evidence only, for now: the oracle's perspective member reciprocal_times takes
-//                1 / q in IEEE division (reference/triangle_setup.h), and where the attributes
-//                are not reproduced their bound comes from the triangles themselves.
+//                (probes/function_sweeps.h): IEEE division bit for bit, or its residual in ulps
+//                and the measured table (render/measured_reciprocal.h), which the rasterization
+//                fit offers the perspective member reciprocal_times beside IEEE 1 / q: the
+//                perspective triangles decide (raster_fit.h).
 
 #include <optional>
 
@@ -31,6 +31,7 @@ inline constexpr double kGlslReciprocalUlps = 2.5;
 struct ShaderMathFits {
   ParameterFit log2, sqrt, texelConversion, lerp, denormals;
   std::optional<ParameterFit> reciprocal;  // where the reciprocal sweep was drawn
+  Reciprocal measuredReciprocal;           // its table, where IEEE division missed some
   Log2Form log2Form = Log2Form::kLibm;    // the chosen member
   double log2Absolute = 0, log2Ulps = 0;  // residuals against the true log2 (unpinned only)
   double sqrtUlps = 0;

@@ -21,7 +21,10 @@ std::string describe(const Arithmetic& a) {
                                ? ", through the positions snapped to the coverage's grid"
                                : ""));
   line("plane_evaluation", std::string(nameOf(kPlaneEvaluationNames, a.planeEvaluation)));
-  line("perspective", std::string(nameOf(kPerspectiveNames, a.perspective)));
+  line("perspective", std::string(nameOf(kPerspectiveNames, a.perspective)) +
+                         (a.reciprocal.table ? ", the measured reciprocal (table " +
+                                                   a.reciprocal.table->checksum() + ")"
+                                             : ""));
   line("depth", std::string(a.depth.offsetAndClamp ? "offset and clamp" : "as interpolated") +
                     ", Z24 " + std::string(nameOf(kZ24ConversionNames, a.depth.z24)));
   line("log2", std::string(nameOf(kLog2FormNames, a.log2)));

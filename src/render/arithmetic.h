@@ -25,7 +25,8 @@
 //   plane eval     at integer pixel coordinates fused (fma(dady, y, fma(dadx, x, a0))), the same
 //                  unfused, or at the quad's even corner stepped to its other pixels by + dadx
 //                  and + dady (softpipe-arithmetic.md, 3.2)
-//   perspective    s/w and t/w times the reciprocal of the 1/w plane, or divided by it
+//   perspective    s/w and t/w times the reciprocal of the 1/w plane, or divided by it; the
+//                  reciprocal is IEEE 1 / q or a measured table (render/measured_reciprocal.h)
 //   depth          a + 0.0 offset term and a clamp to [0, 1] (rule 7) or neither; Z24
 //                  stored as round-half-even(z * (2^24 - 1)) or truncated (unsigned)(z * ...)
 //   derivatives    fine: the differences within the pixel's quad row and column, helpers
@@ -61,6 +62,7 @@
 
 #include "common/enum_names.h"
 #include "format/block_decoding.h"
+#include "render/measured_reciprocal.h"
 
 namespace vt {
 
@@ -196,6 +198,17 @@ struct ColourConversion {
   bool operator==(const ColourConversion&) const = default;
 };
 
+// The reciprocal that reciprocal_times multiplies by: IEEE 1 / q, or the implementation's own,
+// measured (render/measured_reciprocal.h). Two are the same member when their tables' checksums
+// are.
+struct Reciprocal {
+  std::shared_ptr<const MeasuredReciprocal> table;  // none: IEEE
+  float of(float q) const { return table ? table->of(q) : 1.0f / q; }
+  bool operator==(const Reciprocal& other) const {
+    return table ? other.table && other.table->checksum() == table->checksum() : !other.table;
+  }
+};
+
 struct Arithmetic {
   bool fusedViewport = false;
   Coverage coverage;
@@ -203,6 +216,7 @@ struct Arithmetic {
   PlanePositions planePositions = PlanePositions::kUnsnapped;
   PlaneEvaluation planeEvaluation = PlaneEvaluation::kUnfused;
   Perspective perspective = Perspective::kReciprocalTimes;
+  Reciprocal reciprocal;  // kReciprocalTimes only
   Depth depth;
   Log2Form log2 = Log2Form::kLibm;
   Filter filter;

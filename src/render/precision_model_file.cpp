@@ -9,6 +9,7 @@
 
 #include "common/error.h"
 #include "common/json_text.h"
+#include "common/posix_file.h"
 #include "render/arithmetic_points.h"
 
 namespace vt {
@@ -39,6 +40,7 @@ class Fields {
             file_, "field " + prefix_ + item.key() + " is not a field of a precision model here");
   }
   InputError failure(const std::string& text) const { return InputError(file_, text); }
+  const std::filesystem::path& file() const { return file_; }
   bool has(const char* field) const { return json_.contains(field); }
   // The object in `field`, its fields named with it.
   Fields object(const char* field) const {
@@ -136,6 +138,25 @@ Arithmetic readArithmetic(const Fields& f) {
   }
   a.planeEvaluation = f.named("plane_evaluation", kPlaneEvaluationNames);
   a.perspective = f.named("perspective", kPerspectiveNames);
+  // A measured reciprocal: its table beside the model file, named by its checksum.
+  if (f.has("reciprocal")) {
+    const Fields reciprocal = f.object("reciprocal");
+    const std::string checksum = reciprocal.text("checksum");
+    if (checksum.size() != 16 ||
+        checksum.find_first_not_of("0123456789abcdef") != std::string::npos)
+      throw reciprocal.failure("field arithmetic.reciprocal.checksum is not 16 hexadecimal digits");
+    if (reciprocal.text("table") != reciprocalTableName(checksum))
+      throw reciprocal.failure("field arithmetic.reciprocal.table is not " +
+                               reciprocalTableName(checksum) + " (the table is named by its "
+                               "checksum, beside the model)");
+    reciprocal.refuseUnread();
+    if (a.perspective != Perspective::kReciprocalTimes)
+      throw f.failure("field arithmetic.reciprocal is set, but the perspective (" +
+                      std::string(nameOf(kPerspectiveNames, a.perspective)) +
+                      ") takes no reciprocal");
+    a.reciprocal.table = MeasuredReciprocal::read(
+        f.file().parent_path() / reciprocalTableName(checksum), checksum);
+  }
   const Fields depth = f.object("depth");
   a.depth.offsetAndClamp = depth.flag("offset_and_clamp");
   a.depth.z24 = depth.named("z24", kZ24ConversionNames);
@@ -218,6 +239,19 @@ std::string readCalibration(const Fields& c) {
 
 }  // namespace
 
+std::string reciprocalTableName(const std::string& checksum) {
+  return "reciprocal-" + checksum + ".table";
+}
+
+void writeModelFiles(const std::filesystem::path& file, const Arithmetic& arithmetic,
+                     const std::string& json) {
+  if (arithmetic.reciprocal.table)
+    writeFileAtomically(
+        file.parent_path() / reciprocalTableName(arithmetic.reciprocal.table->checksum()),
+        arithmetic.reciprocal.table->fileBytes());
+  writeFileAtomically(file, json);
+}
+
 nlohmann::ordered_json arithmeticJson(const Arithmetic& a) {
   nlohmann::ordered_json json = {
       {"viewport", a.fusedViewport ? "fused" : "unfused"},
@@ -254,6 +288,9 @@ nlohmann::ordered_json arithmeticJson(const Arithmetic& a) {
     filter["output"] = nameOf(kFilterOutputNames, a.filter.output);
   }
   if (a.planePositions == PlanePositions::kSnapped) json["plane_positions"] = "snapped";
+  if (a.reciprocal.table)
+    json["reciprocal"] = {{"table", reciprocalTableName(a.reciprocal.table->checksum())},
+                          {"checksum", a.reciprocal.table->checksum()}};
   if (a.blockDecoding.alpha == PaletteRule::kWeights)
     json["block_decoding"]["alpha_weights"] = a.blockDecoding.alphaWeights;
   if (a.colourConversion.rule != ColourConversionRule::kNearest)

@@ -8,6 +8,7 @@
 #include "common/output_path.h"
 #include "common/posix_file.h"
 #include "gl/headless_context.h"
+#include "render/precision_model_file.h"
 
 namespace vt {
 
@@ -48,9 +49,13 @@ calibrate::Calibration calibrateToModel(const CalibrateRequest& request, std::os
   const std::string json = calibrate::calibrationJson(calibration);
   if (request.output.empty()) {
     out << json;
+    if (calibration.model.arithmetic.reciprocal.table)
+      err << "vt calibrate: the model names its measured reciprocal's table, "
+          << reciprocalTableName(calibration.model.arithmetic.reciprocal.table->checksum())
+          << ", which only -o writes beside it\n";
     return calibration;
   }
-  writeFileAtomically(request.output, std::as_bytes(std::span(json.data(), json.size())));
+  writeModelFiles(request.output, calibration.model.arithmetic, json);
   out << "calibrated " << calibration.renderer << " (" << calibration.version << "): wrote "
       << request.output.string() << "\n";
   evidence(out);
