@@ -669,7 +669,8 @@ ParameterFit fitZ24(RasterFits& result, bool reproduced, const DrawnProbe& rando
     };
     if (randomCounts) compare(random);
     if (squares) compare(*squares);
-    missed += sweptMisses([&](float z) { return reference::z24Of(z, conversion); });
+    const Z24Conversion member = conversion;  // a structured binding: no lambda captures it
+    missed += sweptMisses([&](float z) { return reference::z24Of(z, member); });
     z24.probes = shared + sweptValues;
     z24.members.push_back({std::string(name), missed});
   }

@@ -36,7 +36,8 @@ std::string FlightSceneArguments::sceneName() const { return mesh.empty() ? "box
 
 struct ConfigurationOptions::Values {
   std::string config, configName, heuristic = "pixelsum", ancestors = "none", lookAhead = "none",
-                      hotSpot = "shifted", needScale = "1", readback = "sync";
+                                    lookAheadPages = "merged", hotSpot = "shifted",
+                                    needScale = "1", readback = "sync";
   uint32_t budget = 10, latency = 0, lockedLevels = 0, initialLevels = 3, frames = 16;
   uint64_t budgetBytes = 0, cacheBytes = 0;
   float noiseThreshold = -1.0f;
@@ -88,6 +89,12 @@ ConfigurationOptions::ConfigurationOptions(CLI::App* command)
       ->add_option("--lookahead", v.lookAhead,
                    "LookAhead camera (4.2.4): " + joinedNames(kLookAheadNames))
       ->check(CLI::IsMember(namesOf(kLookAheadNames)))
+      ->capture_default_str();
+  command
+      ->add_option("--lookahead-pages", v.lookAheadPages,
+                   "The LookAhead camera's pages merged with the frame's (4.2.4), or prefetched "
+                   "into the slots the frame's own requests leave")
+      ->check(CLI::IsMember(namesOf(kLookAheadPagesNames)))
       ->capture_default_str();
   command
       ->add_option("--hotspot", v.hotSpot,
@@ -154,6 +161,7 @@ FlightConfiguration ConfigurationOptions::configuration() const {
   if (given("--noise-skipping")) options["noise_skipping"] = v.noiseSkipping;
   if (given("--noise-threshold")) options["noise_threshold"] = v.noiseThreshold;
   if (given("--lookahead")) options["lookahead"] = v.lookAhead;
+  if (given("--lookahead-pages")) options["lookahead_pages"] = v.lookAheadPages;
   if (given("--hotspot")) options["hotspot"] = v.hotSpot;
   if (given("--budget")) options["budget"] = v.budget;
   // Only where given or set: a configuration without it reads as before byte budgets.

@@ -21,6 +21,7 @@ std::string FlightConfiguration::label() const {
   add("", budgetBytes > 0 ? std::to_string(budgetBytes) + "B/frame"
                          : std::to_string(budget) + "/frame");
   if (lookAhead != LookAhead::kNone) add("lookahead=", toString(lookAhead));
+  if (lookAheadPrefetch) add("", "prefetch");
   if (heuristic.uses(PriorityFactor::kHotSpot) && hotSpot != HotSpotMode::kShifted)
     add("hotspot=", toString(hotSpot));
   if (ancestors != AncestorStrategy::kNone) add("", toString(ancestors));
@@ -57,6 +58,7 @@ nlohmann::json FlightConfiguration::toJson() const {
           {"seed", seed}};
   // Only where set: every configuration written before byte budgets reads the same.
   if (budgetBytes > 0) object["budget_bytes"] = budgetBytes;
+  if (lookAheadPrefetch) object["lookahead_pages"] = "prefetch";
   if (cacheBytes > 0) object["cache_bytes"] = cacheBytes;
   if (selection != PageSelection::kHeuristic) {
     object["selection"] = std::string(nameOf(kPageSelectionNames, selection));
@@ -111,6 +113,12 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
       c.noiseThreshold = value.get<float>();
     } else if (key == "lookahead") {
       c.lookAhead = parseLookAhead(text());
+    } else if (key == "lookahead_pages") {
+      const auto pages = findByName(kLookAheadPagesNames, text());
+      if (!pages)
+        throw std::invalid_argument("'lookahead_pages' must be " +
+                                    joinedNames(kLookAheadPagesNames, " or "));
+      c.lookAheadPrefetch = *pages;
     } else if (key == "hotspot") {
       c.hotSpot = parseHotSpotMode(text());
     } else if (key == "budget") {
@@ -158,6 +166,10 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
     throw std::invalid_argument(
         "'selection' ceiling picks pages for the next frame: it needs a budget in pages "
         "('budget') and no 'budget_bytes' or 'latency'");
+  if (c.lookAheadPrefetch && c.lookAhead == LookAhead::kNone)
+    throw std::invalid_argument(
+        "'lookahead_pages' prefetch prefetches the LookAhead camera's pages: it needs a "
+        "'lookahead' other than none");
   return c;
 }
 

@@ -38,6 +38,10 @@ struct FlightConfiguration {
   bool noiseSkipping = false;
   float noiseThreshold = -1.0f;  // NoiseValueSkipping; negative: the texture's mean NoiseValue
   LookAhead lookAhead = LookAhead::kNone;
+  // The LookAhead camera's pages merged with the drawn frame's (the thesis), or prefetched into
+  // the slots the drawn frame's requests leave (runtime/virtual_texture_runtime.h); JSON
+  // "lookahead_pages": "merged" or "prefetch", which needs a LookAhead camera.
+  bool lookAheadPrefetch = false;
   HotSpotMode hotSpot = HotSpotMode::kShifted;
   uint32_t budget = 10;           // pages streamed per frame
   uint64_t budgetBytes = 0;       // or, when not zero, bytes per frame at the pages' stored size
@@ -73,6 +77,9 @@ struct FlightConfiguration {
 // more bytes is cut to the largest that texture holds).
 uint32_t cacheFramesFor(const FlightConfiguration& configuration,
                         const TextureDescription& description);
+
+// How the LookAhead camera's pages join the requests (FlightConfiguration::lookAheadPrefetch).
+inline constexpr EnumNames<bool, 2> kLookAheadPagesNames = {{{false, "merged"}, {true, "prefetch"}}};
 
 // How the analysis reads the needbuffer back: the frame's own (sync), or the previous frame's.
 inline constexpr EnumNames<bool, 2> kReadbackNames = {{{false, "sync"}, {true, "async"}}};

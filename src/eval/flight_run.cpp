@@ -22,6 +22,7 @@ RuntimeOptions runtimeOptions(const VirtualTextureReader& reader,
   options.priority.ancestors = configuration.ancestors;
   options.priority.noiseValueSkipping = configuration.noiseSkipping;
   options.trilinearParents = configuration.trilinearParents;
+  options.lookAheadPrefetch = configuration.lookAheadPrefetch;
   options.randomSeed = configuration.seed;
   double meanNoise = 0.0;
   for (const float n : reader.noiseValues()) meanNoise += n;

@@ -1,6 +1,7 @@
 #include "runtime/virtual_texture_runtime.h"
 
 #include <algorithm>
+#include <unordered_set>
 
 #include "common/resource_limits.h"
 
@@ -110,14 +111,15 @@ std::vector<StreamRequest> VirtualTextureRuntime::analyze(
   const NeedBufferAnalysis analysis =
       analyzeNeedBuffer(need, depth, width, height, analysisOptions);
   // The LookAhead pass adds its pages' statistics (its depth is not read: Distance ranks by the
-  // drawn frame).
+  // drawn frame); with prefetch they are ranked on their own, after the drawn frame's.
   NeedBufferAnalysis combined = analysis;
+  NeedBufferAnalysis ahead;
   if (!prediction.lookAheadNeed.empty()) {
     AnalysisOptions predicted = analysisOptions;
     predicted.depth = false;
-    for (const auto& [page, s] :
-         analyzeNeedBuffer(prediction.lookAheadNeed, {}, width, height, predicted).pages)
-      combined.pages[page] += s;
+    ahead = analyzeNeedBuffer(prediction.lookAheadNeed, {}, width, height, predicted);
+    if (!options_.lookAheadPrefetch)
+      for (const auto& [page, s] : ahead.pages) combined.pages[page] += s;
   }
 
   statistics.coveredPixels = analysis.coveredPixels;
@@ -149,6 +151,13 @@ std::vector<StreamRequest> VirtualTextureRuntime::analyze(
     return reader_.contains(page) ? reader_.noiseValue(page) : 0.0f;
   };
   std::vector<StreamRequest> requests = prioritizePages(combined, table_, noise, priority);
+  if (options_.lookAheadPrefetch && !ahead.pages.empty()) {
+    if (options_.trilinearParents) addTrilinearParents(ahead);
+    std::unordered_set<uint64_t> requested;
+    for (const StreamRequest& r : requests) requested.insert(r.page);
+    for (const StreamRequest& r : prioritizePages(ahead, table_, noise, priority))
+      if (requested.insert(r.page).second) requests.push_back(r);
+  }
   if (options_.keepAnalysis) {
     lastAnalysis_ = std::move(combined);
     lastFrame_ = frameNumber;

@@ -29,6 +29,10 @@ struct RuntimeOptions {
   // with this option the analysis counts the parent as needed by the same pixels: a resident
   // parent is kept fresh in the LRU order, a missing one is requested. Off: the thesis's runtime.
   bool trilinearParents = false;
+  // The LookAhead camera's pages: merged with the drawn frame's and ranked with them (the thesis,
+  // 4.2.4), or requested after every request of the drawn frame, so that they fill only the slots
+  // present demand leaves (prefetch: beyond the thesis).
+  bool lookAheadPrefetch = false;
   bool keepAnalysis = false;  // keep each frame's analysis for priorityTerms (inspection)
   // The run's seed of the `random` factor, mixed with the frame number: runs with different seeds
   // draw independent random priorities (0: the frame number alone).

@@ -357,6 +357,18 @@ TEST(FlightConfiguration, ReadsTheOptionNamesAndRejectsUnknownKeysAndBadValues) 
   EXPECT_THAT(error(R"({"seed": 1.5})"), HasSubstr("'seed' must be a whole number"));
   EXPECT_THAT(error(R"({"trilinear_parents": "yes"})"),
               HasSubstr("'trilinear_parents' must be true or false"));
+  // Prefetching the LookAhead camera's pages: written only where set, and only with a camera.
+  EXPECT_FALSE(c.toJson().contains("lookahead_pages"));
+  const FlightConfiguration prefetch = FlightConfiguration::fromJson(
+      nlohmann::json::parse(R"({"lookahead": "stopfix", "lookahead_pages": "prefetch"})"), {});
+  EXPECT_TRUE(prefetch.lookAheadPrefetch);
+  EXPECT_EQ(prefetch.label(), "pixelsum 10/frame lookahead=stopfix prefetch");
+  EXPECT_EQ(FlightConfiguration::fromJson(prefetch.toJson(), {}).toJson(), prefetch.toJson());
+  EXPECT_THAT(error(R"({"lookahead_pages": "prefetch"})"),
+              HasSubstr("'lookahead_pages' prefetch prefetches the LookAhead camera's pages: it "
+                        "needs a 'lookahead' other than none"));
+  EXPECT_THAT(error(R"({"lookahead": "stopfix", "lookahead_pages": "later"})"),
+              HasSubstr("'lookahead_pages' must be merged or prefetch"));
 }
 
 }  // namespace

@@ -235,6 +235,36 @@ TEST_F(Runtime, TrilinearParentsRequestsTheParentOfANeededPage) {
   }
 }
 
+// The LookAhead camera's pages merged with the drawn frame's rank by their pixels among them; as a
+// prefetch they come after every request of the drawn frame, whatever their pixels, and a page
+// both name is requested once, where the drawn frame puts it.
+TEST_F(Runtime, PrefetchedLookAheadPagesComeAfterTheFramesOwn) {
+  // The drawn frame: 4 pixels need page (1, 1, 2), 12 need (0, 0, 1). The LookAhead camera's
+  // 16 pixels: 14 need (3, 3, 2), 2 need (0, 0, 1).
+  std::vector<glm::uvec4> drawn(16, {0, 0, 1, 1}), ahead(16, {3, 3, 2, 1});
+  for (int i = 0; i < 4; ++i) drawn[static_cast<size_t>(i)] = {1, 1, 2, 1};
+  ahead[0] = ahead[1] = {0, 0, 1, 1};
+  const uint64_t mine = absoluteIndex(PageId{1, 1, 2}), shared = absoluteIndex(PageId{0, 0, 1}),
+                 predicted = absoluteIndex(PageId{3, 3, 2});
+  for (const bool prefetch : {false, true}) {
+    SCOPED_TRACE(prefetch ? "prefetch" : "merged");
+    RuntimeOptions options;
+    options.lookAheadPrefetch = prefetch;
+    VirtualTextureRuntime runtime(*reader_, options);
+    FrameStatistics statistics;
+    const std::vector<StreamRequest> requests = runtime.analyze(
+        drawn, {}, 4, 4, false, 0, statistics, {.hotSpot = std::nullopt, .lookAheadNeed = ahead});
+    std::vector<uint64_t> order;
+    for (const StreamRequest& r : requests) order.push_back(r.page);
+    // PixelSum: merged, shared has 12 + 2 pixels, predicted 14, mine 4 (ties: smaller index).
+    const std::vector<uint64_t> expected =
+        prefetch ? std::vector<uint64_t>{shared, mine, predicted}
+                 : std::vector<uint64_t>{std::min(shared, predicted), std::max(shared, predicted),
+                                         mine};
+    EXPECT_EQ(order, expected);
+  }
+}
+
 TEST_F(Runtime, TrilinearParentsKeepsAParentInUseFromEviction) {
   // Four frames: the root, the needed page, its parent and one more. Pages nobody needs arrive
   // frame after frame; the LRU frame goes to each. The parent, never named by the needbuffer, is
