@@ -39,6 +39,7 @@ struct ConfigurationOptions::Values {
                                     lookAheadPages = "merged", hotSpot = "shifted",
                                     needScale = "1", readback = "sync";
   uint32_t budget = 10, latency = 0, lockedLevels = 0, initialLevels = 3, frames = 16;
+  uint32_t lookAheadWeight = 1, lodBiasBacklog = 0;
   uint64_t budgetBytes = 0, cacheBytes = 0;
   float noiseThreshold = -1.0f;
   bool noiseSkipping = false, preloadVisible = false, trilinearParents = false;
@@ -90,12 +91,7 @@ ConfigurationOptions::ConfigurationOptions(CLI::App* command)
                    "LookAhead camera (4.2.4): " + joinedNames(kLookAheadNames))
       ->check(CLI::IsMember(namesOf(kLookAheadNames)))
       ->capture_default_str();
-  command
-      ->add_option("--lookahead-pages", v.lookAheadPages,
-                   "The LookAhead camera's pages merged with the frame's (4.2.4), or prefetched "
-                   "into the slots the frame's own requests leave")
-      ->check(CLI::IsMember(namesOf(kLookAheadPagesNames)))
-      ->capture_default_str();
+  addBeyondTheThesisOptions();
   command
       ->add_option("--hotspot", v.hotSpot,
                    "HotSpot centre (4.2.3.1): " + joinedNames(kHotSpotModeNames))
@@ -136,6 +132,28 @@ ConfigurationOptions::ConfigurationOptions(CLI::App* command)
       ->capture_default_str();
 }
 
+void ConfigurationOptions::addBeyondTheThesisOptions() {
+  CLI::App* command = command_;
+  Values& v = *values_;
+  command
+      ->add_option("--lookahead-pages", v.lookAheadPages,
+                   "The LookAhead camera's pages merged with the frame's (4.2.4), or prefetched "
+                   "into the slots the frame's own requests leave")
+      ->check(CLI::IsMember(namesOf(kLookAheadPagesNames)))
+      ->capture_default_str();
+  command
+      ->add_option("--lookahead-weight", v.lookAheadWeight,
+                   "Each merged LookAhead pixel counts this many times against a drawn one")
+      ->check(wholeNumbersIn(1, 16))
+      ->capture_default_str();
+  command
+      ->add_option("--lod-bias-backlog", v.lodBiasBacklog,
+                   "When more needed pages than this are missing, request each missing page's "
+                   "parent first (0: never)")
+      ->check(wholeNumbersIn(0, 1 << 20))
+      ->capture_default_str();
+}
+
 std::filesystem::path ConfigurationOptions::file() const { return values_->config; }
 
 FlightConfiguration ConfigurationOptions::configuration() const {
@@ -162,6 +180,8 @@ FlightConfiguration ConfigurationOptions::configuration() const {
   if (given("--noise-threshold")) options["noise_threshold"] = v.noiseThreshold;
   if (given("--lookahead")) options["lookahead"] = v.lookAhead;
   if (given("--lookahead-pages")) options["lookahead_pages"] = v.lookAheadPages;
+  if (given("--lookahead-weight")) options["lookahead_weight"] = v.lookAheadWeight;
+  if (given("--lod-bias-backlog")) options["lod_bias_backlog"] = v.lodBiasBacklog;
   if (given("--hotspot")) options["hotspot"] = v.hotSpot;
   if (given("--budget")) options["budget"] = v.budget;
   // Only where given or set: a configuration without it reads as before byte budgets.

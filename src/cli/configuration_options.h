@@ -39,6 +39,8 @@ class ConfigurationOptions {
 
  private:
   struct Values;
+  // The options of page selection beyond the thesis (docs/streaming.md).
+  void addBeyondTheThesisOptions();
   std::shared_ptr<Values> values_;
   CLI::App* command_;
 };

@@ -22,6 +22,8 @@ std::string FlightConfiguration::label() const {
                          : std::to_string(budget) + "/frame");
   if (lookAhead != LookAhead::kNone) add("lookahead=", toString(lookAhead));
   if (lookAheadPrefetch) add("", "prefetch");
+  if (lookAheadWeight > 1) add("lookahead_weight=", std::to_string(lookAheadWeight));
+  if (lodBiasBacklog > 0) add("lod_bias_backlog=", std::to_string(lodBiasBacklog));
   if (heuristic.uses(PriorityFactor::kHotSpot) && hotSpot != HotSpotMode::kShifted)
     add("hotspot=", toString(hotSpot));
   if (ancestors != AncestorStrategy::kNone) add("", toString(ancestors));
@@ -59,6 +61,8 @@ nlohmann::json FlightConfiguration::toJson() const {
   // Only where set: every configuration written before byte budgets reads the same.
   if (budgetBytes > 0) object["budget_bytes"] = budgetBytes;
   if (lookAheadPrefetch) object["lookahead_pages"] = "prefetch";
+  if (lookAheadWeight > 1) object["lookahead_weight"] = lookAheadWeight;
+  if (lodBiasBacklog > 0) object["lod_bias_backlog"] = lodBiasBacklog;
   if (cacheBytes > 0) object["cache_bytes"] = cacheBytes;
   if (selection != PageSelection::kHeuristic) {
     object["selection"] = std::string(nameOf(kPageSelectionNames, selection));
@@ -66,6 +70,35 @@ nlohmann::json FlightConfiguration::toJson() const {
   }
   return object;
 }
+
+namespace {
+
+// "lookahead_pages": whether the LookAhead camera's pages are prefetched (else merged).
+bool prefetchesLookAhead(const std::string& value) {
+  const auto pages = findByName(kLookAheadPagesNames, value);
+  if (!pages)
+    throw std::invalid_argument("'lookahead_pages' must be " +
+                                joinedNames(kLookAheadPagesNames, " or "));
+  return *pages;
+}
+
+// Keys that each read well but do not go together.
+void refuseConflicts(const FlightConfiguration& c) {
+  if (c.selection != PageSelection::kHeuristic && (c.budgetBytes > 0 || c.latency > 0))
+    throw std::invalid_argument(
+        "'selection' ceiling picks pages for the next frame: it needs a budget in pages "
+        "('budget') and no 'budget_bytes' or 'latency'");
+  if (c.lookAheadWeight > 1 && (c.lookAhead == LookAhead::kNone || c.lookAheadPrefetch))
+    throw std::invalid_argument(
+        "'lookahead_weight' weights the LookAhead camera's merged pixels: it needs a "
+        "'lookahead' other than none and 'lookahead_pages' merged");
+  if (c.lookAheadPrefetch && c.lookAhead == LookAhead::kNone)
+    throw std::invalid_argument(
+        "'lookahead_pages' prefetch prefetches the LookAhead camera's pages: it needs a "
+        "'lookahead' other than none");
+}
+
+}  // namespace
 
 FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
                                                   const FlightConfiguration& defaults) {
@@ -114,11 +147,11 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
     } else if (key == "lookahead") {
       c.lookAhead = parseLookAhead(text());
     } else if (key == "lookahead_pages") {
-      const auto pages = findByName(kLookAheadPagesNames, text());
-      if (!pages)
-        throw std::invalid_argument("'lookahead_pages' must be " +
-                                    joinedNames(kLookAheadPagesNames, " or "));
-      c.lookAheadPrefetch = *pages;
+      c.lookAheadPrefetch = prefetchesLookAhead(text());
+    } else if (key == "lookahead_weight") {
+      c.lookAheadWeight = count(1, 16);
+    } else if (key == "lod_bias_backlog") {
+      c.lodBiasBacklog = count(0, 1u << 20);
     } else if (key == "hotspot") {
       c.hotSpot = parseHotSpotMode(text());
     } else if (key == "budget") {
@@ -162,14 +195,7 @@ FlightConfiguration FlightConfiguration::fromJson(const nlohmann::json& object,
       throw std::invalid_argument("unknown configuration key '" + key + "'");
     }
   }
-  if (c.selection != PageSelection::kHeuristic && (c.budgetBytes > 0 || c.latency > 0))
-    throw std::invalid_argument(
-        "'selection' ceiling picks pages for the next frame: it needs a budget in pages "
-        "('budget') and no 'budget_bytes' or 'latency'");
-  if (c.lookAheadPrefetch && c.lookAhead == LookAhead::kNone)
-    throw std::invalid_argument(
-        "'lookahead_pages' prefetch prefetches the LookAhead camera's pages: it needs a "
-        "'lookahead' other than none");
+  refuseConflicts(c);
   return c;
 }
 

@@ -42,6 +42,12 @@ struct FlightConfiguration {
   // the slots the drawn frame's requests leave (runtime/virtual_texture_runtime.h); JSON
   // "lookahead_pages": "merged" or "prefetch", which needs a LookAhead camera.
   bool lookAheadPrefetch = false;
+  // Beyond the thesis (runtime/virtual_texture_runtime.h): each merged LookAhead pixel counts
+  // this many times (JSON "lookahead_weight", 1 to 16); when more than lodBiasBacklog needed pages
+  // are missing, missing pages are requested one level coarser first (JSON "lod_bias_backlog",
+  // 0: off).
+  uint32_t lookAheadWeight = 1;
+  uint32_t lodBiasBacklog = 0;
   HotSpotMode hotSpot = HotSpotMode::kShifted;
   uint32_t budget = 10;           // pages streamed per frame
   uint64_t budgetBytes = 0;       // or, when not zero, bytes per frame at the pages' stored size

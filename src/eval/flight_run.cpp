@@ -23,6 +23,8 @@ RuntimeOptions runtimeOptions(const VirtualTextureReader& reader,
   options.priority.noiseValueSkipping = configuration.noiseSkipping;
   options.trilinearParents = configuration.trilinearParents;
   options.lookAheadPrefetch = configuration.lookAheadPrefetch;
+  options.lookAheadWeight = configuration.lookAheadWeight;
+  options.lodBiasBacklog = configuration.lodBiasBacklog;
   options.randomSeed = configuration.seed;
   double meanNoise = 0.0;
   for (const float n : reader.noiseValues()) meanNoise += n;

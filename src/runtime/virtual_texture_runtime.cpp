@@ -119,7 +119,8 @@ std::vector<StreamRequest> VirtualTextureRuntime::analyze(
     predicted.depth = false;
     ahead = analyzeNeedBuffer(prediction.lookAheadNeed, {}, width, height, predicted);
     if (!options_.lookAheadPrefetch)
-      for (const auto& [page, s] : ahead.pages) combined.pages[page] += s;
+      for (const auto& [page, s] : ahead.pages)
+        for (uint32_t k = 0; k < options_.lookAheadWeight; ++k) combined.pages[page] += s;
   }
 
   statistics.coveredPixels = analysis.coveredPixels;
@@ -151,6 +152,20 @@ std::vector<StreamRequest> VirtualTextureRuntime::analyze(
     return reader_.contains(page) ? reader_.noiseValue(page) : 0.0f;
   };
   std::vector<StreamRequest> requests = prioritizePages(combined, table_, noise, priority);
+  if (options_.lodBiasBacklog > 0 && statistics.misses > options_.lodBiasBacklog) {
+    NeedBufferAnalysis coarser;
+    coarser.coveredPixels = combined.coveredPixels;
+    for (const auto& [page, s] : combined.pages) {
+      const bool up = levelOfAbsoluteIndex(page) > 0 && !pageCache_.contains(page);
+      coarser.pages[up ? parentIndex(page) : page] += s;
+    }
+    std::vector<StreamRequest> biased = prioritizePages(coarser, table_, noise, priority);
+    std::unordered_set<uint64_t> requested;
+    for (const StreamRequest& r : biased) requested.insert(r.page);
+    for (const StreamRequest& r : requests)
+      if (requested.insert(r.page).second) biased.push_back(r);
+    requests = std::move(biased);
+  }
   if (options_.lookAheadPrefetch && !ahead.pages.empty()) {
     if (options_.trilinearParents) addTrilinearParents(ahead);
     std::unordered_set<uint64_t> requested;

@@ -33,6 +33,14 @@ struct RuntimeOptions {
   // 4.2.4), or requested after every request of the drawn frame, so that they fill only the slots
   // present demand leaves (prefetch: beyond the thesis).
   bool lookAheadPrefetch = false;
+  // Merged LookAhead pages: each of the LookAhead camera's pixels counts this many times against
+  // one of the drawn frame's (what the next frame will show over what this one showed).
+  uint32_t lookAheadWeight = 1;
+  // A residency LOD bias: when more than this many of the drawn frame's needed pages are missing
+  // (0: never), every missing page is first requested one level coarser (its parent, with its
+  // pixels), then as it is: the budget goes to coarse pages that cover much while the backlog is
+  // large, and demand is never dropped. Beyond the thesis.
+  uint32_t lodBiasBacklog = 0;
   bool keepAnalysis = false;  // keep each frame's analysis for priorityTerms (inspection)
   // The run's seed of the `random` factor, mixed with the frame number: runs with different seeds
   // draw independent random priorities (0: the frame number alone).

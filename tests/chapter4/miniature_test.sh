@@ -52,4 +52,19 @@ grep -Eq '^\| \[BC1, equal bytes − RGBA8, PixelSum 5\].*\| [+-][0-9.]+e[+-][0-
   fail "no paired interval of BC1 at equal bytes against RGBA8"
 [[ -s "$scratch/report/chapter4/q3dm6ish/compression/compression01.png" ]] ||
   fail "no figure compression01.png"
+# Two configurations compared by hand (scripts/compare-configurations.py): the paired mean with its
+# block-bootstrap interval and the gap closed; an unknown name is refused with exit 1.
+python=${VT_PYTHON:-/usr/bin/python3}
+compared=$("$python" "$source_dir/scripts/compare-configurations.py" \
+  "$scratch/results/q3dm6ish/indoor" "PixelSum 10" "PixelSum 5" --between "PixelSum 5" "PixelSum 10")
+grep -Eq '^PixelSum 10 - PixelSum 5: mean ssim [+-][0-9.]+e[+-][0-9]+, 95% interval \[[+-][0-9.]+e[+-][0-9]+, [+-][0-9.]+e[+-][0-9]+\], [0-9]+ frames in [0-9]+ blocks' <<<"$compared" ||
+  fail "compare-configurations printed no interval: $compared"
+grep -q '^PixelSum 10 closes 100% of the gap from PixelSum 5 to PixelSum 10' <<<"$compared" ||
+  fail "compare-configurations: PixelSum 10 does not close its own gap: $compared"
+if "$python" "$source_dir/scripts/compare-configurations.py" "$scratch/results/q3dm6ish/indoor" \
+  "PixelSum 7" "PixelSum 5" 2>"$scratch/unknown.txt"; then
+  fail "compare-configurations accepted an unknown configuration"
+fi
+grep -q "no configuration named 'PixelSum 7'" "$scratch/unknown.txt" ||
+  fail "compare-configurations did not name the unknown configuration"
 echo "miniature report: $report"

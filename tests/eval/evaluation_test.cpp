@@ -369,6 +369,20 @@ TEST(FlightConfiguration, ReadsTheOptionNamesAndRejectsUnknownKeysAndBadValues) 
                         "needs a 'lookahead' other than none"));
   EXPECT_THAT(error(R"({"lookahead": "stopfix", "lookahead_pages": "later"})"),
               HasSubstr("'lookahead_pages' must be merged or prefetch"));
+  // The LookAhead pixels' weight and the LOD bias's backlog.
+  const FlightConfiguration biased = FlightConfiguration::fromJson(
+      nlohmann::json::parse(
+          R"({"lookahead": "plain", "lookahead_weight": 3, "lod_bias_backlog": 40})"),
+      {});
+  EXPECT_EQ(biased.label(), "pixelsum 10/frame lookahead=plain lookahead_weight=3 "
+                            "lod_bias_backlog=40");
+  EXPECT_EQ(FlightConfiguration::fromJson(biased.toJson(), {}).toJson(), biased.toJson());
+  EXPECT_FALSE(c.toJson().contains("lookahead_weight"));
+  EXPECT_FALSE(c.toJson().contains("lod_bias_backlog"));
+  EXPECT_THAT(error(R"({"lookahead_weight": 2})"),
+              HasSubstr("'lookahead_weight' weights the LookAhead camera's merged pixels"));
+  EXPECT_THAT(error(R"({"lookahead": "plain", "lookahead_weight": 17})"),
+              HasSubstr("'lookahead_weight' must be a whole number from 1 to 16"));
 }
 
 }  // namespace

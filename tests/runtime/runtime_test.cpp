@@ -265,6 +265,52 @@ TEST_F(Runtime, PrefetchedLookAheadPagesComeAfterTheFramesOwn) {
   }
 }
 
+// Weighted, the LookAhead camera's 14 pixels count three times and outrank the drawn frame's page
+// of 12 + 2 x 3 = 18 pixels: 42 against 18 (the test above: 14 against 14).
+TEST_F(Runtime, WeightedLookAheadPixelsCountMoreThanDrawnOnes) {
+  std::vector<glm::uvec4> drawn(16, {0, 0, 1, 1}), ahead(16, {3, 3, 2, 1});
+  for (int i = 0; i < 4; ++i) drawn[static_cast<size_t>(i)] = {1, 1, 2, 1};
+  ahead[0] = ahead[1] = {0, 0, 1, 1};
+  RuntimeOptions options;
+  options.lookAheadWeight = 3;
+  VirtualTextureRuntime runtime(*reader_, options);
+  FrameStatistics statistics;
+  const std::vector<StreamRequest> requests = runtime.analyze(
+      drawn, {}, 4, 4, false, 0, statistics, {.hotSpot = std::nullopt, .lookAheadNeed = ahead});
+  ASSERT_EQ(requests.size(), 3u);
+  EXPECT_EQ(requests[0].page, absoluteIndex(PageId{3, 3, 2}));
+  EXPECT_EQ(requests[0].priority, 42.0);
+  EXPECT_EQ(requests[1].priority, 18.0);
+}
+
+// With a backlog above the bias's threshold the missing pages' parents come first, with their
+// children's pixels, then the pages themselves; at or below it the requests are as without.
+TEST_F(Runtime, ALodBiasRequestsParentsFirstWhileTheBacklogIsLarge) {
+  // 16 pixels need the 4 pages of level 3 under (0, 0, 2): 4 pixels each; nothing below level 2
+  // is resident, so (0, 0, 2) is missing as well.
+  std::vector<glm::uvec4> need(16);
+  for (uint32_t i = 0; i < 16; ++i) need[i] = {(i / 4) % 2, (i / 8), 3, 1};
+  const uint64_t parent = absoluteIndex(PageId{0, 0, 2});
+  for (const uint32_t backlog : {0u, 3u, 4u}) {
+    SCOPED_TRACE(backlog);
+    RuntimeOptions options;
+    options.lodBiasBacklog = backlog;
+    VirtualTextureRuntime runtime(*reader_, options);
+    FrameStatistics statistics;
+    const std::vector<StreamRequest> requests =
+        runtime.analyze(need, {}, 4, 4, false, 0, statistics);
+    EXPECT_EQ(statistics.misses, 4u);
+    const bool biased = backlog == 3;  // 4 missing: above 3, not above 4; 0 is off
+    ASSERT_EQ(requests.size(), biased ? 5u : 4u);
+    EXPECT_EQ(requests[0].page == parent, biased);
+    if (biased) {
+      EXPECT_EQ(requests[0].priority, 16.0);
+    }
+    for (size_t k = biased ? 1 : 0; k < requests.size(); ++k)
+      EXPECT_EQ(levelOfAbsoluteIndex(requests[k].page), 3u);
+  }
+}
+
 TEST_F(Runtime, TrilinearParentsKeepsAParentInUseFromEviction) {
   // Four frames: the root, the needed page, its parent and one more. Pages nobody needs arrive
   // frame after frame; the LRU frame goes to each. The parent, never named by the needbuffer, is
