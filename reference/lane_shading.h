@@ -161,6 +161,7 @@ class LaneBackend {
       : scalar_(scalar),
         conversion_(arithmetic.texelConversion),
         log2Form_(arithmetic.log2),
+        sqrt_(arithmetic.sqrt),
         active_(active) {}
 
   // The log2 member: the polynomial lane-wide (polynomialLog2, reference/shader_math.h, step by
@@ -171,6 +172,14 @@ class LaneBackend {
     lanes::Float8 result(0.0f);
     for (int k = 0; k < lanes::kLanes; ++k)
       if (active_[k]) result.v[k] = scalar_.log2(x[k]);
+    return result;
+  }
+
+  // The sqrt member: IEEE lane-wide, a measured table lane by lane.
+  lanes::Float8 sqrt(lanes::Float8 x) {
+    if (!sqrt_.table) return lanes::sqrt(x);
+    lanes::Float8 result(0.0f);
+    for (int k = 0; k < lanes::kLanes; ++k) result.v[k] = sqrt_.table->of(x[k]);
     return result;
   }
 
@@ -242,6 +251,7 @@ class LaneBackend {
   Scalar& scalar_;
   UnormConversion conversion_;
   Log2Form log2Form_;
+  SquareRoot sqrt_;
   const bool* active_;
   const void* pages_[lanes::kLanes] = {};
 };

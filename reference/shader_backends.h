@@ -38,6 +38,7 @@ class ResidentBackend {
       : texture_(texture), arithmetic_(arithmetic) {}
 
   float log2(float x) { return log2Of(arithmetic_.log2, x); }
+  float sqrt(float x) { return arithmetic_.sqrt.of(x); }
 
   // Neighbouring fragments mostly look up pages a recent lookup named (trilinear filtering
   // alternates between two levels; a quad may straddle a page edge): those are remembered, so the
@@ -118,6 +119,7 @@ class CacheBackend {
       : state_(state), arithmetic_(arithmetic) {}
 
   float log2(float x) { return log2Of(arithmetic_.log2, x); }
+  float sqrt(float x) { return arithmetic_.sqrt.of(x); }
 
   shader::uvec4 vtFetchIndirection(shader::ivec2 page, int level) {
     const glm::u16vec4 e = state_->indirection.entry(PageId{static_cast<uint32_t>(page.x),

@@ -199,6 +199,7 @@ Calibration calibrate() {
   shaderMembers.texelConversion = math.conversion;
   shaderMembers.flushDenormals = math.flushesDenormals;
   shaderMembers.reciprocal = math.measuredReciprocal;  // offered beside IEEE 1 / q
+  shaderMembers.sqrt = math.sqrtMember;
   const RasterFits raster = fitRasterization(shaderMembers);
   // Drawn after the first pack's last draw (raster's); the filter members draw no coordinate.
   drawFilterProbesAtCacheSizes(filterSamples,

@@ -37,7 +37,7 @@ constexpr Viewport kRasterViewport{64, 48};
 FingerprintDraws drawFingerprint() {
   FingerprintDraws d;
   std::mt19937 random(31);
-  d.log2.body = "result = vec4(log2(x.x), 1.0 / x.x, 0.0, 0.0);";
+  d.log2.body = "result = vec4(log2(x.x), 1.0 / x.x, sqrt(x.x), 0.0);";
   for (int i = 0; i < 4096; ++i) {
     const uint32_t exponent = 1 + static_cast<uint32_t>(i % 254);
     d.log2.inputs.push_back(
@@ -95,6 +95,10 @@ std::string differs(const FingerprintDraws& d, const reference::ResidentTexture&
       if (std::fabs(x) < 0x1p126f && !sameBits(d.log2Out[i].y, a.reciprocal.of(x)))
         return "the reciprocal differs from the measured table " + a.reciprocal.table->checksum();
     }
+  if (a.sqrt.table)
+    for (size_t i = 0; i < d.log2Out.size(); ++i)
+      if (!sameBits(d.log2Out[i].z, a.sqrt.of(d.log2.inputs[i].x)))
+        return "sqrt differs from the measured table " + a.sqrt.table->checksum();
   for (size_t k = 0; k < d.fetchOut.size(); ++k) {
     const glm::vec4 expected = reference::unorm8ToFloat(d.fetch.texels[k], a.texelConversion);
     for (int c = 0; c < 4; ++c)

@@ -4,7 +4,8 @@
 // context, reproduces the model's arithmetic bit for bit. The renderer's name decides nothing.
 //
 // The fingerprint (well under a second): log2 of 4,096 floats of every exponent, and their
-// reciprocals where the model's is a measured table (render/measured_reciprocal.h); 256 texel
+// reciprocals and square roots where the model's are measured tables (render/measured_table.h);
+// 256 texel
 // fetches of unorm8 values; 4,096 GL_LINEAR samples of a 24 x 40 texture at random coordinates;
 // 40 random triangles at 64 x 48 (which triangle, texture coordinates, fine derivatives, 32F
 // depth); and, where the model pins it, a denormal product in a clipped and an unclipped draw.

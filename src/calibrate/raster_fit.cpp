@@ -330,6 +330,14 @@ const char* const kPixelsCounted =
 // Every combination of the coverage candidates and the other families' members, on `base`.
 std::vector<Combination> allCombinations(const Arithmetic& base,
                                          const std::vector<Coverage>& coverages) {
+  // The perspective members; reciprocal_times also with the measured reciprocal, where the shader
+  // fit offers one (shader_math_fit.h).
+  std::vector<std::pair<Perspective, Reciprocal>> perspectives;
+  for (const auto& [perspective, name] : kPerspectiveNames) {
+    perspectives.push_back({perspective, Reciprocal{}});
+    if (perspective == Perspective::kReciprocalTimes && base.reciprocal.table)
+      perspectives.push_back({perspective, base.reciprocal});
+  }
   std::vector<Combination> combinations;
   for (const Coverage& coverage : coverages)
     for (const bool fusedViewport : {true, false})
@@ -339,13 +347,8 @@ std::vector<Combination> allCombinations(const Arithmetic& base,
           if (positions == PlanePositions::kSnapped && coverage.rule != CoverageRule::kSnappedEdges)
             continue;
           for (const auto& [evaluation, evaluationName] : kPlaneEvaluationNames)
-            for (const auto& [perspective, perspectiveName] : kPerspectiveNames)
-              for (const bool measured : {false, true})
+            for (const auto& [perspective, reciprocal] : perspectives)
               for (const bool offsetAndClamp : {true, false}) {
-                // A measured reciprocal, where the shader fit offers one (reciprocal_times only).
-                if (measured &&
-                    (!base.reciprocal.table || perspective != Perspective::kReciprocalTimes))
-                  continue;
                 Arithmetic a = base;
                 a.coverage = coverage;
                 a.fusedViewport = fusedViewport;
@@ -353,7 +356,7 @@ std::vector<Combination> allCombinations(const Arithmetic& base,
                 a.planePositions = positions;
                 a.planeEvaluation = evaluation;
                 a.perspective = perspective;
-                a.reciprocal = measured ? base.reciprocal : Reciprocal{};
+                a.reciprocal = reciprocal;
                 a.depth.offsetAndClamp = offsetAndClamp;
                 combinations.push_back({a, {}});
               }

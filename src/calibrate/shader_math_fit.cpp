@@ -58,6 +58,19 @@ Returned returned(const std::vector<glm::vec4>& inputs, const std::vector<glm::v
   return r;
 }
 
+// The sweep of sqrt over [1, 4) as a table, where it was drawn, IEEE missed some values, and its
+// results lie in [1, 2] (else none: such a sqrt is bounded, not tabled).
+std::shared_ptr<const MeasuredTable> sqrtTable(const Returned& roots, uint64_t notIeee) {
+  if (!roots.swept || notIeee == 0 || roots.first != MeasuredTable::kSqrtFirst ||
+      roots.swept->size() != MeasuredTable::kSqrtCount)
+    return nullptr;
+  try {
+    return std::make_shared<const MeasuredTable>(TabledFunction::kSqrt, *roots.swept);
+  } catch (const std::invalid_argument&) {
+    return nullptr;
+  }
+}
+
 std::optional<ParameterFit> fitReciprocal(Reciprocal& measured) {
   const FunctionSweep& sweep = *packSweep("reciprocal");
   std::optional<std::vector<uint32_t>> bits = functionSweep(sweep);
@@ -82,7 +95,7 @@ std::optional<ParameterFit> fitReciprocal(Reciprocal& measured) {
   // A table of results in [0.5, 1] becomes a member; one beyond is far outside GLSL's 2.5 ulps
   // and reported as such (calibration.h's conformance).
   if (missed > 0 && fit.largestResidual <= kGlslReciprocalUlps) {
-    measured.table = std::make_shared<const MeasuredReciprocal>(std::move(*bits));
+    measured.table = std::make_shared<const MeasuredTable>(TabledFunction::kReciprocal, std::move(*bits));
     fit.finding += "; the measured table " + measured.table->checksum() +
                    " is offered to the perspective probes";
   }
@@ -134,12 +147,26 @@ void fitLog2AndSqrt(ShaderMathFits& m) {
                      " ulps";
   }
   m.sqrt = {"sqrt", inputs, nSqrt, {{"ieee", notSqrt}}};
+  const std::shared_ptr<const MeasuredTable> table = sqrtTable(roots, notSqrt);
+  if (table) {
+    uint64_t missed = 0;
+    roots.visit([&](float x, float y) { missed += !sameBits(y, table->of(x)); });
+    m.sqrt.members.push_back({"measured", missed});
+  }
   m.sqrt.choose();
   m.sqrt.unit = "ulps";
-  if (!m.sqrt.pinned) m.sqrt.largestResidual = m.sqrtUlps;
+  // Under a table the residual stays: the result sets widen sqrt by it (reference/set_fragment.cpp).
+  if (notSqrt > 0) m.sqrt.largestResidual = m.sqrtUlps;
   m.sqrt.finding = notSqrt == 0 ? "IEEE sqrt, correctly rounded, bit for bit"
                                 : differ(notSqrt, nSqrt) + " from IEEE sqrt, largest " +
                                       std::to_string(m.sqrtUlps) + " ulps";
+  const bool tabled = m.sqrt.pinned && m.sqrt.chosen == "measured";
+  if (table)
+    m.sqrt.finding += tabled ? "; the measured table " + table->checksum() +
+                                   " over [1, 4), scaled by powers of 4, reproduces every value"
+                             : "; the measured table over [1, 4), scaled by powers of 4: " +
+                                   differ(m.sqrt.members.back().mismatches, nSqrt);
+  if (tabled) m.sqrtMember.table = table;
   if (notSqrt == 0) m.sqrtUlps = 0;
 
   // The same product in a draw the clipper leaves whole (the one above is clipped).

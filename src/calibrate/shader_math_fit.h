@@ -5,7 +5,10 @@
 //   log2, sqrt   65,536 positive floats of every exponent through log2() and sqrt(): every member
 //                of the log2 family bit for bit; else the residual against the true log2
 //                (absolute inside [0.5, 2], ulps outside: the GLSL 4.50 table's units). sqrt is
-//                IEEE or bounded by its residual in ulps.
+//                IEEE; or, where the folder holds the sweep of [1, 4), the measured table
+//                (render/measured_table.h), pinned where it reproduces the samples of every
+//                exponent too; or bounded by its residual in ulps, which bounds the result sets
+//                under a table as well.
 //   texel values texelFetch of the 256 unorm8 values against both conversions
 //   lerps        16,384 of the shader's `precise` lerps a + (b - a) * w rounded per operation;
 //                else the residual in units of 2^-23 of the larger operand (the precision
@@ -14,7 +17,7 @@
 //                it leaves whole: flushed or kept, or free where the two differ
 //   reciprocal   1.0 / x of every float of [1, 2), where the folder holds the pack's sweep
 //                (probes/function_sweeps.h): IEEE division bit for bit, or its residual in ulps
-//                and the measured table (render/measured_reciprocal.h), which the rasterization
+//                and the measured table (render/measured_table.h), which the rasterization
 //                fit offers the perspective member reciprocal_times beside IEEE 1 / q: the
 //                perspective triangles decide (raster_fit.h).
 
@@ -32,6 +35,7 @@ struct ShaderMathFits {
   ParameterFit log2, sqrt, texelConversion, lerp, denormals;
   std::optional<ParameterFit> reciprocal;  // where the reciprocal sweep was drawn
   Reciprocal measuredReciprocal;           // its table, where IEEE division missed some
+  SquareRoot sqrtMember;                   // the measured table where it pinned sqrt
   Log2Form log2Form = Log2Form::kLibm;    // the chosen member
   double log2Absolute = 0, log2Ulps = 0;  // residuals against the true log2 (unpinned only)
   double sqrtUlps = 0;

@@ -28,6 +28,8 @@ std::string describe(const Arithmetic& a) {
   line("depth", std::string(a.depth.offsetAndClamp ? "offset and clamp" : "as interpolated") +
                     ", Z24 " + std::string(nameOf(kZ24ConversionNames, a.depth.z24)));
   line("log2", std::string(nameOf(kLog2FormNames, a.log2)));
+  // Said for a measured sqrt only, so that the named points describe themselves as before.
+  if (a.sqrt.table) line("sqrt", "the measured table " + a.sqrt.table->checksum());
   const Filter& f = a.filter;
   const std::string rounding(nameOf(kLerpRoundingNames, f.lerpRounding));
   std::string filter(nameOf(kFilterWeightsNames, f.weights));

@@ -26,7 +26,7 @@
 //                  unfused, or at the quad's even corner stepped to its other pixels by + dadx
 //                  and + dady (softpipe-arithmetic.md, 3.2)
 //   perspective    s/w and t/w times the reciprocal of the 1/w plane, or divided by it; the
-//                  reciprocal is IEEE 1 / q or a measured table (render/measured_reciprocal.h)
+//                  reciprocal is IEEE 1 / q or a measured table (render/measured_table.h)
 //   depth          a + 0.0 offset term and a clamp to [0, 1] (rule 7) or neither; Z24
 //                  stored as round-half-even(z * (2^24 - 1)) or truncated (unsigned)(z * ...)
 //   derivatives    fine: the differences within the pixel's quad row and column, helpers
@@ -55,14 +55,18 @@
 //   framebuffer    a float colour to unorm8 rounded to nearest even, or truncated to a number of
 //                  bits first and scaled with a bias (ColourConversion; measured on a GPU)
 //
-// sqrt and the shader's + - * are IEEE in every member (GLSL 4.50 section 4.7.1 allows more; a
+//   sqrt           IEEE, or a measured table (render/measured_table.h)
+//
+// The shader's + - * are IEEE in every member (GLSL 4.50 section 4.7.1 allows more; a
 // measurement that differs is bounded, see precision_model.h).
 
 #include <string>
 
 #include "common/enum_names.h"
 #include "format/block_decoding.h"
-#include "render/measured_reciprocal.h"
+#include <cmath>
+
+#include "render/measured_table.h"
 
 namespace vt {
 
@@ -198,15 +202,21 @@ struct ColourConversion {
   bool operator==(const ColourConversion&) const = default;
 };
 
-// The reciprocal that reciprocal_times multiplies by: IEEE 1 / q, or the implementation's own,
-// measured (render/measured_reciprocal.h). Two are the same member when their tables' checksums
-// are.
-struct Reciprocal {
-  std::shared_ptr<const MeasuredReciprocal> table;  // none: IEEE
-  float of(float q) const { return table ? table->of(q) : 1.0f / q; }
-  bool operator==(const Reciprocal& other) const {
+// A function as IEEE computes it or as a measured table says (render/measured_table.h). Two are
+// the same member when their tables' checksums are.
+struct MeasuredMember {
+  std::shared_ptr<const MeasuredTable> table;  // none: IEEE
+  bool operator==(const MeasuredMember& other) const {
     return table ? other.table && other.table->checksum() == table->checksum() : !other.table;
   }
+};
+// The reciprocal that reciprocal_times multiplies by.
+struct Reciprocal : MeasuredMember {
+  float of(float q) const { return table ? table->of(q) : 1.0f / q; }
+};
+// The shader's sqrt (the LOD's e_max).
+struct SquareRoot : MeasuredMember {
+  float of(float x) const { return table ? table->of(x) : std::sqrt(x); }
 };
 
 struct Arithmetic {
@@ -219,6 +229,7 @@ struct Arithmetic {
   Reciprocal reciprocal;  // kReciprocalTimes only
   Depth depth;
   Log2Form log2 = Log2Form::kLibm;
+  SquareRoot sqrt;  // IEEE, or measured
   Filter filter;
   UnormConversion texelConversion = UnormConversion::kTimesReciprocal;
   bool flushDenormals = false;

@@ -115,6 +115,24 @@ class Fields {
   mutable std::set<std::string> read_;
 };
 
+// A measured table (render/measured_table.h) the arithmetic names under its function's key, from
+// beside the model file; none where the key is absent.
+std::shared_ptr<const MeasuredTable> readTable(const Fields& f, TabledFunction function) {
+  const char* key = tableKey(function);
+  if (!f.has(key)) return nullptr;
+  const Fields table = f.object(key);
+  const std::string field = std::string("field arithmetic.") + key;
+  const std::string checksum = table.text("checksum");
+  if (checksum.size() != 16 || checksum.find_first_not_of("0123456789abcdef") != std::string::npos)
+    throw table.failure(field + ".checksum is not 16 hexadecimal digits");
+  const std::string name = tableFileName(function, checksum);
+  if (table.text("table") != name)
+    throw table.failure(field + ".table is not " + name +
+                        " (the table is named by its checksum, beside the model)");
+  table.refuseUnread();
+  return MeasuredTable::read(function, f.file().parent_path() / name, checksum);
+}
+
 Arithmetic readArithmetic(const Fields& f) {
   Arithmetic a;
   a.fusedViewport = f.choice("viewport", {"fused", "unfused"}) == "fused";
@@ -138,30 +156,17 @@ Arithmetic readArithmetic(const Fields& f) {
   }
   a.planeEvaluation = f.named("plane_evaluation", kPlaneEvaluationNames);
   a.perspective = f.named("perspective", kPerspectiveNames);
-  // A measured reciprocal: its table beside the model file, named by its checksum.
-  if (f.has("reciprocal")) {
-    const Fields reciprocal = f.object("reciprocal");
-    const std::string checksum = reciprocal.text("checksum");
-    if (checksum.size() != 16 ||
-        checksum.find_first_not_of("0123456789abcdef") != std::string::npos)
-      throw reciprocal.failure("field arithmetic.reciprocal.checksum is not 16 hexadecimal digits");
-    if (reciprocal.text("table") != reciprocalTableName(checksum))
-      throw reciprocal.failure("field arithmetic.reciprocal.table is not " +
-                               reciprocalTableName(checksum) + " (the table is named by its "
-                               "checksum, beside the model)");
-    reciprocal.refuseUnread();
-    if (a.perspective != Perspective::kReciprocalTimes)
-      throw f.failure("field arithmetic.reciprocal is set, but the perspective (" +
-                      std::string(nameOf(kPerspectiveNames, a.perspective)) +
-                      ") takes no reciprocal");
-    a.reciprocal.table = MeasuredReciprocal::read(
-        f.file().parent_path() / reciprocalTableName(checksum), checksum);
-  }
+  a.reciprocal.table = readTable(f, TabledFunction::kReciprocal);
+  if (a.reciprocal.table && a.perspective != Perspective::kReciprocalTimes)
+    throw f.failure("field arithmetic.reciprocal is set, but the perspective (" +
+                    std::string(nameOf(kPerspectiveNames, a.perspective)) +
+                    ") takes no reciprocal");
   const Fields depth = f.object("depth");
   a.depth.offsetAndClamp = depth.flag("offset_and_clamp");
   a.depth.z24 = depth.named("z24", kZ24ConversionNames);
   depth.refuseUnread();
   a.log2 = f.named("log2", kLog2FormNames);
+  a.sqrt.table = readTable(f, TabledFunction::kSqrt);
   const Fields filter = f.object("filter");
   a.filter.weights = filter.named("weights", kFilterWeightsNames);
   // The corner-weight member's parameters, written for it alone.
@@ -239,16 +244,12 @@ std::string readCalibration(const Fields& c) {
 
 }  // namespace
 
-std::string reciprocalTableName(const std::string& checksum) {
-  return "reciprocal-" + checksum + ".table";
-}
-
 void writeModelFiles(const std::filesystem::path& file, const Arithmetic& arithmetic,
                      const std::string& json) {
-  if (arithmetic.reciprocal.table)
-    writeFileAtomically(
-        file.parent_path() / reciprocalTableName(arithmetic.reciprocal.table->checksum()),
-        arithmetic.reciprocal.table->fileBytes());
+  for (const auto& table : {arithmetic.reciprocal.table, arithmetic.sqrt.table})
+    if (table)
+      writeFileAtomically(file.parent_path() / tableFileName(table->function(), table->checksum()),
+                          table->fileBytes());
   writeFileAtomically(file, json);
 }
 
@@ -288,9 +289,11 @@ nlohmann::ordered_json arithmeticJson(const Arithmetic& a) {
     filter["output"] = nameOf(kFilterOutputNames, a.filter.output);
   }
   if (a.planePositions == PlanePositions::kSnapped) json["plane_positions"] = "snapped";
-  if (a.reciprocal.table)
-    json["reciprocal"] = {{"table", reciprocalTableName(a.reciprocal.table->checksum())},
-                          {"checksum", a.reciprocal.table->checksum()}};
+  for (const auto& table : {a.reciprocal.table, a.sqrt.table})
+    if (table)
+      json[tableKey(table->function())] = {
+          {"table", tableFileName(table->function(), table->checksum())},
+          {"checksum", table->checksum()}};
   if (a.blockDecoding.alpha == PaletteRule::kWeights)
     json["block_decoding"]["alpha_weights"] = a.blockDecoding.alphaWeights;
   if (a.colourConversion.rule != ColourConversionRule::kNearest)

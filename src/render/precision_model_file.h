@@ -32,9 +32,8 @@ namespace vt {
 // An arithmetic as the model file's "arithmetic" object.
 nlohmann::ordered_json arithmeticJson(const Arithmetic& arithmetic);
 
-// The file name of a measured reciprocal's table (render/measured_reciprocal.h) beside the model
-// that uses it: "reciprocal-CHECKSUM.table". A model with one is written with writeModelFiles.
-std::string reciprocalTableName(const std::string& checksum);
+// A model's measured tables (render/measured_table.h) lie beside it as FUNCTION-CHECKSUM.table
+// (tableFileName); a model with one is written with writeModelFiles.
 // Writes `json` (the model's text) to `file`, the model's measured tables beside it first, each
 // atomically.
 void writeModelFiles(const std::filesystem::path& file, const Arithmetic& arithmetic,

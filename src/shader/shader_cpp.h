@@ -2,15 +2,16 @@
 // The shared shader logic (virtual_texture.glsl) compiled as C++: GLSL's types and built-ins are
 // GLM's, `precise` is empty (the build never contracts or reassociates floating point:
 // -ffp-contract=off, no -ffast-math), and the functions become members of ShaderLogic<Backend>,
-// whose Backend supplies the texture fetches and the target's log2 (a precision profile). The
-// per-fragment types (vfloat, vint, vuint, vbool) are one value each here; shader/shader_lanes.h
-// compiles the same file over SIMD lanes, one fragment per lane.
+// whose Backend supplies the texture fetches and the target's log2 and sqrt (a precision
+// profile). The per-fragment types (vfloat, vint, vuint, vbool) are one value each here;
+// shader/shader_lanes.h compiles the same file over SIMD lanes, one fragment per lane.
 //
 // Backend must provide, callable on a non-const object:
 //   uvec4 vtFetchIndirection(ivec2 page, int level);
 //   vec4  vtFetchCacheTexel(ivec2 texel);
 //   vec4  vtSampleCacheLinear(vec2 texel);
 //   float log2(float x);
+//   float sqrt(float x);
 
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -42,6 +43,7 @@ class ShaderLogic : public Backend {
  public:
   using Backend::Backend;
   using Backend::log2;
+  using Backend::sqrt;
   using Backend::vtFetchCacheTexel;
   using Backend::vtFetchIndirection;
   using Backend::vtSampleCacheLinear;

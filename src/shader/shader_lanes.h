@@ -10,6 +10,7 @@
 //   lanes::Vec4   vtFetchCacheTexel(lanes::IVec2 texel);
 //   lanes::Vec4   vtSampleCacheLinear(lanes::Vec2 texel);
 //   lanes::Float8 log2(lanes::Float8 x);
+//   lanes::Float8 sqrt(lanes::Float8 x);
 
 #include "shader/lanes.h"
 #include "shader/shader_cpp.h"
@@ -23,6 +24,7 @@ class LaneShaderLogic : public Backend {
  public:
   using Backend::Backend;
   using Backend::log2;
+  using Backend::sqrt;
   using Backend::vtFetchCacheTexel;
   using Backend::vtFetchIndirection;
   using Backend::vtSampleCacheLinear;

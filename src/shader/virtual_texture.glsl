@@ -11,6 +11,7 @@
 //   vec4  vtSampleCacheLinear(vec2 texel)            the sampler's bilinear filter at a texel
 //                                                     position (GL_LINEAR, centres at +0.5)
 //   float log2(float)                                 the target's log2 (a precision profile)
+//   float sqrt(float)                                 the target's sqrt (IEEE, or measured)
 //
 // Decisions this file fixes for both backends:
 //   - lod = L - clamp(log2(e_max * P * 2^L), 0, L), larger is finer (appendix B). NaN gives the

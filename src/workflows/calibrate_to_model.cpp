@@ -49,10 +49,12 @@ calibrate::Calibration calibrateToModel(const CalibrateRequest& request, std::os
   const std::string json = calibrate::calibrationJson(calibration);
   if (request.output.empty()) {
     out << json;
-    if (calibration.model.arithmetic.reciprocal.table)
-      err << "vt calibrate: the model names its measured reciprocal's table, "
-          << reciprocalTableName(calibration.model.arithmetic.reciprocal.table->checksum())
-          << ", which only -o writes beside it\n";
+    for (const auto& table : {calibration.model.arithmetic.reciprocal.table,
+                              calibration.model.arithmetic.sqrt.table})
+      if (table)
+        err << "vt calibrate: the model names its measured table "
+            << tableFileName(table->function(), table->checksum())
+            << ", which only -o writes beside it\n";
     return calibration;
   }
   writeModelFiles(request.output, calibration.model.arithmetic, json);

@@ -7,7 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 
@@ -136,6 +138,52 @@ TEST_P(LaneShading, EveryPageResidentGivesTheSameBytesAsOnePixelAtATime) {
     for (const auto& [what, settings] : switches())
       expectSameBytes(texture, settings, what + ", " + std::to_string(channels) + " channels");
   }
+}
+
+// Measured tables (render/measured_table.h) for the reciprocal and sqrt, far from IEEE (every
+// reciprocal 4 ulps low, every square root 2^-7 high): lane by lane they shade what one pixel at
+// a time does, and the frame is not the IEEE one, so both paths take them.
+TEST_P(LaneShading, MeasuredTablesShadeTheSameBytesAsOnePixelAtATime) {
+  writeSyntheticTexture(
+      dir_ / "t.vt", {{.pageSize = 16, .border = 2, .levelCount = 6, .channels = 4}, std::nullopt});
+  const VirtualTextureReader reader(dir_ / "t.vt");
+  const ResidentTexture texture(reader);
+  std::vector<uint32_t> reciprocal(MeasuredTable::kReciprocalCount);
+  std::vector<uint32_t> root(MeasuredTable::kSqrtCount);
+  for (uint32_t i = 0; i < reciprocal.size(); ++i) {
+    const float r = 1.0f / std::bit_cast<float>(0x3f800000u + i);
+    reciprocal[i] = std::max(std::bit_cast<uint32_t>(0.5f), std::bit_cast<uint32_t>(r) - 4);
+  }
+  for (uint32_t i = 0; i < root.size(); ++i) {
+    const float s = std::sqrt(std::bit_cast<float>(0x3f800000u + i)) * (1.0f + 0x1p-7f);
+    root[i] = std::bit_cast<uint32_t>(std::min(2.0f, s));
+  }
+  RenderSettings settings;
+  settings.arithmetic = arithmeticPoint(GetParam());
+  settings.viewport = {157, 93};
+  settings.debugChannels = true;
+  settings.threads = 2;
+  const Frame ieee = renderFrame(mesh_, texture, settings);
+  settings.arithmetic.perspective = Perspective::kReciprocalTimes;
+  settings.arithmetic.reciprocal.table =
+      std::make_shared<const MeasuredTable>(TabledFunction::kReciprocal, reciprocal);
+  settings.arithmetic.sqrt.table =
+      std::make_shared<const MeasuredTable>(TabledFunction::kSqrt, root);
+  settings.scalarShading = true;
+  const Frame scalar = renderFrame(mesh_, texture, settings);
+  settings.scalarShading = false;
+  const Frame lanes = renderFrame(mesh_, texture, settings);
+  EXPECT_EQ(lanes.color, scalar.color);
+  EXPECT_EQ(lanes.need, scalar.need);
+  // Bits, so that NaN (the mesh has NaN coordinates) compares equal to NaN.
+  const auto sameBytes = [](const auto& a, const auto& b) {
+    return a.size() == b.size() &&
+           std::memcmp(a.data(), b.data(), a.size() * sizeof(a.front())) == 0;
+  };
+  EXPECT_TRUE(sameBytes(lanes.uv, scalar.uv));
+  EXPECT_TRUE(sameBytes(lanes.lod, scalar.lod));
+  EXPECT_FALSE(sameBytes(scalar.uv, ieee.uv));
+  EXPECT_FALSE(sameBytes(scalar.lod, ieee.lod));
 }
 
 TEST_P(LaneShading, ACacheStateWithMissingPagesGivesTheSameBytesAsOnePixelAtATime) {

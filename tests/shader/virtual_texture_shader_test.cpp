@@ -19,6 +19,7 @@ namespace {
 struct ToyBackend {
   int residentLevelCap = 15;  // pages finer than this fall back to their ancestor on this level
   float log2(float x) { return std::log2(x); }
+  float sqrt(float x) { return std::sqrt(x); }
   uvec4 vtFetchIndirection(ivec2 page, int level) {
     const int i = level < residentLevelCap ? level : residentLevelCap;
     return uvec4(uint(page.x >> (level - i)), uint(page.y >> (level - i)), uint(i), 0u);

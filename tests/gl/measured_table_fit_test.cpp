@@ -1,12 +1,17 @@
-// A measured reciprocal chosen, or refused, by the perspective triangles (calibrate/raster_fit.h,
-// render/measured_reciprocal.h). llvmpipe's probes are recorded; their reciprocal sweep is then
-// replaced by a table one ulp low at every third input, as an implementation whose reciprocal unit
-// is not IEEE division would return it.
+// Measured tables (render/measured_table.h) chosen, or refused, by the probes beyond their sweeps.
+// llvmpipe's probes are recorded; a sweep is then replaced by a table one ulp off at every third
+// input, as an implementation whose function unit is not IEEE would return it.
+//
+// The reciprocal, judged by the perspective triangles (calibrate/raster_fit.h):
 //   - With llvmpipe's own triangles (drawn with IEEE 1 / q) the table is offered and refused:
 //     the triangles choose IEEE, and the model keeps llvmpipe's point.
 //   - With the triangles redrawn by the oracle under llvmpipe's arithmetic and that table (what
 //     such an implementation draws), the table is chosen and pinned, written beside the model
 //     under its checksum, and the model reads back with it.
+// sqrt, judged by its 65,536 samples of every exponent (calibrate/shader_math_fit.h):
+//   - With llvmpipe's samples (IEEE) the table misses a third of them and sqrt is not pinned.
+//   - With the samples answered as that table says, the table pins sqrt and travels beside the
+//     model; the residual against the true sqrt still bounds the result sets.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -46,19 +51,25 @@ std::map<std::string, nlohmann::json> fit(const std::filesystem::path& folder,
   return byName;
 }
 
-TEST(MeasuredReciprocalFit, ThePerspectiveTrianglesChooseOrRefuseTheTable) {
-  {
-    const HeadlessContext context;
-    if (context.renderer().find("llvmpipe") == std::string::npos ||
-        !__builtin_cpu_supports("fma"))
-      GTEST_SKIP() << "not llvmpipe with FMA";
-  }
+bool llvmpipeWithFma() {
+  const HeadlessContext context;
+  return context.renderer().find("llvmpipe") != std::string::npos &&
+         __builtin_cpu_supports("fma");
+}
+
+// `vt calibrate --record-probes probes` on llvmpipe.
+void record(const std::filesystem::path& dir, const std::filesystem::path& probes) {
+  const test::CommandResult recorded = test::runCommand(
+      VT_EXECUTABLE,
+      {"calibrate", "--record-probes", probes.string(), "-o", (dir / "here.json").string()}, dir);
+  ASSERT_EQ(recorded.exitCode, 0) << recorded.err;
+}
+
+TEST(MeasuredTableFit, ThePerspectiveTrianglesChooseOrRefuseAReciprocalTable) {
+  if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
   test::ScratchDirectory dir;
   const std::filesystem::path probes = dir / "probes";
-  const test::CommandResult recorded = test::runCommand(
-      VT_EXECUTABLE, {"calibrate", "--record-probes", probes.string(), "-o", (dir / "here.json").string()},
-      dir.path());
-  ASSERT_EQ(recorded.exitCode, 0) << recorded.err;
+  ASSERT_NO_FATAL_FAILURE(record(dir.path(), probes));
 
   const calibrate::FunctionSweep& sweep = *calibrate::packSweep("reciprocal");
   std::vector<uint32_t> table = *capture::readSweepResult(probes, sweep);
@@ -78,7 +89,7 @@ TEST(MeasuredReciprocalFit, ThePerspectiveTrianglesChooseOrRefuseTheTable) {
 
   // The triangles as an implementation with that reciprocal draws them.
   Arithmetic measured = llvmpipeModel().arithmetic;
-  measured.reciprocal.table = std::make_shared<const MeasuredReciprocal>(table);
+  measured.reciprocal.table = std::make_shared<const MeasuredTable>(TabledFunction::kReciprocal, table);
   const calibrate::ProbeTexture texture(4);
   const size_t count = capture::readProbeFolder(probes).count;
   size_t redrawn = 0;
@@ -103,11 +114,57 @@ TEST(MeasuredReciprocalFit, ThePerspectiveTrianglesChooseOrRefuseTheTable) {
   EXPECT_TRUE(chosen["attributes"]["pinned"].get<bool>());
   EXPECT_EQ(chosen["point"], "");  // no named point has the table
   const std::string checksum = measured.reciprocal.table->checksum();
-  EXPECT_TRUE(std::filesystem::exists(dir / reciprocalTableName(checksum)));
+  EXPECT_TRUE(std::filesystem::exists(dir / tableFileName(TabledFunction::kReciprocal, checksum)));
   const PrecisionModel model = readModelFile(dir / "chosen.json");
   ASSERT_TRUE(model.arithmetic.reciprocal.table);
   EXPECT_EQ(model.arithmetic.reciprocal.table->checksum(), checksum);
   EXPECT_EQ(model.arithmetic, measured);
+}
+
+TEST(MeasuredTableFit, TheSamplesOfEveryExponentChooseOrRefuseASqrtTable) {
+  if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
+  test::ScratchDirectory dir;
+  const std::filesystem::path probes = dir / "probes";
+  ASSERT_NO_FATAL_FAILURE(record(dir.path(), probes));
+  const calibrate::FunctionSweep& sweep = *calibrate::packSweep("sqrt");
+  std::vector<uint32_t> table = *capture::readSweepResult(probes, sweep);
+  for (size_t i = 2; i < table.size(); i += 3)
+    if (std::bit_cast<float>(table[i] + 1) < 2.0f) ++table[i];
+  capture::writeSweepResult(probes, sweep, table);
+
+  auto refused = fit(probes, dir / "refused.json");
+  EXPECT_FALSE(refused["sqrt"]["pinned"].get<bool>());
+  EXPECT_THAT(refused["sqrt"]["finding"].get<std::string>(),
+              HasSubstr("the measured table over [1, 4), scaled by powers of 4: "));
+  ASSERT_EQ(refused["sqrt"]["members"].size(), 2u);
+  EXPECT_GT(refused["sqrt"]["members"][1]["mismatches"].get<uint64_t>(), 15000u);
+
+  // The shader probe of log2 and sqrt answered as the table says.
+  const MeasuredTable measured(TabledFunction::kSqrt, table);
+  const size_t count = capture::readProbeFolder(probes).count;
+  size_t answered = 0;
+  for (size_t i = 0; i < count; ++i) {
+    const capture::ProbeRequest request = capture::readProbeRequest(probes, i);
+    if (request.kind != capture::ProbeRequest::Kind::kShader ||
+        request.shader.body.find("sqrt(x.x)") == std::string::npos)
+      continue;
+    capture::ProbeResult result = capture::readProbeResult(probes, i, request);
+    for (size_t k = 0; k < result.values.size(); ++k)
+      result.values[k].y = measured.of(request.shader.inputs[k].x);
+    capture::writeProbeResult(probes, i, request, result);
+    ++answered;
+  }
+  EXPECT_EQ(answered, 1u);
+  auto chosen = fit(probes, dir / "chosen.json");
+  EXPECT_TRUE(chosen["sqrt"]["pinned"].get<bool>());
+  EXPECT_EQ(chosen["sqrt"]["chosen"], "measured");
+  EXPECT_THAT(chosen["sqrt"]["finding"].get<std::string>(),
+              HasSubstr("the measured table " + measured.checksum()));
+  EXPECT_TRUE(std::filesystem::exists(dir / tableFileName(TabledFunction::kSqrt, measured.checksum())));
+  const PrecisionModel model = readModelFile(dir / "chosen.json");
+  ASSERT_TRUE(model.arithmetic.sqrt.table);
+  EXPECT_EQ(model.arithmetic.sqrt.table->checksum(), measured.checksum());
+  EXPECT_GT(model.sqrtUlps, 0.5);  // the sets keep the residual against the true sqrt
 }
 
 }  // namespace

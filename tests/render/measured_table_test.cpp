@@ -1,9 +1,10 @@
-// A measured reciprocal as a member (render/measured_reciprocal.h): one binade's table extends to
-// every normal input by the exponent and the sign, the rest takes IEEE division; its file is
-// checked by size and checksum; a model names it and reads it back from beside itself, and every
-// way a model or its table can be wrong is refused naming the file.
+// Measured tables as members (render/measured_table.h): the reciprocal's binade and sqrt's two
+// binades extend to every normal input by the exponent (and the reciprocal's sign), the rest
+// takes IEEE division or sqrt; a table's file is checked by size and checksum; a model names its
+// tables and reads them back from beside itself, and every way a model or a table can be wrong is
+// refused naming the file.
 
-#include "render/measured_reciprocal.h"
+#include "render/measured_table.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -28,17 +29,57 @@ using ::testing::ThrowsMessage;
 
 // IEEE 1 / x over [1, 2), with every third result one ulp lower where `perturbed`.
 std::vector<uint32_t> tableOf(bool perturbed) {
-  std::vector<uint32_t> bits(MeasuredReciprocal::kCount);
+  std::vector<uint32_t> bits(MeasuredTable::kReciprocalCount);
   for (uint32_t i = 0; i < bits.size(); ++i) {
-    bits[i] = std::bit_cast<uint32_t>(1.0f / std::bit_cast<float>(MeasuredReciprocal::kFirst + i));
+    bits[i] =
+        std::bit_cast<uint32_t>(1.0f / std::bit_cast<float>(MeasuredTable::kReciprocalFirst + i));
     if (perturbed && i % 3 == 1) --bits[i];
   }
   return bits;
 }
 
-TEST(MeasuredReciprocal, IeeeTableGivesIeeeDivisionAndAPerturbedOneScalesItsOwn) {
-  const MeasuredReciprocal ieee(tableOf(false));
-  const MeasuredReciprocal perturbed(tableOf(true));
+// IEEE sqrt over [1, 4), with every third result one ulp higher where `perturbed` (none reaches 2:
+// the last is the float below it).
+std::vector<uint32_t> sqrtTableOf(bool perturbed) {
+  std::vector<uint32_t> bits(MeasuredTable::kSqrtCount);
+  for (uint32_t i = 0; i < bits.size(); ++i) {
+    bits[i] = std::bit_cast<uint32_t>(std::sqrt(std::bit_cast<float>(MeasuredTable::kSqrtFirst + i)));
+    if (perturbed && i % 3 == 2 && std::bit_cast<float>(bits[i] + 1) < 2.0f) ++bits[i];
+  }
+  return bits;
+}
+
+TEST(MeasuredTable, IeeeSqrtTableGivesIeeeSqrtAndAPerturbedOneScalesItsOwn) {
+  const MeasuredTable ieee(TabledFunction::kSqrt, sqrtTableOf(false));
+  const MeasuredTable perturbed(TabledFunction::kSqrt, sqrtTableOf(true));
+  std::mt19937 random(6);
+  uint64_t differing = 0;
+  for (int k = 0; k < 200000; ++k) {
+    const uint32_t exponent = 1 + random() % 254;  // every normal float
+    const float x =
+        std::bit_cast<float>((exponent << 23) | static_cast<uint32_t>(random() >> 9));
+    ASSERT_EQ(std::bit_cast<uint32_t>(ieee.of(x)), std::bit_cast<uint32_t>(std::sqrt(x))) << x;
+    // The perturbed table at x is its value at x 4^-k, in [1, 4), times 2^k.
+    const int e = static_cast<int>(exponent) - 127;
+    const int half = e >= 0 ? e / 2 : -((1 - e) / 2);
+    const float m = std::ldexp(x, -2 * half);
+    ASSERT_TRUE(m >= 1.0f && m < 4.0f) << x;
+    ASSERT_EQ(perturbed.of(x), std::ldexp(perturbed.of(m), half)) << x;
+    differing += perturbed.of(x) != std::sqrt(x);
+  }
+  EXPECT_GT(differing, 50000u);
+  // Outside the table's reach IEEE sqrt: zero, denormals, infinity, negative numbers.
+  for (const float x : {0.0f, -0.0f, 0x1p-140f, std::numeric_limits<float>::infinity()})
+    EXPECT_EQ(std::bit_cast<uint32_t>(perturbed.of(x)), std::bit_cast<uint32_t>(std::sqrt(x))) << x;
+  EXPECT_TRUE(std::isnan(perturbed.of(-4.0f)));
+  std::vector<uint32_t> wrong = sqrtTableOf(false);
+  wrong[3] = std::bit_cast<uint32_t>(0.75f);
+  EXPECT_THROW((MeasuredTable{TabledFunction::kSqrt, wrong}), std::invalid_argument);
+}
+
+TEST(MeasuredTable, IeeeReciprocalTableGivesIeeeDivisionAndAPerturbedOneScalesItsOwn) {
+  const MeasuredTable ieee(TabledFunction::kReciprocal, tableOf(false));
+  const MeasuredTable perturbed(TabledFunction::kReciprocal, tableOf(true));
   EXPECT_NE(ieee.checksum(), perturbed.checksum());
   std::mt19937 random(5);
   uint64_t differing = 0;
@@ -49,7 +90,7 @@ TEST(MeasuredReciprocal, IeeeTableGivesIeeeDivisionAndAPerturbedOneScalesItsOwn)
     const float q = std::bit_cast<float>(sign | (exponent << 23) | mantissa);
     ASSERT_EQ(std::bit_cast<uint32_t>(ieee.of(q)), std::bit_cast<uint32_t>(1.0f / q)) << q;
     // The perturbed table's result at q is its result at q's mantissa, scaled exactly.
-    const float m = std::bit_cast<float>(MeasuredReciprocal::kFirst | mantissa);
+    const float m = std::bit_cast<float>(MeasuredTable::kReciprocalFirst | mantissa);
     const float expected = std::ldexp(perturbed.of(m), 127 - static_cast<int>(exponent));
     ASSERT_EQ(perturbed.of(q), sign ? -expected : expected) << q;
     differing += perturbed.of(q) != 1.0f / q;
@@ -61,26 +102,36 @@ TEST(MeasuredReciprocal, IeeeTableGivesIeeeDivisionAndAPerturbedOneScalesItsOwn)
   EXPECT_TRUE(std::isnan(perturbed.of(std::numeric_limits<float>::quiet_NaN())));
   std::vector<uint32_t> wrong = tableOf(false);
   wrong[17] = std::bit_cast<uint32_t>(1.5f);
-  EXPECT_THROW(MeasuredReciprocal{wrong}, std::invalid_argument);
-  EXPECT_THROW(MeasuredReciprocal{std::vector<uint32_t>(5)}, std::invalid_argument);
+  EXPECT_THROW((MeasuredTable{TabledFunction::kReciprocal, wrong}), std::invalid_argument);
+  EXPECT_THROW((MeasuredTable{TabledFunction::kReciprocal, std::vector<uint32_t>(5)}),
+               std::invalid_argument);
 }
 
-TEST(MeasuredReciprocal, AModelNamesItsTableAndReadsItBackFromBesideItself) {
+TEST(MeasuredTable, AModelNamesItsTablesAndReadsThemBackFromBesideItself) {
   test::ScratchDirectory dir;
   PrecisionModel model = llvmpipeModel();
   model.name = "measured";
-  model.arithmetic.reciprocal.table = std::make_shared<const MeasuredReciprocal>(tableOf(true));
+  model.arithmetic.reciprocal.table =
+      std::make_shared<const MeasuredTable>(TabledFunction::kReciprocal, tableOf(true));
+  model.arithmetic.sqrt.table =
+      std::make_shared<const MeasuredTable>(TabledFunction::kSqrt, sqrtTableOf(true));
   const std::string checksum = model.arithmetic.reciprocal.table->checksum();
+  const std::string sqrtChecksum = model.arithmetic.sqrt.table->checksum();
   const std::filesystem::path file = dir / "model.json";
   writeModelFiles(file, model.arithmetic, modelJson(model));
-  const std::filesystem::path table = dir / reciprocalTableName(checksum);
+  const std::filesystem::path table = dir / tableFileName(TabledFunction::kReciprocal, checksum);
   ASSERT_TRUE(std::filesystem::exists(table));
-  EXPECT_EQ(std::filesystem::file_size(table), 4u * MeasuredReciprocal::kCount);
+  EXPECT_EQ(std::filesystem::file_size(table), 4u * MeasuredTable::kReciprocalCount);
+  EXPECT_EQ(std::filesystem::file_size(dir / ("sqrt-" + sqrtChecksum + ".table")),
+            4u * MeasuredTable::kSqrtCount);
   const PrecisionModel read = readModelFile(file);
   EXPECT_EQ(read, model);
   ASSERT_TRUE(read.arithmetic.reciprocal.table);
   EXPECT_EQ(read.arithmetic.reciprocal.table->bits(), model.arithmetic.reciprocal.table->bits());
+  ASSERT_TRUE(read.arithmetic.sqrt.table);
+  EXPECT_EQ(read.arithmetic.sqrt.table->bits(), model.arithmetic.sqrt.table->bits());
   EXPECT_THAT(describe(read.arithmetic), HasSubstr("the measured reciprocal (table " + checksum));
+  EXPECT_THAT(describe(read.arithmetic), HasSubstr("sqrt: the measured table " + sqrtChecksum));
   // A model without the table is another member.
   EXPECT_NE(readModelFile(file).arithmetic, llvmpipeModel().arithmetic);
 

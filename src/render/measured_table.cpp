@@ -1,0 +1,120 @@
+#include "render/measured_table.h"
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "common/checksum.h"
+#include "common/error.h"
+#include "common/input_file.h"
+
+namespace vt {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "table files are little-endian");
+
+std::string deltaCoded(const std::vector<uint32_t>& bits) {
+  std::string bytes(bits.size() * sizeof(uint32_t), '\0');
+  uint32_t previous = 0;
+  for (size_t i = 0; i < bits.size(); ++i) {
+    const uint32_t delta = bits[i] - previous;
+    std::memcpy(bytes.data() + i * sizeof(uint32_t), &delta, sizeof delta);
+    previous = bits[i];
+  }
+  return bytes;
+}
+
+std::string checksumOf(const std::string& bytes) {
+  return checksumText(
+      checksum64(std::span(reinterpret_cast<const std::byte*>(bytes.data()), bytes.size())));
+}
+
+// 1 / x for x = m 2^e, m in [1, 2): r(m) 2^-e; IEEE division where that would leave the normal
+// floats (|x| >= 2^126 gives a denormal reciprocal) or x is not a normal float.
+float reciprocalOf(const std::vector<uint32_t>& table, float x) {
+  const uint32_t bits = std::bit_cast<uint32_t>(x);
+  const int exponent = static_cast<int>((bits >> 23) & 0xffu) - 127;
+  if (exponent < -126 || exponent >= 126) return 1.0f / x;
+  const float r = std::ldexp(std::bit_cast<float>(table[bits & 0x007fffffu]), -exponent);
+  return (bits & 0x80000000u) ? -r : r;
+}
+
+// sqrt(x) for x = m 4^k, m in [1, 4): s(m) 2^k; IEEE sqrt for what is not a positive normal float.
+float sqrtOf(const std::vector<uint32_t>& table, float x) {
+  const uint32_t bits = std::bit_cast<uint32_t>(x);
+  const int exponent = static_cast<int>((bits >> 23) & 0xffu) - 127;
+  if ((bits & 0x80000000u) || exponent < -126 || exponent > 127) return std::sqrt(x);
+  const int k = exponent >= 0 ? exponent / 2 : -((1 - exponent) / 2);  // floor(exponent / 2)
+  // m = x 4^-k in [1, 4): the mantissa with exponent (exponent - 2k), 0 or 1.
+  const uint32_t m = (bits & 0x007fffffu) | (static_cast<uint32_t>(127 + exponent - 2 * k) << 23);
+  return std::ldexp(std::bit_cast<float>(table[m - MeasuredTable::kSqrtFirst]), k);
+}
+
+}  // namespace
+
+uint32_t MeasuredTable::first(TabledFunction f) {
+  return f == TabledFunction::kReciprocal ? kReciprocalFirst : kSqrtFirst;
+}
+uint32_t MeasuredTable::count(TabledFunction f) {
+  return f == TabledFunction::kReciprocal ? kReciprocalCount : kSqrtCount;
+}
+
+const char* tableKey(TabledFunction f) {
+  return f == TabledFunction::kReciprocal ? "reciprocal" : "sqrt";
+}
+
+std::string tableFileName(TabledFunction f, const std::string& checksum) {
+  return std::string(tableKey(f)) + "-" + checksum + ".table";
+}
+
+MeasuredTable::MeasuredTable(TabledFunction f, std::vector<uint32_t> bits)
+    : function_(f), bits_(std::move(bits)) {
+  if (bits_.size() != count(f))
+    throw std::invalid_argument(std::string("measured ") + tableKey(f) +
+                                ": not one result per float of its interval");
+  const float lo = f == TabledFunction::kReciprocal ? 0.5f : 1.0f;
+  const float hi = f == TabledFunction::kReciprocal ? 1.0f : 2.0f;
+  for (const uint32_t b : bits_) {
+    const float r = std::bit_cast<float>(b);
+    if (!(r >= lo && r <= hi))
+      throw std::invalid_argument(std::string("measured ") + tableKey(f) + ": a result outside [" +
+                                  (f == TabledFunction::kReciprocal ? "0.5, 1]" : "1, 2]"));
+  }
+  checksum_ = checksumOf(deltaCoded(bits_));
+}
+
+float MeasuredTable::of(float x) const {
+  return function_ == TabledFunction::kReciprocal ? reciprocalOf(bits_, x) : sqrtOf(bits_, x);
+}
+
+std::string MeasuredTable::fileBytes() const { return deltaCoded(bits_); }
+
+std::shared_ptr<const MeasuredTable> MeasuredTable::read(TabledFunction f,
+                                                         const std::filesystem::path& file,
+                                                         const std::string& checksum) {
+  const uint64_t bytesExpected = uint64_t{count(f)} * sizeof(uint32_t);
+  const std::string what = std::string("measured ") + tableKey(f) + " table";
+  const std::string bytes = readTextFile(file, what, bytesExpected);
+  if (bytes.size() != bytesExpected)
+    throw InputError(file, what + ": " + std::to_string(bytes.size()) + " bytes, expected " +
+                               std::to_string(bytesExpected));
+  if (checksumOf(bytes) != checksum)
+    throw InputError(file, what + ": checksum " + checksumOf(bytes) + ", the model names " +
+                               checksum + " (another table?)");
+  std::vector<uint32_t> bits(count(f));
+  uint32_t previous = 0;
+  for (size_t i = 0; i < bits.size(); ++i) {
+    uint32_t delta;
+    std::memcpy(&delta, bytes.data() + i * sizeof(uint32_t), sizeof delta);
+    bits[i] = previous + delta;
+    previous = bits[i];
+  }
+  try {
+    return std::make_shared<const MeasuredTable>(f, std::move(bits));
+  } catch (const std::invalid_argument& e) {
+    throw InputError(file, e.what());
+  }
+}
+
+}  // namespace vt
