@@ -22,8 +22,11 @@ std::map<std::string, std::string> everyParameterFrom(const std::string& source)
 }  // namespace
 
 bool PrecisionModel::pinned() const {
+  // A measured sqrt table reproduces sqrt while sqrtUlps, its residual against the true sqrt,
+  // still widens the result sets (calibrate/shader_math_fit.h).
+  const bool sqrtPinned = sqrtUlps == 0 || arithmetic.sqrt.table != nullptr;
   return coveragePinned() && depthUlps == 0 && depthRoundsToNearest && attributeUlps == 0 &&
-         log2Pinned && sqrtUlps == 0 && arithmeticUlps == 0 && filterPinned && colorPinned &&
+         log2Pinned && sqrtPinned && arithmeticUlps == 0 && filterPinned && colorPinned &&
          denormalsPinned && decodingPinned;
 }
 

@@ -84,7 +84,9 @@ struct PrecisionModel {
   // Where each parameter's value comes from, by parameter name.
   std::map<std::string, std::string> sources;
 
-  // Every parameter pinned: each pixel's set is the oracle's one value.
+  // Every parameter pinned: the oracle reproduces the implementation bit for bit, and each
+  // pixel's set is the oracle's one value (but under a measured sqrt table, whose residual
+  // against the true sqrt still widens the sets). `auto` fingerprints such a model first.
   bool pinned() const;
   // Every parameter pinned but the denormal mode: each pixel's set is the oracle's value with
   // denormals flushed and its value with them kept (reference/renderer.cpp computes both).

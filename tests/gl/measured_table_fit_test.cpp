@@ -23,6 +23,7 @@
 
 #include "calibrate/probe_texture.h"
 #include "calibrate/raster_fit.h"
+#include "calibrate/fingerprint.h"
 #include "capture/probe_files.h"
 #include "capture/sweep_files.h"
 #include "cli/run_command.h"
@@ -165,6 +166,13 @@ TEST(MeasuredTableFit, TheSamplesOfEveryExponentChooseOrRefuseASqrtTable) {
   ASSERT_TRUE(model.arithmetic.sqrt.table);
   EXPECT_EQ(model.arithmetic.sqrt.table->checksum(), measured.checksum());
   EXPECT_GT(model.sqrtUlps, 0.5);  // the sets keep the residual against the true sqrt
+  // Pinned all the same, so `auto` fingerprints it first: llvmpipe's own sqrt is IEEE, not the
+  // table, and the fingerprint says so.
+  EXPECT_TRUE(model.pinned());
+  const HeadlessContext context;
+  const calibrate::Fingerprint print = calibrate::fingerprint(model.arithmetic);
+  EXPECT_FALSE(print.reproduced);
+  EXPECT_EQ(print.finding, "sqrt differs from the measured table " + measured.checksum());
 }
 
 }  // namespace
