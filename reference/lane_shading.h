@@ -161,13 +161,15 @@ class LaneBackend {
       : scalar_(scalar),
         conversion_(arithmetic.texelConversion),
         log2Form_(arithmetic.log2),
+        log2Table_(arithmetic.log2Table),
         sqrt_(arithmetic.sqrt),
         active_(active) {}
 
   // The log2 member: the polynomial lane-wide (polynomialLog2, reference/shader_math.h, step by
   // step), the library's functions lane by lane.
   lanes::Float8 log2(lanes::Float8 x) {
-    if (log2Form_ == Log2Form::kPolynomialFused || log2Form_ == Log2Form::kPolynomialUnfused)
+    if (!log2Table_.table &&
+        (log2Form_ == Log2Form::kPolynomialFused || log2Form_ == Log2Form::kPolynomialUnfused))
       return lane_detail::polynomialLog2(x, log2Form_ == Log2Form::kPolynomialFused);
     lanes::Float8 result(0.0f);
     for (int k = 0; k < lanes::kLanes; ++k)
@@ -251,6 +253,7 @@ class LaneBackend {
   Scalar& scalar_;
   UnormConversion conversion_;
   Log2Form log2Form_;
+  MeasuredMember log2Table_;
   SquareRoot sqrt_;
   const bool* active_;
   const void* pages_[lanes::kLanes] = {};

@@ -37,7 +37,7 @@ class ResidentBackend {
   ResidentBackend(const ResidentTexture* texture, const Arithmetic& arithmetic)
       : texture_(texture), arithmetic_(arithmetic) {}
 
-  float log2(float x) { return log2Of(arithmetic_.log2, x); }
+  float log2(float x) { return log2Of(arithmetic_, x); }
   float sqrt(float x) { return arithmetic_.sqrt.of(x); }
 
   // Neighbouring fragments mostly look up pages a recent lookup named (trilinear filtering
@@ -118,7 +118,7 @@ class CacheBackend {
   CacheBackend(const CacheState* state, const Arithmetic& arithmetic)
       : state_(state), arithmetic_(arithmetic) {}
 
-  float log2(float x) { return log2Of(arithmetic_.log2, x); }
+  float log2(float x) { return log2Of(arithmetic_, x); }
   float sqrt(float x) { return arithmetic_.sqrt.of(x); }
 
   shader::uvec4 vtFetchIndirection(shader::ivec2 page, int level) {

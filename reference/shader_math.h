@@ -20,6 +20,12 @@ float naturalTimesLog2e(float x);
 
 // The member `form` of the log2 family.
 float log2Of(Log2Form form, float x);
+// The arithmetic's log2: its measured table where it has one (render/measured_table.h), else its
+// form.
+inline float log2Of(const Arithmetic& arithmetic, float x) {
+  return arithmetic.log2Table.table ? arithmetic.log2Table.table->of(x)
+                                    : log2Of(arithmetic.log2, x);
+}
 
 // Sets the calling thread's denormal flushing (DAZ and FTZ) as `flush` says; restores it on
 // destruction.

@@ -200,6 +200,7 @@ Calibration calibrate() {
   shaderMembers.flushDenormals = math.flushesDenormals;
   shaderMembers.reciprocal = math.measuredReciprocal;  // offered beside IEEE 1 / q
   shaderMembers.sqrt = math.sqrtMember;
+  shaderMembers.log2Table = math.log2Table;
   const RasterFits raster = fitRasterization(shaderMembers);
   // Drawn after the first pack's last draw (raster's); the filter members draw no coordinate.
   drawFilterProbesAtCacheSizes(filterSamples,

@@ -86,8 +86,10 @@ FingerprintDraws drawFingerprint() {
 std::string differs(const FingerprintDraws& d, const reference::ResidentTexture& texture,
                     const Arithmetic& a, bool denormalsPinned) {
   for (size_t i = 0; i < d.log2Out.size(); ++i)
-    if (!sameBits(d.log2Out[i].x, reference::log2Of(a.log2, d.log2.inputs[i].x)))
-      return "log2 differs from " + std::string(nameOf(kLog2FormNames, a.log2));
+    if (!sameBits(d.log2Out[i].x, reference::log2Of(a, d.log2.inputs[i].x)))
+      return "log2 differs from " + (a.log2Table.table
+                                         ? "the measured table " + a.log2Table.table->checksum()
+                                         : std::string(nameOf(kLog2FormNames, a.log2)));
   // A measured reciprocal's table, over the exponents whose reciprocal is a normal float.
   if (a.reciprocal.table)
     for (size_t i = 0; i < d.log2Out.size(); ++i) {

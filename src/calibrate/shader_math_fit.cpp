@@ -58,6 +58,22 @@ Returned returned(const std::vector<glm::vec4>& inputs, const std::vector<glm::v
   return r;
 }
 
+// The sweep of log2 over [0.5, 2) cut to its [1, 2) as a table, where it was drawn, no closed form
+// reproduced log2, and its results there lie in [0, 1] (else none).
+std::shared_ptr<const MeasuredTable> log2Table(const Returned& logs, bool pinned) {
+  constexpr uint32_t kHalf = MeasuredTable::kLog2First - 0x3f000000u;  // the index of 1.0
+  if (!logs.swept || pinned || logs.first != 0x3f000000u ||
+      logs.swept->size() != kHalf + MeasuredTable::kLog2Count)
+    return nullptr;
+  try {
+    return std::make_shared<const MeasuredTable>(
+        TabledFunction::kLog2, std::vector<uint32_t>(logs.swept->begin() + kHalf,
+                                                     logs.swept->end()));
+  } catch (const std::invalid_argument&) {
+    return nullptr;
+  }
+}
+
 // The sweep of sqrt over [1, 4) as a table, where it was drawn, IEEE missed some values, and its
 // results lie in [1, 2] (else none: such a sqrt is bounded, not tabled).
 std::shared_ptr<const MeasuredTable> sqrtTable(const Returned& roots, uint64_t notIeee) {
@@ -102,6 +118,36 @@ std::optional<ParameterFit> fitReciprocal(Reciprocal& measured) {
   return fit;
 }
 
+// log2's finding once its members are counted: where no closed form reproduced it, its table
+// (log2Table) is tried on every value; the residuals are kept wherever a table pins it.
+void findLog2(ShaderMathFits& m, const Returned& logs) {
+  // No closed form reproduces it: the sweep's [1, 2) as a table, tried on every value.
+  const std::shared_ptr<const MeasuredTable> logTable = log2Table(logs, m.log2.pinned);
+  if (logTable) {
+    uint64_t missed = 0;
+    logs.visit([&](float x, float y) { missed += !sameBits(y, logTable->of(x)); });
+    m.log2.members.push_back({"measured", missed});
+    m.log2.choose();
+  }
+  if (logTable && m.log2.pinned) {
+    // The residuals stay: the result sets widen log2 by them (reference/set_fragment.cpp).
+    m.log2Table.table = logTable;
+    m.log2.finding = "the measured table " + logTable->checksum() +
+                     " over [1, 2), plus the exponent in one float addition, bit for bit (" +
+                     m.log2.memberSummary() + ")";
+  } else if (m.log2.pinned) {
+    m.log2.finding = m.log2.chosen + ", bit for bit (" + m.log2.memberSummary() + ")";
+    m.log2Absolute = m.log2Ulps = 0;
+  } else {
+    m.log2.unit = "ulps outside [0.5, 2]";
+    m.log2.largestResidual = m.log2Ulps;
+    m.log2.finding = "no member of the family (" + m.log2.memberSummary() +
+                     "): largest error against the true log2 inside [0.5, 2] " +
+                     std::to_string(m.log2Absolute) + ", outside " + std::to_string(m.log2Ulps) +
+                     " ulps";
+  }
+}
+
 void fitLog2AndSqrt(ShaderMathFits& m) {
   ShaderProbe probe;
   probe.body = "result = vec4(log2(x.x), sqrt(x.x), x.z * x.y, 0.0);";
@@ -135,17 +181,7 @@ void fitLog2AndSqrt(ShaderMathFits& m) {
     m.sqrtUlps = std::max(m.sqrtUlps, ulpsFrom(y, std::sqrt(static_cast<double>(x))));
   });
   const uint64_t nSqrt = roots.size();
-  if (m.log2.pinned) {
-    m.log2.finding = m.log2.chosen + ", bit for bit (" + m.log2.memberSummary() + ")";
-    m.log2Absolute = m.log2Ulps = 0;
-  } else {
-    m.log2.unit = "ulps outside [0.5, 2]";
-    m.log2.largestResidual = m.log2Ulps;
-    m.log2.finding = "no member of the family (" + m.log2.memberSummary() +
-                     "): largest error against the true log2 inside [0.5, 2] " +
-                     std::to_string(m.log2Absolute) + ", outside " + std::to_string(m.log2Ulps) +
-                     " ulps";
-  }
+  findLog2(m, logs);
   m.sqrt = {"sqrt", inputs, nSqrt, {{"ieee", notSqrt}}};
   const std::shared_ptr<const MeasuredTable> table = sqrtTable(roots, notSqrt);
   if (table) {

@@ -3,7 +3,10 @@
 // (probes/probe_draws.h): log2, sqrt, texel values, the `precise` lerps, denormals.
 //
 //   log2, sqrt   65,536 positive floats of every exponent through log2() and sqrt(): every member
-//                of the log2 family bit for bit; else the residual against the true log2
+//                of the log2 family bit for bit; where none reproduces them and the folder holds
+//                the sweep of [0.5, 2), its [1, 2) as a measured table (render/measured_table.h),
+//                pinned where it reproduces every sample and the whole sweep; else the residual
+//                against the true log2
 //                (absolute inside [0.5, 2], ulps outside: the GLSL 4.50 table's units). sqrt is
 //                IEEE; or, where the folder holds the sweep of [1, 4), the measured table
 //                (render/measured_table.h), pinned where it reproduces the samples of every
@@ -36,6 +39,7 @@ struct ShaderMathFits {
   std::optional<ParameterFit> reciprocal;  // where the reciprocal sweep was drawn
   Reciprocal measuredReciprocal;           // its table, where IEEE division missed some
   SquareRoot sqrtMember;                   // the measured table where it pinned sqrt
+  MeasuredMember log2Table;                // the measured table where it pinned log2
   Log2Form log2Form = Log2Form::kLibm;    // the chosen member
   double log2Absolute = 0, log2Ulps = 0;  // residuals against the true log2 (unpinned only)
   double sqrtUlps = 0;

@@ -71,7 +71,9 @@ ShardFile readShardFile(const std::filesystem::path& folder) {
     const nlohmann::json json = readJsonFile(record.file, "shard record");
     if (!json.is_object() || json.value("format", "") != kFormat)
       throw InputError(record.file, "not a shard record (\"format\": \"vt-shard\")");
-    if (json.at("version").get<int>() != kVersion)
+    // Compared as JSON: a number a file gives is never converted to int (1e300 would not fit).
+    const nlohmann::json& version = json.at("version");
+    if (!version.is_number_integer() || version != kVersion)
       throw InputError(record.file, "shard record version " + json.at("version").dump() +
                                         ", this vt reads version " + std::to_string(kVersion));
     record.command = json.at("command").get<std::string>();

@@ -27,7 +27,8 @@ std::string describe(const Arithmetic& a) {
                                              : ""));
   line("depth", std::string(a.depth.offsetAndClamp ? "offset and clamp" : "as interpolated") +
                     ", Z24 " + std::string(nameOf(kZ24ConversionNames, a.depth.z24)));
-  line("log2", std::string(nameOf(kLog2FormNames, a.log2)));
+  line("log2", a.log2Table.table ? "the measured table " + a.log2Table.table->checksum()
+                                 : std::string(nameOf(kLog2FormNames, a.log2)));
   // Said for a measured sqrt only, so that the named points describe themselves as before.
   if (a.sqrt.table) line("sqrt", "the measured table " + a.sqrt.table->checksum());
   const Filter& f = a.filter;

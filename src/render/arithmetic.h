@@ -56,6 +56,7 @@
 //                  bits first and scaled with a bias (ColourConversion; measured on a GPU)
 //
 //   sqrt           IEEE, or a measured table (render/measured_table.h)
+//   (log2, again)  a measured table in place of the forms above, where none reproduces it
 //
 // The shader's + - * are IEEE in every member (GLSL 4.50 section 4.7.1 allows more; a
 // measurement that differs is bounded, see precision_model.h).
@@ -229,6 +230,8 @@ struct Arithmetic {
   Reciprocal reciprocal;  // kReciprocalTimes only
   Depth depth;
   Log2Form log2 = Log2Form::kLibm;
+  // A measured log2 (render/measured_table.h) in place of the form, where one is set.
+  MeasuredMember log2Table;
   SquareRoot sqrt;  // IEEE, or measured
   Filter filter;
   UnormConversion texelConversion = UnormConversion::kTimesReciprocal;

@@ -3,6 +3,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include "common/checksum.h"
@@ -51,17 +52,53 @@ float sqrtOf(const std::vector<uint32_t>& table, float x) {
   return std::ldexp(std::bit_cast<float>(table[m - MeasuredTable::kSqrtFirst]), k);
 }
 
+// log2(x) for x = m 2^e, m in [1, 2): e + l(m) in one float addition; -infinity for zero and
+// denormals, NaN below zero, the input itself for infinity and NaN.
+float log2Of(const std::vector<uint32_t>& table, float x) {
+  const uint32_t bits = std::bit_cast<uint32_t>(x);
+  const uint32_t field = (bits >> 23) & 0xffu;
+  if (field == 0xffu) return (bits & 0x80000000u) && !std::isnan(x) ? std::nanf("") : x;
+  if ((bits & 0x7fffffffu) != 0 && (bits & 0x80000000u)) return std::nanf("");
+  if (field == 0) return -std::numeric_limits<float>::infinity();
+  const float e = static_cast<float>(static_cast<int>(field) - 127);
+  return e + std::bit_cast<float>(table[bits & 0x007fffffu]);
+}
+
 }  // namespace
 
 uint32_t MeasuredTable::first(TabledFunction f) {
-  return f == TabledFunction::kReciprocal ? kReciprocalFirst : kSqrtFirst;
+  switch (f) {
+    case TabledFunction::kReciprocal:
+      return kReciprocalFirst;
+    case TabledFunction::kSqrt:
+      return kSqrtFirst;
+    case TabledFunction::kLog2:
+      break;
+  }
+  return kLog2First;
 }
 uint32_t MeasuredTable::count(TabledFunction f) {
-  return f == TabledFunction::kReciprocal ? kReciprocalCount : kSqrtCount;
+  switch (f) {
+    case TabledFunction::kReciprocal:
+      return kReciprocalCount;
+    case TabledFunction::kSqrt:
+      return kSqrtCount;
+    case TabledFunction::kLog2:
+      break;
+  }
+  return kLog2Count;
 }
 
 const char* tableKey(TabledFunction f) {
-  return f == TabledFunction::kReciprocal ? "reciprocal" : "sqrt";
+  switch (f) {
+    case TabledFunction::kReciprocal:
+      return "reciprocal";
+    case TabledFunction::kSqrt:
+      return "sqrt";
+    case TabledFunction::kLog2:
+      break;
+  }
+  return "log2_table";
 }
 
 std::string tableFileName(TabledFunction f, const std::string& checksum) {
@@ -73,19 +110,30 @@ MeasuredTable::MeasuredTable(TabledFunction f, std::vector<uint32_t> bits)
   if (bits_.size() != count(f))
     throw std::invalid_argument(std::string("measured ") + tableKey(f) +
                                 ": not one result per float of its interval");
-  const float lo = f == TabledFunction::kReciprocal ? 0.5f : 1.0f;
-  const float hi = f == TabledFunction::kReciprocal ? 1.0f : 2.0f;
+  // Where the exact function's values over the interval lie.
+  const float lo = f == TabledFunction::kReciprocal ? 0.5f
+                   : f == TabledFunction::kSqrt     ? 1.0f
+                                                    : 0.0f;
+  const float hi = f == TabledFunction::kSqrt ? 2.0f : 1.0f;
   for (const uint32_t b : bits_) {
     const float r = std::bit_cast<float>(b);
     if (!(r >= lo && r <= hi))
       throw std::invalid_argument(std::string("measured ") + tableKey(f) + ": a result outside [" +
-                                  (f == TabledFunction::kReciprocal ? "0.5, 1]" : "1, 2]"));
+                                  std::to_string(lo) + ", " + std::to_string(hi) + "]");
   }
   checksum_ = checksumOf(deltaCoded(bits_));
 }
 
 float MeasuredTable::of(float x) const {
-  return function_ == TabledFunction::kReciprocal ? reciprocalOf(bits_, x) : sqrtOf(bits_, x);
+  switch (function_) {
+    case TabledFunction::kReciprocal:
+      return reciprocalOf(bits_, x);
+    case TabledFunction::kSqrt:
+      return sqrtOf(bits_, x);
+    case TabledFunction::kLog2:
+      break;
+  }
+  return log2Of(bits_, x);
 }
 
 std::string MeasuredTable::fileBytes() const { return deltaCoded(bits_); }

@@ -167,6 +167,7 @@ Arithmetic readArithmetic(const Fields& f) {
   depth.refuseUnread();
   a.log2 = f.named("log2", kLog2FormNames);
   a.sqrt.table = readTable(f, TabledFunction::kSqrt);
+  a.log2Table.table = readTable(f, TabledFunction::kLog2);
   const Fields filter = f.object("filter");
   a.filter.weights = filter.named("weights", kFilterWeightsNames);
   // The corner-weight member's parameters, written for it alone.
@@ -246,7 +247,8 @@ std::string readCalibration(const Fields& c) {
 
 void writeModelFiles(const std::filesystem::path& file, const Arithmetic& arithmetic,
                      const std::string& json) {
-  for (const auto& table : {arithmetic.reciprocal.table, arithmetic.sqrt.table})
+  for (const auto& table :
+       {arithmetic.reciprocal.table, arithmetic.sqrt.table, arithmetic.log2Table.table})
     if (table)
       writeFileAtomically(file.parent_path() / tableFileName(table->function(), table->checksum()),
                           table->fileBytes());
@@ -289,7 +291,7 @@ nlohmann::ordered_json arithmeticJson(const Arithmetic& a) {
     filter["output"] = nameOf(kFilterOutputNames, a.filter.output);
   }
   if (a.planePositions == PlanePositions::kSnapped) json["plane_positions"] = "snapped";
-  for (const auto& table : {a.reciprocal.table, a.sqrt.table})
+  for (const auto& table : {a.reciprocal.table, a.sqrt.table, a.log2Table.table})
     if (table)
       json[tableKey(table->function())] = {
           {"table", tableFileName(table->function(), table->checksum())},

@@ -50,7 +50,8 @@ calibrate::Calibration calibrateToModel(const CalibrateRequest& request, std::os
   if (request.output.empty()) {
     out << json;
     for (const auto& table : {calibration.model.arithmetic.reciprocal.table,
-                              calibration.model.arithmetic.sqrt.table})
+                              calibration.model.arithmetic.sqrt.table,
+                              calibration.model.arithmetic.log2Table.table})
       if (table)
         err << "vt calibrate: the model names its measured table "
             << tableFileName(table->function(), table->checksum())

@@ -303,6 +303,11 @@ TEST(Merge, RefusesShardsThatAreNotOneWholeJobNamingTheFile) {
   result = merge({"s1", "s2", "s3"});
   EXPECT_EQ(result.exitCode, 1);
   EXPECT_THAT(result.err, HasSubstr(record.string() + ": malformed shard record"));
+  // A version no int holds (the fuzzer's find: it was converted to int first).
+  std::ofstream(record, std::ios::trunc) << "{\"format\": \"vt-shard\", \"version\": 1e300}";
+  result = merge({"s1", "s2", "s3"});
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_THAT(result.err, HasSubstr(record.string() + ": shard record version 1e+300"));
   // Bad arguments: exit 2 with the usage line.
   std::vector<std::string> args = f.check("auto");
   args.insert(args.end(), {"--shard", "4/3", "-o", (f.dir / "x").string()});

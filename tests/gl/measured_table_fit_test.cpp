@@ -8,7 +8,7 @@
 //   - With the triangles redrawn by the oracle under llvmpipe's arithmetic and that table (what
 //     such an implementation draws), the table is chosen and pinned, written beside the model
 //     under its checksum, and the model reads back with it.
-// sqrt, judged by its 65,536 samples of every exponent (calibrate/shader_math_fit.h):
+// sqrt and log2, judged by their 65,536 samples of every exponent (calibrate/shader_math_fit.h):
 //   - With llvmpipe's samples (IEEE) the table misses a third of them and sqrt is not pinned.
 //   - With the samples answered as that table says, the table pins sqrt and travels beside the
 //     model; the residual against the true sqrt still bounds the result sets.
@@ -173,6 +173,53 @@ TEST(MeasuredTableFit, TheSamplesOfEveryExponentChooseOrRefuseASqrtTable) {
   const calibrate::Fingerprint print = calibrate::fingerprint(model.arithmetic);
   EXPECT_FALSE(print.reproduced);
   EXPECT_EQ(print.finding, "sqrt differs from the measured table " + measured.checksum());
+}
+
+// log2, which llvmpipe's polynomial pins, answered instead as a table one ulp high at every third
+// input of [1, 2) says, over the whole sweep of [0.5, 2) and the samples of every exponent: no
+// closed form reproduces that, and the table pins log2.
+TEST(MeasuredTableFit, ALog2NoClosedFormReproducesBecomesItsTable) {
+  if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
+  test::ScratchDirectory dir;
+  const std::filesystem::path probes = dir / "probes";
+  ASSERT_NO_FATAL_FAILURE(record(dir.path(), probes));
+  std::vector<uint32_t> bits(MeasuredTable::kLog2Count);
+  for (uint32_t i = 0; i < bits.size(); ++i) {
+    const double m = std::bit_cast<float>(MeasuredTable::kLog2First + i);
+    bits[i] = std::bit_cast<uint32_t>(static_cast<float>(std::log2(m))) + (i % 3 == 1 ? 1 : 0);
+  }
+  const MeasuredTable measured(TabledFunction::kLog2, bits);
+  const calibrate::FunctionSweep& sweep = *calibrate::packSweep("log2");
+  std::vector<uint32_t> swept(sweep.count);
+  for (uint32_t i = 0; i < sweep.count; ++i)
+    swept[i] = std::bit_cast<uint32_t>(measured.of(std::bit_cast<float>(sweep.first + i)));
+  capture::writeSweepResult(probes, sweep, swept);
+  const size_t count = capture::readProbeFolder(probes).count;
+  for (size_t i = 0; i < count; ++i) {
+    const capture::ProbeRequest request = capture::readProbeRequest(probes, i);
+    if (request.kind != capture::ProbeRequest::Kind::kShader ||
+        request.shader.body.find("log2(x.x)") == std::string::npos)
+      continue;
+    capture::ProbeResult result = capture::readProbeResult(probes, i, request);
+    for (size_t k = 0; k < result.values.size(); ++k)
+      result.values[k].x = measured.of(request.shader.inputs[k].x);
+    capture::writeProbeResult(probes, i, request, result);
+  }
+  auto chosen = fit(probes, dir / "chosen.json");
+  EXPECT_TRUE(chosen["log2"]["pinned"].get<bool>());
+  EXPECT_EQ(chosen["log2"]["chosen"], "measured");
+  EXPECT_THAT(chosen["log2"]["finding"].get<std::string>(),
+              HasSubstr("the measured table " + measured.checksum() +
+                        " over [1, 2), plus the exponent in one float addition, bit for bit"));
+  EXPECT_THAT(chosen["log2"]["finding"].get<std::string>(), HasSubstr("polynomial_fused "));
+  const PrecisionModel model = readModelFile(dir / "chosen.json");
+  ASSERT_TRUE(model.arithmetic.log2Table.table);
+  EXPECT_EQ(model.arithmetic.log2Table.table->checksum(), measured.checksum());
+  EXPECT_TRUE(model.pinned());
+  EXPECT_GT(model.log2AbsoluteError, 0.0);  // the sets keep the residual against the true log2
+  const HeadlessContext context;
+  EXPECT_EQ(calibrate::fingerprint(model.arithmetic).finding,
+            "log2 differs from the measured table " + measured.checksum());
 }
 
 }  // namespace

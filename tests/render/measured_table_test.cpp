@@ -107,6 +107,42 @@ TEST(MeasuredTable, IeeeReciprocalTableGivesIeeeDivisionAndAPerturbedOneScalesIt
                std::invalid_argument);
 }
 
+// log2 over [1, 2) as the float nearest the exact value, one ulp high at every third input where
+// `perturbed`.
+std::vector<uint32_t> log2TableOf(bool perturbed) {
+  std::vector<uint32_t> bits(MeasuredTable::kLog2Count);
+  for (uint32_t i = 0; i < bits.size(); ++i) {
+    const double m = std::bit_cast<float>(MeasuredTable::kLog2First + i);
+    bits[i] = std::bit_cast<uint32_t>(static_cast<float>(std::log2(m)));
+    if (perturbed && i % 3 == 1) ++bits[i];
+  }
+  return bits;
+}
+
+TEST(MeasuredTable, ALog2TableAddsTheExponentInOneFloatAddition) {
+  const MeasuredTable table(TabledFunction::kLog2, log2TableOf(true));
+  std::mt19937 random(7);
+  for (int k = 0; k < 200000; ++k) {
+    const uint32_t exponent = 1 + random() % 254;
+    const uint32_t mantissa = static_cast<uint32_t>(random() >> 9);
+    const float x = std::bit_cast<float>((exponent << 23) | mantissa);
+    const float m = std::bit_cast<float>(MeasuredTable::kLog2First | mantissa);
+    const float e = static_cast<float>(static_cast<int>(exponent) - 127);
+    ASSERT_EQ(std::bit_cast<uint32_t>(table.of(x)), std::bit_cast<uint32_t>(e + table.of(m))) << x;
+  }
+  const float inf = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(table.of(0.0f), -inf);
+  EXPECT_EQ(table.of(-0.0f), -inf);
+  EXPECT_EQ(table.of(0x1p-140f), -inf);  // a denormal, as flushed
+  EXPECT_EQ(table.of(inf), inf);
+  EXPECT_TRUE(std::isnan(table.of(-1.0f)));
+  EXPECT_TRUE(std::isnan(table.of(-inf)));
+  EXPECT_TRUE(std::isnan(table.of(std::numeric_limits<float>::quiet_NaN())));
+  std::vector<uint32_t> wrong = log2TableOf(false);
+  wrong[9] = std::bit_cast<uint32_t>(-0.25f);
+  EXPECT_THROW((MeasuredTable{TabledFunction::kLog2, wrong}), std::invalid_argument);
+}
+
 TEST(MeasuredTable, AModelNamesItsTablesAndReadsThemBackFromBesideItself) {
   test::ScratchDirectory dir;
   PrecisionModel model = llvmpipeModel();
@@ -115,6 +151,8 @@ TEST(MeasuredTable, AModelNamesItsTablesAndReadsThemBackFromBesideItself) {
       std::make_shared<const MeasuredTable>(TabledFunction::kReciprocal, tableOf(true));
   model.arithmetic.sqrt.table =
       std::make_shared<const MeasuredTable>(TabledFunction::kSqrt, sqrtTableOf(true));
+  model.arithmetic.log2Table.table =
+      std::make_shared<const MeasuredTable>(TabledFunction::kLog2, log2TableOf(true));
   const std::string checksum = model.arithmetic.reciprocal.table->checksum();
   const std::string sqrtChecksum = model.arithmetic.sqrt.table->checksum();
   const std::filesystem::path file = dir / "model.json";
@@ -130,6 +168,10 @@ TEST(MeasuredTable, AModelNamesItsTablesAndReadsThemBackFromBesideItself) {
   EXPECT_EQ(read.arithmetic.reciprocal.table->bits(), model.arithmetic.reciprocal.table->bits());
   ASSERT_TRUE(read.arithmetic.sqrt.table);
   EXPECT_EQ(read.arithmetic.sqrt.table->bits(), model.arithmetic.sqrt.table->bits());
+  ASSERT_TRUE(read.arithmetic.log2Table.table);
+  EXPECT_EQ(read.arithmetic.log2Table.table->bits(), model.arithmetic.log2Table.table->bits());
+  EXPECT_THAT(describe(read.arithmetic),
+              HasSubstr("log2: the measured table " + model.arithmetic.log2Table.table->checksum()));
   EXPECT_THAT(describe(read.arithmetic), HasSubstr("the measured reciprocal (table " + checksum));
   EXPECT_THAT(describe(read.arithmetic), HasSubstr("sqrt: the measured table " + sqrtChecksum));
   // A model without the table is another member.
