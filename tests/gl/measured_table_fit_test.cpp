@@ -1,6 +1,7 @@
 // Measured tables (render/measured_table.h) chosen, or refused, by the probes beyond their sweeps.
-// llvmpipe's probes are recorded; a sweep is then replaced by a table one ulp off at every third
-// input, as an implementation whose function unit is not IEEE would return it.
+// llvmpipe's probes are recorded once (about 10 s) and copied for each table; a sweep is then
+// replaced by a table one ulp off at every third input, as an implementation whose function unit
+// is not IEEE would return it.
 //
 // The reciprocal, judged by the perspective triangles (calibrate/raster_fit.h):
 //   - With llvmpipe's own triangles (drawn with IEEE 1 / q) the table is offered and refused:
@@ -58,7 +59,7 @@ bool llvmpipeWithFma() {
          __builtin_cpu_supports("fma");
 }
 
-// `vt calibrate --record-probes probes` on llvmpipe.
+// `vt calibrate --record-probes probes` on llvmpipe, once for the three tables (about 10 s).
 void record(const std::filesystem::path& dir, const std::filesystem::path& probes) {
   const test::CommandResult recorded = test::runCommand(
       VT_EXECUTABLE,
@@ -66,11 +67,16 @@ void record(const std::filesystem::path& dir, const std::filesystem::path& probe
   ASSERT_EQ(recorded.exitCode, 0) << recorded.err;
 }
 
-TEST(MeasuredTableFit, ThePerspectiveTrianglesChooseOrRefuseAReciprocalTable) {
-  if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
-  test::ScratchDirectory dir;
-  const std::filesystem::path probes = dir / "probes";
-  ASSERT_NO_FATAL_FAILURE(record(dir.path(), probes));
+// A copy of the recording in a folder of its own, which a table's test changes.
+std::filesystem::path copyOf(const std::filesystem::path& recorded,
+                             const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy(recorded, dir / "probes", std::filesystem::copy_options::recursive);
+  return dir / "probes";
+}
+
+void reciprocalChosenOrRefused(const std::filesystem::path& dir,
+                               const std::filesystem::path& probes) {
 
   const calibrate::FunctionSweep& sweep = *calibrate::packSweep("reciprocal");
   std::vector<uint32_t> table = *capture::readSweepResult(probes, sweep);
@@ -122,11 +128,7 @@ TEST(MeasuredTableFit, ThePerspectiveTrianglesChooseOrRefuseAReciprocalTable) {
   EXPECT_EQ(model.arithmetic, measured);
 }
 
-TEST(MeasuredTableFit, TheSamplesOfEveryExponentChooseOrRefuseASqrtTable) {
-  if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
-  test::ScratchDirectory dir;
-  const std::filesystem::path probes = dir / "probes";
-  ASSERT_NO_FATAL_FAILURE(record(dir.path(), probes));
+void sqrtChosenOrRefused(const std::filesystem::path& dir, const std::filesystem::path& probes) {
   const calibrate::FunctionSweep& sweep = *calibrate::packSweep("sqrt");
   std::vector<uint32_t> table = *capture::readSweepResult(probes, sweep);
   for (size_t i = 2; i < table.size(); i += 3)
@@ -178,11 +180,7 @@ TEST(MeasuredTableFit, TheSamplesOfEveryExponentChooseOrRefuseASqrtTable) {
 // log2, which llvmpipe's polynomial pins, answered instead as a table one ulp high at every third
 // input of [1, 2) says, over the whole sweep of [0.5, 2) and the samples of every exponent: no
 // closed form reproduces that, and the table pins log2.
-TEST(MeasuredTableFit, ALog2NoClosedFormReproducesBecomesItsTable) {
-  if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
-  test::ScratchDirectory dir;
-  const std::filesystem::path probes = dir / "probes";
-  ASSERT_NO_FATAL_FAILURE(record(dir.path(), probes));
+void log2BecomesItsTable(const std::filesystem::path& dir, const std::filesystem::path& probes) {
   std::vector<uint32_t> bits(MeasuredTable::kLog2Count);
   for (uint32_t i = 0; i < bits.size(); ++i) {
     const double m = std::bit_cast<float>(MeasuredTable::kLog2First + i);
@@ -220,6 +218,28 @@ TEST(MeasuredTableFit, ALog2NoClosedFormReproducesBecomesItsTable) {
   const HeadlessContext context;
   EXPECT_EQ(calibrate::fingerprint(model.arithmetic).finding,
             "log2 differs from the measured table " + measured.checksum());
+}
+
+// The three tables from one recording of llvmpipe's probes, each on a copy of its own.
+TEST(MeasuredTableFit, ProbesBeyondEachSweepChooseOrRefuseItsTable) {
+  if (!llvmpipeWithFma()) GTEST_SKIP() << "not llvmpipe with FMA";
+  test::ScratchDirectory dir;
+  ASSERT_NO_FATAL_FAILURE(record(dir.path(), dir / "recorded"));
+  {
+    SCOPED_TRACE("the reciprocal");
+    const std::filesystem::path folder = dir / "reciprocal";
+    reciprocalChosenOrRefused(folder, copyOf(dir / "recorded", folder));
+  }
+  {
+    SCOPED_TRACE("sqrt");
+    const std::filesystem::path folder = dir / "sqrt";
+    sqrtChosenOrRefused(folder, copyOf(dir / "recorded", folder));
+  }
+  {
+    SCOPED_TRACE("log2");
+    const std::filesystem::path folder = dir / "log2";
+    log2BecomesItsTable(folder, copyOf(dir / "recorded", folder));
+  }
 }
 
 }  // namespace
