@@ -65,9 +65,9 @@ bool boxHolds(const SetupTriangle& t, int margin, int px, int py) {
 constexpr uint32_t kNever = 0xffffffffu;
 uint32_t depthKey(float z, DepthFormat format, const Depth& depth) {
   if (format == DepthFormat::kDepth24) {
+    if (depth.offsetAndClamp) return z24Of(z, depth.z24);  // z is in [0, 1] already
+    // Unclamped, as the variant without the viewport clamp stores it: any z, through int64_t.
     const float scaled = z * 16777215.0f;
-    if (depth.z24 == Z24Conversion::kNearestEven && depth.offsetAndClamp)
-      return static_cast<uint32_t>(std::nearbyint(scaled));
     const float whole = depth.z24 == Z24Conversion::kNearestEven ? std::nearbyint(scaled) : scaled;
     const int64_t integer = whole >= -9223372036854775808.0f && whole < 9223372036854775808.0f
                                 ? static_cast<int64_t>(whole)

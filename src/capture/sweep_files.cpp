@@ -6,6 +6,7 @@
 #include <set>
 #include <span>
 
+#include "common/delta_coding.h"
 #include "common/error.h"
 #include "common/input_file.h"
 #include "common/json_text.h"
@@ -13,8 +14,6 @@
 
 namespace vt::capture {
 namespace {
-
-static_assert(std::endian::native == std::endian::little, "sweep files are little-endian");
 
 constexpr size_t kMaxSweeps = 8;
 constexpr size_t kMaxExpressionBytes = 256;
@@ -122,13 +121,8 @@ std::vector<calibrate::FunctionSweep> readSweepRequests(const std::filesystem::p
 
 void writeSweepResult(const std::filesystem::path& folder, const calibrate::FunctionSweep& sweep,
                       const std::vector<uint32_t>& bits) {
-  std::vector<uint32_t> deltas(bits.size());
-  uint32_t previous = 0;
-  for (size_t i = 0; i < bits.size(); ++i) {
-    deltas[i] = bits[i] - previous;
-    previous = bits[i];
-  }
-  writeFileAtomically(resultFile(folder, sweep), std::as_bytes(std::span(deltas)));
+  const std::string bytes = deltaCoded(bits);
+  writeFileAtomically(resultFile(folder, sweep), std::as_bytes(std::span(bytes)));
 }
 
 std::optional<std::vector<uint32_t>> readSweepResult(const std::filesystem::path& folder,
@@ -142,14 +136,7 @@ std::optional<std::vector<uint32_t>> readSweepResult(const std::filesystem::path
     throw InputError(file, "sweep results: " + std::to_string(bytes.size()) + " bytes, expected " +
                                std::to_string(expected) + " (" + std::to_string(sweep.count) +
                                " results of " + sweep.name + ")");
-  std::vector<uint32_t> bits(sweep.count);
-  std::memcpy(bits.data(), bytes.data(), bytes.size());
-  uint32_t previous = 0;
-  for (uint32_t& b : bits) {
-    b += previous;
-    previous = b;
-  }
-  return bits;
+  return deltaDecoded(bytes);
 }
 
 }  // namespace vt::capture

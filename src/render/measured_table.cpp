@@ -7,24 +7,12 @@
 #include <stdexcept>
 
 #include "common/checksum.h"
+#include "common/delta_coding.h"
 #include "common/error.h"
 #include "common/input_file.h"
 
 namespace vt {
 namespace {
-
-static_assert(std::endian::native == std::endian::little, "table files are little-endian");
-
-std::string deltaCoded(const std::vector<uint32_t>& bits) {
-  std::string bytes(bits.size() * sizeof(uint32_t), '\0');
-  uint32_t previous = 0;
-  for (size_t i = 0; i < bits.size(); ++i) {
-    const uint32_t delta = bits[i] - previous;
-    std::memcpy(bytes.data() + i * sizeof(uint32_t), &delta, sizeof delta);
-    previous = bits[i];
-  }
-  return bytes;
-}
 
 std::string checksumOf(const std::string& bytes) {
   return checksumText(
@@ -150,14 +138,7 @@ std::shared_ptr<const MeasuredTable> MeasuredTable::read(TabledFunction f,
   if (checksumOf(bytes) != checksum)
     throw InputError(file, what + ": checksum " + checksumOf(bytes) + ", the model names " +
                                checksum + " (another table?)");
-  std::vector<uint32_t> bits(count(f));
-  uint32_t previous = 0;
-  for (size_t i = 0; i < bits.size(); ++i) {
-    uint32_t delta;
-    std::memcpy(&delta, bytes.data() + i * sizeof(uint32_t), sizeof delta);
-    bits[i] = previous + delta;
-    previous = bits[i];
-  }
+  std::vector<uint32_t> bits = deltaDecoded(bytes);
   try {
     return std::make_shared<const MeasuredTable>(f, std::move(bits));
   } catch (const std::invalid_argument& e) {
