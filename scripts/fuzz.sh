@@ -60,6 +60,8 @@ EOF
 "$vt" build "$textures/checker.png" -o "$textures/checker-bc1.vt" --page-size 16 --border 2 \
   --format bc1 -q >/dev/null
 "$vt" build "$textures/sparse.json" -o "$textures/sparse-bc3.vt" --format bc3 -q >/dev/null
+# Version 3: the ancestor errors after the pages.
+"$vt" build "$textures/sparse.json" -o "$textures/sparse-errors.vt" --ancestor-errors -q >/dev/null
 python3 scripts/fuzz-seeds.py "$openarena" "$folder/inputs/q3" "$textures" "$seeds"
 # The stored regression inputs seed their targets too.
 for target in "${targets[@]}"; do

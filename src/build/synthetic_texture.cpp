@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 
+#include "build/ancestor_error.h"
 #include "build/block_encoding.h"
 #include "build/noise_value.h"
 #include "common/level_hues.h"
@@ -78,6 +79,7 @@ void writeSyntheticTexture(const std::filesystem::path& path, const SyntheticTex
         page.level == 0 ? 0.0f : noiseValue(d, page, texels, syntheticPage(d, parent(page)));
     writer.writePage(page, texels, noise);
   }
+  if (texture.ancestorErrors) writer.setAncestorErrors(ancestorErrorsOfWrittenPages(writer));
   writer.commit();
 }
 

@@ -20,6 +20,8 @@ struct SyntheticTexture {
   // Sparse when set: only the pages that intersect the disc of this radius around the texture's
   // centre (in texture coordinates, [0, 1]^2) are stored.
   std::optional<double> discRadius;
+  // Store the ancestor errors (build/ancestor_error.h) too: a version-3 file.
+  bool ancestorErrors = false;
 };
 
 // The stored texels of one page, borders included.

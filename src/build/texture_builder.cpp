@@ -8,6 +8,7 @@
 #include <chrono>
 #include <thread>
 
+#include "build/ancestor_error.h"
 #include "build/block_encoding.h"
 #include "build/image_rows.h"
 #include "build/mip_kernel.h"
@@ -351,7 +352,7 @@ BuildReport buildVirtualTexture(const Layout& layout, const std::filesystem::pat
   BuildReport report;
   report.storedPages = stored.size();
   report.totalPages = d.totalPages();
-  report.fileBytes = layoutFor(d, sparse, stored.size()).fileBytes;
+  report.fileBytes = layoutFor(d, sparse, stored.size(), options.ancestorErrors).fileBytes;
   requireFreeSpace(output, report.fileBytes, options.keepFreeBytes);
 
   const unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
@@ -372,6 +373,12 @@ BuildReport buildVirtualTexture(const Layout& layout, const std::filesystem::pat
     }
   }
   report.ringBytes = builder.ringBytes();  // strips are pooled, never freed: the most held
+  if (options.ancestorErrors) {
+    const auto ancestorStart = std::chrono::steady_clock::now();
+    writer.setAncestorErrors(ancestorErrorsOfWrittenPages(writer));
+    report.ancestorErrorSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - ancestorStart).count();
+  }
   writer.commit();
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;

@@ -28,6 +28,9 @@ struct BuildOptions {
   unsigned threads = 0;        // 0: every core
   bool progress = true;        // a progress bar, when stderr is a terminal
   uint64_t keepFreeBytes = 0;  // disk space that must stay free after the build
+  // Measure each page's error through every ancestor (build/ancestor_error.h) once the pages are
+  // written, reading them back, and store the table after them (file version 3).
+  bool ancestorErrors = false;
 };
 
 struct BuildReport {
@@ -37,6 +40,7 @@ struct BuildReport {
   uint64_t ringBytes = 0;      // rows held by all levels, the bulk of the builder's memory
   uint64_t scanlineBytes = 0;  // most image bytes held at once (scanlines and decoded images)
   double seconds = 0.0;
+  double ancestorErrorSeconds = 0.0;  // of `seconds`, measuring the ancestor errors
 };
 
 // The bound of the documented formula above for the rings, in bytes.

@@ -21,7 +21,7 @@ void addBuildCommand(CLI::App& app) {
     std::string colorSpace, filter, format;
     unsigned threads = 0;
     uint64_t keepFree = 0;
-    bool quiet = false;
+    bool ancestorErrors = false, quiet = false;
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand(
@@ -53,6 +53,9 @@ void addBuildCommand(CLI::App& app) {
       ->check(workerCount());
   command->add_option("--keep-free", options->keepFree,
                       "Bytes of disk that must stay free after the build (0)");
+  command->add_flag("--ancestor-errors", options->ancestorErrors,
+                    "Also measure each page's error (1 - SSIM, 8 x 8 windows) through every "
+                    "ancestor and store it (file version 3), for --ancestors gain_ssim");
   command->add_flag("-q,--quiet", options->quiet, "No progress bar");
   command->callback([options] {
     LayoutOverrides overrides{options->pageSize, options->border, options->channels,
@@ -78,7 +81,8 @@ void addBuildCommand(CLI::App& app) {
     }
     buildTexture({.input = input,
                   .overrides = overrides,
-                  .options = {options->threads, !options->quiet, options->keepFree},
+                  .options = {options->threads, !options->quiet, options->keepFree,
+                              options->ancestorErrors},
                   .output = options->output},
                  std::cout);
   });

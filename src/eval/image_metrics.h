@@ -20,6 +20,8 @@
 #include <span>
 #include <vector>
 
+#include "common/structural_similarity.h"  // windowSsim
+
 namespace vt {
 
 struct ImageView {
@@ -42,11 +44,6 @@ inline double luminanceOf(const uint8_t* rgba) {
 // Of each pixel.
 std::vector<double> luminance(const ImageView& image);
 
-// One window's Q from its means, variances and covariance (population statistics).
-inline double windowSsim(double mx, double my, double vx, double vy, double cxy) {
-  constexpr double kC1 = (0.01 * 255) * (0.01 * 255), kC2 = (0.03 * 255) * (0.03 * 255);
-  return ((2 * mx * my + kC1) * (2 * cxy + kC2)) / ((mx * mx + my * my + kC1) * (vx + vy + kC2));
-}
 
 double rmse(const ImageView& a, const ImageView& b);
 // Throws std::invalid_argument for images of different sizes or smaller than the window.

@@ -31,7 +31,8 @@ enum Field : size_t {
   kDataOffset = 80,
   kFileBytes = 88,
   kTablesChecksum = 96,
-  kReserved1 = 104,
+  kAncestorErrorOffset = 104,
+  kAncestorErrorChecksum = 112,
   kHeaderChecksum = 120,
 };
 
@@ -41,13 +42,18 @@ std::string fieldError(const std::string& field, const std::string& problem) {
 
 }  // namespace
 
-FileLayout layoutFor(const TextureDescription& description, bool sparse, uint64_t storedPages) {
+FileLayout layoutFor(const TextureDescription& description, bool sparse, uint64_t storedPages,
+                     bool ancestorErrors) {
   FileLayout layout;
   layout.indexOffset = kHeaderBytes;
   layout.noiseOffset = layout.indexOffset + (sparse ? 8 * storedPages : 0);
   layout.checksumOffset = layout.noiseOffset + 4 * storedPages;
   layout.dataOffset = layout.checksumOffset + 8 * storedPages;
   layout.fileBytes = layout.dataOffset + storedPages * description.storedPageBytes();
+  if (ancestorErrors) {
+    layout.ancestorErrorOffset = layout.fileBytes;
+    layout.fileBytes += 4 * storedPages * ancestorErrorsPerPage(description);
+  }
   return layout;
 }
 
@@ -60,7 +66,7 @@ std::array<std::byte, kHeaderBytes> encodeHeader(const FileHeader& header) {
   std::byte* p = bytes.data();
   for (size_t i = 0; i < kFileMagic.size(); ++i) p[kMagic + i] = std::byte(kFileMagic[i]);
   const TextureDescription& d = header.description;
-  storeU32(p + kVersion, fileVersionOf(d.format));
+  storeU32(p + kVersion, fileVersionOf(d.format, header.ancestorErrors));
   storeU32(p + kHeaderBytesField, kHeaderBytes);
   storeU32(p + kPageSize, d.pageSize);
   storeU32(p + kBorder, d.border);
@@ -68,7 +74,8 @@ std::array<std::byte, kHeaderBytes> encodeHeader(const FileHeader& header) {
   storeU32(p + kChannels, d.channels);
   storeU32(p + kPixelFormat, static_cast<uint32_t>(d.format));
   storeU32(p + kColorSpace, static_cast<uint32_t>(d.colorSpace));
-  storeU32(p + kFlags, header.sparse ? kFlagSparse : 0);
+  storeU32(p + kFlags, (header.sparse ? kFlagSparse : 0) |
+                           (header.ancestorErrors ? kFlagAncestorErrors : 0));
   storeU64(p + kStoredPageCount, header.storedPageCount);
   storeU64(p + kIndexOffset, header.layout.indexOffset);
   storeU64(p + kNoiseOffset, header.layout.noiseOffset);
@@ -76,6 +83,8 @@ std::array<std::byte, kHeaderBytes> encodeHeader(const FileHeader& header) {
   storeU64(p + kDataOffset, header.layout.dataOffset);
   storeU64(p + kFileBytes, header.layout.fileBytes);
   storeU64(p + kTablesChecksum, header.tablesChecksum);
+  storeU64(p + kAncestorErrorOffset, header.layout.ancestorErrorOffset);
+  storeU64(p + kAncestorErrorChecksum, header.ancestorErrorChecksum);
   storeU64(p + kHeaderChecksum, headerChecksum(bytes));
   return bytes;
 }
@@ -126,12 +135,17 @@ TextureDescription readDescription(const std::byte* p, uint32_t version,
 }
 
 // The flags and the stored page count, which a dense texture fixes and a sparse one bounds.
-void readPageCount(const std::byte* p, FileHeader& header, const std::filesystem::path& path) {
+void readPageCount(const std::byte* p, uint32_t version, FileHeader& header,
+                   const std::filesystem::path& path) {
   const TextureDescription& d = header.description;
   const uint32_t flags = loadU32(p + kFlags);
-  if ((flags & ~kFlagSparse) != 0)
+  if ((flags & ~(kFlagSparse | kFlagAncestorErrors)) != 0)
     failField(path, "flags", "unknown bits set in " + std::to_string(flags));
   header.sparse = (flags & kFlagSparse) != 0;
+  header.ancestorErrors = (flags & kFlagAncestorErrors) != 0;
+  if (header.ancestorErrors && version < 3)
+    failField(path, "flags", "bit 1 (ancestor errors) needs version 3, the file is version " +
+                                 std::to_string(version));
 
   header.storedPageCount = loadU64(p + kStoredPageCount);
   const uint64_t total = d.totalPages();
@@ -155,12 +169,14 @@ void readPageCount(const std::byte* p, FileHeader& header, const std::filesystem
 void readLayout(const std::byte* p, FileHeader& header, uint64_t fileBytes,
                 const std::filesystem::path& path) {
   const TextureDescription& d = header.description;
-  const FileLayout expected = layoutFor(d, header.sparse, header.storedPageCount);
+  const FileLayout expected =
+      layoutFor(d, header.sparse, header.storedPageCount, header.ancestorErrors);
   FileLayout& layout = header.layout;
   layout.indexOffset = loadU64(p + kIndexOffset);
   layout.noiseOffset = loadU64(p + kNoiseOffset);
   layout.checksumOffset = loadU64(p + kChecksumOffset);
   layout.dataOffset = loadU64(p + kDataOffset);
+  layout.ancestorErrorOffset = loadU64(p + kAncestorErrorOffset);
   layout.fileBytes = loadU64(p + kFileBytes);
   const std::string pages = std::to_string(header.storedPageCount);
   if (layout.indexOffset != expected.indexOffset)
@@ -181,11 +197,18 @@ void readLayout(const std::byte* p, FileHeader& header, uint64_t fileBytes,
     failField(path, "data_offset",
               std::to_string(layout.dataOffset) + " is not " + std::to_string(expected.dataOffset) +
                   " (after " + pages + " page checksums)");
+  if (layout.ancestorErrorOffset != expected.ancestorErrorOffset)
+    failField(path, "ancestor_error_offset",
+              std::to_string(layout.ancestorErrorOffset) + " is not " +
+                  std::to_string(expected.ancestorErrorOffset) +
+                  (header.ancestorErrors ? " (after " + pages + " pages)"
+                                         : " (the flags name no ancestor errors)"));
   if (layout.fileBytes != expected.fileBytes)
     failField(path, "file_bytes",
               std::to_string(layout.fileBytes) + " is not the " +
                   std::to_string(expected.fileBytes) + " bytes that " + pages + " pages of " +
-                  std::to_string(d.storedPageBytes()) + " bytes need");
+                  std::to_string(d.storedPageBytes()) + " bytes need" +
+                  (header.ancestorErrors ? ", with their ancestor errors" : ""));
   if (fileBytes < layout.fileBytes)
     throw InputError(path, "truncated: the header declares " + std::to_string(layout.fileBytes) +
                                " bytes, the file has " + std::to_string(fileBytes));
@@ -203,16 +226,18 @@ FileHeader decodeHeader(std::span<const std::byte> bytes, uint64_t fileBytes,
   const std::byte* p = bytes.data();
   FileHeader header;
   header.description = readDescription(p, version, path);
-  readPageCount(p, header, path);
+  readPageCount(p, version, header, path);
   readLayout(p, header, fileBytes, path);
 
   const auto isZero = [&](size_t offset, size_t size) {
     return std::all_of(p + offset, p + offset + size,
                        [](std::byte b) { return b == std::byte{0}; });
   };
-  if (!isZero(kReserved0, 4) || !isZero(kReserved1, 16))
-    failField(path, "reserved", "reserved bytes are not zero");
+  if (!isZero(kReserved0, 4)) failField(path, "reserved", "reserved bytes are not zero");
   header.tablesChecksum = loadU64(p + kTablesChecksum);
+  header.ancestorErrorChecksum = loadU64(p + kAncestorErrorChecksum);
+  if (!header.ancestorErrors && header.ancestorErrorChecksum != 0)
+    failField(path, "ancestor_error_checksum", "is not zero, and the flags name no ancestor errors");
   if (loadU64(p + kHeaderChecksum) != headerChecksum(bytes.first<kHeaderBytes>()))
     failField(path, "header_checksum", "does not match the header (the header is corrupted)");
   return header;

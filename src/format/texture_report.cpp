@@ -1,5 +1,6 @@
 #include "format/texture_report.h"
 
+#include <algorithm>
 #include <cinttypes>
 #include <cstdio>
 #include <sstream>
@@ -15,13 +16,38 @@ std::string fixed(double value, int digits) {
   return text;
 }
 
+// Per distance d (levels up), the mean and largest error of the stored pages shown through their
+// ancestor d levels up.
+nlohmann::json ancestorErrorReport(const VirtualTextureReader& reader) {
+  const uint32_t levels = reader.description().levelCount;
+  std::vector<double> sum(levels, 0.0), maximum(levels, 0.0);
+  std::vector<uint64_t> pages(levels, 0);
+  for (uint64_t slot = 0; slot < reader.storedPageCount(); ++slot) {
+    const PageId page = fromAbsoluteIndex(reader.storedPage(slot));
+    const std::span<const float> errors = reader.ancestorErrors(page);
+    for (uint32_t l = 0; l < page.level; ++l) {
+      const uint32_t up = page.level - l;
+      sum[up] += errors[l];
+      maximum[up] = std::max(maximum[up], static_cast<double>(errors[l]));
+      ++pages[up];
+    }
+  }
+  nlohmann::json byDistance = nlohmann::json::array();
+  for (uint32_t up = 1; up < levels; ++up)
+    byDistance.push_back({{"levels_up", up},
+                          {"pages", pages[up]},
+                          {"mean", pages[up] ? sum[up] / static_cast<double>(pages[up]) : 0.0},
+                          {"max", maximum[up]}});
+  return byDistance;
+}
+
 }  // namespace
 
 nlohmann::json textureReport(const VirtualTextureReader& reader) {
   const TextureDescription& d = reader.description();
   nlohmann::json report;
   report["file"] = reader.path().string();
-  report["format_version"] = fileVersionOf(d.format);
+  report["format_version"] = fileVersionOf(d.format, reader.hasAncestorErrors());
   report["identity"] = "xxh3:" + checksumText(reader.identity());
   report["file_bytes"] = reader.fileBytes();
   report["page_size"] = d.pageSize;
@@ -59,6 +85,7 @@ nlohmann::json textureReport(const VirtualTextureReader& reader) {
   report["noise_values"] = {{"pages", counted},
                             {"mean", counted ? sum / static_cast<double>(counted) : 0.0},
                             {"max", maximum}};
+  if (reader.hasAncestorErrors()) report["ancestor_errors"] = ancestorErrorReport(reader);
   return report;
 }
 
@@ -100,6 +127,13 @@ std::string formatTextureReport(const nlohmann::json& r) {
   line("NoiseValues", "mean " + fixed(noise["mean"].get<double>(), 5) + ", max " +
                           fixed(noise["max"].get<double>(), 5) + " over " + str(noise["pages"]) +
                           " pages (luminance RMSE against the parent)");
+  if (r.contains("ancestor_errors")) {
+    std::string means;
+    for (const auto& e : r["ancestor_errors"])
+      means += (means.empty() ? "" : ", ") + str(e["levels_up"]) + " up " +
+               fixed(e["mean"].get<double>(), 5);
+    line("AncestorErr", "mean 1 - SSIM through the ancestor " + means + " (8 x 8 windows)");
+  }
   if (r.contains("verified_pages"))
     line("verified", str(r["verified_pages"]) + " pages read, every checksum matches");
   return out.str();

@@ -57,6 +57,40 @@ VirtualTextureReader::VirtualTextureReader(const std::filesystem::path& path)
   p += 4 * n;
   pageChecksums_.resize(n);
   for (uint64_t k = 0; k < n; ++k) pageChecksums_[k] = loadU64(p + 8 * k);
+  if (header_.ancestorErrors) readAncestorErrors();
+}
+
+// The ancestor errors after the pages (file_header.h): checked against their checksum, then each
+// row: values in [0, 2] up to the page's level, zero from it on.
+void VirtualTextureReader::readAncestorErrors() {
+  const uint64_t n = header_.storedPageCount, row = ancestorErrorsPerPage(description());
+  std::vector<std::byte> bytes(4 * n * row);
+  file_.readExact(header_.layout.ancestorErrorOffset, bytes);
+  if (checksum64(bytes) != header_.ancestorErrorChecksum)
+    throw InputError(path(),
+                     "header field ancestor_error_checksum: does not match the ancestor errors "
+                     "(the table is corrupted)");
+  ancestorErrors_.resize(n * row);
+  for (uint64_t k = 0; k < n; ++k) {
+    const uint32_t level = levelOfAbsoluteIndex(storedPage(k));
+    for (uint64_t l = 0; l < row; ++l) {
+      const float e = loadF32(bytes.data() + 4 * (k * row + l));
+      const bool valid = l < level ? std::isfinite(e) && e >= 0.0f && e <= 2.0f : e == 0.0f;
+      if (!valid)
+        throw InputError(path(), "ancestor errors: " + describe(fromAbsoluteIndex(storedPage(k))) +
+                                     " holds " + std::to_string(e) + " for level " +
+                                     std::to_string(l) +
+                                     (l < level ? ", not a value in [0, 2]"
+                                                : ", no level above the page's (must be 0)"));
+      ancestorErrors_[k * row + l] = e;
+    }
+  }
+}
+
+std::span<const float> VirtualTextureReader::ancestorErrors(PageId page) const {
+  if (!header_.ancestorErrors) return {};
+  const uint64_t row = ancestorErrorsPerPage(description());
+  return std::span(ancestorErrors_).subspan(requireSlot(page) * row, page.level);
 }
 
 std::optional<uint64_t> VirtualTextureReader::storageSlot(PageId page) const {

@@ -44,6 +44,11 @@ class VirtualTextureReader {
   // NoiseValue of a stored page (thesis 3.3.1.2), from the table read on open.
   float noiseValue(PageId page) const;
   std::span<const float> noiseValues() const { return noiseValues_; }
+  // Ancestor errors (version 3, `vt build --ancestor-errors`, build/ancestor_error.h): entry l of
+  // a stored page's span is its error shown through its ancestor on level l, l < page.level.
+  // Empty for every page of a file without them.
+  bool hasAncestorErrors() const { return header_.ancestorErrors; }
+  std::span<const float> ancestorErrors(PageId page) const;
 
   // Reads the stored page's (P + 2B)^2 texels into `texels` (exactly description().pageBytes()
   // bytes), verifying its checksum and decoding the block formats to RGBA8 under `decoding`
@@ -58,6 +63,7 @@ class VirtualTextureReader {
 
  private:
   uint64_t requireSlot(PageId page) const;
+  void readAncestorErrors();
 
   PosixFile file_;
   FileHeader header_;
@@ -65,6 +71,7 @@ class VirtualTextureReader {
   std::vector<uint64_t> index_;  // sparse only: p_abs of the stored pages, rising
   std::vector<float> noiseValues_;
   std::vector<uint64_t> pageChecksums_;
+  std::vector<float> ancestorErrors_;  // storedPageCount rows of ancestorErrorsPerPage
 };
 
 }  // namespace vt

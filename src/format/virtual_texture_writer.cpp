@@ -97,6 +97,53 @@ void VirtualTextureWriter::writePage(PageId page, std::span<const std::byte> tex
   pageChecksums_[slot] = checksum;
 }
 
+std::vector<std::byte> VirtualTextureWriter::readWrittenPage(PageId page) const {
+  const uint64_t slot = slotOf(page);
+  uint64_t checksum = 0;
+  {
+    const std::lock_guard lock(mutex_);
+    if (!written_[slot])
+      throw std::invalid_argument("readWrittenPage: page " + std::to_string(absoluteIndex(page)) +
+                                  " was not written");
+    checksum = pageChecksums_[slot];
+  }
+  const uint64_t storedBytes = description().storedPageBytes();
+  std::vector<std::byte> bytes(storedBytes);
+  output_.file().readExact(header_.layout.dataOffset + slot * storedBytes, bytes);
+  if (checksum64(bytes) != checksum)
+    throw InputError(destination(), "page " + std::to_string(absoluteIndex(page)) +
+                                        " reads back other bytes than were written");
+  return bytes;
+}
+
+std::vector<uint64_t> VirtualTextureWriter::storedPages() const {
+  if (header_.sparse) return index_;
+  std::vector<uint64_t> all(header_.storedPageCount);
+  for (uint64_t k = 0; k < all.size(); ++k) all[k] = k;
+  return all;
+}
+
+void VirtualTextureWriter::setAncestorErrors(std::vector<float> errors) {
+  const uint64_t row = ancestorErrorsPerPage(description());
+  if (errors.size() != header_.storedPageCount * row)
+    throw std::invalid_argument("setAncestorErrors: " + std::to_string(errors.size()) +
+                                " values for " + std::to_string(header_.storedPageCount) +
+                                " pages of " + std::to_string(row));
+  for (uint64_t k = 0; k < header_.storedPageCount; ++k) {
+    const uint32_t level = levelOfAbsoluteIndex(header_.sparse ? index_[k] : k);
+    for (uint64_t l = 0; l < row; ++l) {
+      const float e = errors[k * row + l];
+      if (l < level ? !(std::isfinite(e) && e >= 0.0f && e <= 2.0f) : e != 0.0f)
+        throw std::invalid_argument("setAncestorErrors: stored page " + std::to_string(k) +
+                                    " holds " + std::to_string(e) + " for level " +
+                                    std::to_string(l));
+    }
+  }
+  const std::lock_guard lock(mutex_);
+  ancestorErrors_ = std::move(errors);
+  hasAncestorErrors_ = true;
+}
+
 void VirtualTextureWriter::commit() {
   const std::lock_guard lock(mutex_);
   const auto missing = std::find(written_.begin(), written_.end(), uint8_t{0});
@@ -120,8 +167,18 @@ void VirtualTextureWriter::commit() {
   p += 4 * n;
   for (uint64_t k = 0; k < n; ++k) storeU64(p + 8 * k, pageChecksums_[k]);
   header_.tablesChecksum = checksum64(tables);
-
   output_.file().writeAll(layout.indexOffset, tables);
+
+  if (hasAncestorErrors_) {
+    header_.ancestorErrors = true;
+    header_.layout = layoutFor(description(), header_.sparse, n, true);
+    std::vector<std::byte> errors(4 * ancestorErrors_.size());
+    for (size_t k = 0; k < ancestorErrors_.size(); ++k)
+      storeF32(errors.data() + 4 * k, ancestorErrors_[k]);
+    header_.ancestorErrorChecksum = checksum64(errors);
+    output_.file().resize(header_.layout.fileBytes);
+    output_.file().writeAll(header_.layout.ancestorErrorOffset, errors);
+  }
   output_.file().writeAll(0, encodeHeader(header_));
   output_.commit();
 }

@@ -59,6 +59,17 @@ class VirtualTextureWriter {
   // Each stored page is written exactly once. Thread-safe.
   void writePage(PageId page, std::span<const std::byte> texels, float noiseValue);
 
+  // A written page's bytes as stored (its blocks for the block formats), read back from the file
+  // and checked against the checksum taken when it was written. Thread-safe.
+  std::vector<std::byte> readWrittenPage(PageId page) const;
+
+  // The ancestor errors (build/ancestor_error.h) to store after the pages: storedPages() rows of
+  // ancestorErrorsPerPage(description()) values, each row's values in [0, 2] below the page's
+  // level and 0 from it on. The file becomes version 3.
+  void setAncestorErrors(std::vector<float> errors);
+  // The stored pages' absolute indices, rising.
+  std::vector<uint64_t> storedPages() const;
+
   // Writes the tables and the header, flushes, and renames the file to its destination. Throws if
   // a page was never written; the destination is then untouched.
   void commit();
@@ -73,10 +84,12 @@ class VirtualTextureWriter {
   FileHeader header_;
   std::vector<uint64_t> index_;
   BlockEncoder encoder_;
-  std::mutex mutex_;  // guards the tables below
+  mutable std::mutex mutex_;  // guards the tables below
   std::vector<float> noiseValues_;
   std::vector<uint64_t> pageChecksums_;
   std::vector<uint8_t> written_;
+  std::vector<float> ancestorErrors_;
+  bool hasAncestorErrors_ = false;
 };
 
 }  // namespace vt

@@ -48,8 +48,16 @@ struct Priced {
 
 }  // namespace
 
+AncestorErrors noiseValueSums(const NoiseValues& noise) {
+  return [noise](PageId page, uint32_t level) {
+    double sum = 0.0;
+    for (PageId p = page; p.level > level; p = parent(p)) sum += static_cast<double>(noise(p));
+    return sum;
+  };
+}
+
 std::vector<StreamRequest> orderByErrorGain(const std::map<uint64_t, double>& weight,
-                                            const PageTable& table, const NoiseValues& noise) {
+                                            const PageTable& table, const AncestorErrors& error) {
   std::vector<Needed> needed;
   std::vector<Candidate> candidates;
   std::unordered_map<uint64_t, size_t> candidateOf;
@@ -64,7 +72,7 @@ std::vector<StreamRequest> orderByErrorGain(const std::map<uint64_t, double>& we
     for (int level = static_cast<int>(page.level); level > resident; --level) {
       const PageId at = ancestorAt(page, static_cast<uint32_t>(level));
       n.error[static_cast<size_t>(level - 1 - resident)] =
-          n.errorAt(level) + static_cast<double>(noise(at));
+          std::max(n.errorAt(level), error(page, static_cast<uint32_t>(level - 1)));
       const uint64_t index = absoluteIndex(at);
       auto [found, added] = candidateOf.try_emplace(index, candidates.size());
       if (added) candidates.push_back({index, level, {}, 0.0});

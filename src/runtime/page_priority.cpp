@@ -96,7 +96,8 @@ std::string toString(AncestorStrategy strategy) {
 
 std::vector<StreamRequest> prioritizePages(const NeedBufferAnalysis& analysis,
                                            const PageTable& table, const NoiseValues& noise,
-                                           const PriorityOptions& options) {
+                                           const PriorityOptions& options,
+                                           const AncestorErrors& ancestorErrors) {
   // Priorities of the needed, non-resident pages, by absolute index (ordered: deterministic).
   std::map<uint64_t, double> priority;
   for (const auto& [absolute, statistics] : analysis.pages) {
@@ -109,7 +110,13 @@ std::vector<StreamRequest> prioritizePages(const NeedBufferAnalysis& analysis,
     priority[absolute] = value;
   }
 
-  if (options.ancestors == AncestorStrategy::kGain) return orderByErrorGain(priority, table, noise);
+  if (options.ancestors == AncestorStrategy::kGain)
+    return orderByErrorGain(priority, table, noiseValueSums(noise));
+  if (options.ancestors == AncestorStrategy::kGainSsim) {
+    if (!ancestorErrors)
+      throw std::invalid_argument("prioritizePages: gain_ssim without ancestor errors");
+    return orderByErrorGain(priority, table, ancestorErrors);
+  }
   if (options.ancestors != AncestorStrategy::kNone) {
     // Ancestors get the sum of their children's priorities: finest levels first, so that each
     // page's priority is complete before it passes it on.

@@ -21,7 +21,10 @@
 //   with NoiseValue skipping (extern), an ancestor is added only through a child whose NoiseValue
 //   (against that ancestor) reaches the threshold (default: the texture's mean NoiseValue).
 //   gain    beyond the thesis: greedily by the error each page removes, the heuristic's value of
-//           each needed page weighting its pixels (runtime/error_gain_order.h)
+//           each needed page weighting its pixels (runtime/error_gain_order.h), the error
+//           through an ancestor the sum of the NoiseValues up to it
+//   gain_ssim  the same with the error through each ancestor as `vt build --ancestor-errors`
+//           measured it (1 - SSIM on the evaluations' windows, build/ancestor_error.h)
 
 #include <cstdint>
 #include <functional>
@@ -36,13 +39,14 @@
 
 namespace vt {
 
-enum class AncestorStrategy { kNone, kIntern, kExtern, kGain };
+enum class AncestorStrategy { kNone, kIntern, kExtern, kGain, kGainSsim };
 
-inline constexpr EnumNames<AncestorStrategy, 4> kAncestorStrategyNames = {{
+inline constexpr EnumNames<AncestorStrategy, 5> kAncestorStrategyNames = {{
     {AncestorStrategy::kNone, "none"},
     {AncestorStrategy::kIntern, "intern"},
     {AncestorStrategy::kExtern, "extern"},
     {AncestorStrategy::kGain, "gain"},
+    {AncestorStrategy::kGainSsim, "gain_ssim"},
 }};
 
 struct PriorityOptions {
@@ -61,9 +65,13 @@ struct StreamRequest {
 
 // The NoiseValue of a stored page (VirtualTextureReader::noiseValue, or a test's table).
 using NoiseValues = std::function<float(PageId)>;
+// E_q(l): the error of page q shown through its ancestor on level l < q.level (gain_ssim: the
+// file's ancestor errors, VirtualTextureReader::ancestorErrors).
+using AncestorErrors = std::function<double(PageId page, uint32_t level)>;
 
 // Throws std::invalid_argument naming an unknown strategy.
-AncestorStrategy parseAncestorStrategy(const std::string& name);  // none, intern, extern, gain
+// none, intern, extern, gain, gain_ssim
+AncestorStrategy parseAncestorStrategy(const std::string& name);
 std::string toString(AncestorStrategy strategy);
 
 // The value of each factor of the heuristic for a page the analysis holds, in the heuristic's
@@ -76,8 +84,10 @@ std::vector<std::pair<std::string, double>> priorityTerms(uint64_t page,
                                                           const PriorityOptions& options);
 
 // Non-resident needed pages (and ancestors, by the strategy), in the order to stream them.
+// gain_ssim needs `ancestorErrors` (std::invalid_argument without).
 std::vector<StreamRequest> prioritizePages(const NeedBufferAnalysis& analysis,
                                            const PageTable& table, const NoiseValues& noise,
-                                           const PriorityOptions& options);
+                                           const PriorityOptions& options,
+                                           const AncestorErrors& ancestorErrors = {});
 
 }  // namespace vt

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <unordered_set>
 
+#include "common/error.h"
 #include "common/resource_limits.h"
 
 namespace vt {
@@ -34,6 +35,10 @@ VirtualTextureRuntime::VirtualTextureRuntime(const VirtualTextureReader& reader,
       pageCache_(options.framesX, options.framesY, std::max(1u, options.lockedLevels)),
       table_(requirePageTablesFit(reader.path(), reader.description().levelCount)) {
   const TextureDescription& d = reader.description();
+  if (options.priority.ancestors == AncestorStrategy::kGainSsim && !reader.hasAncestorErrors())
+    throw InputError(reader.path(),
+                     "'ancestors': 'gain_ssim' needs the ancestor errors that `vt build "
+                     "--ancestor-errors` stores, and this file has none");
   cache_ = emptyCache(d, options.framesX, options.framesY, options.decoding);
   cache_.indirection = IndirectionTable(d.levelCount);
   for (uint32_t m = 0; m < d.levelCount; ++m)
@@ -151,7 +156,9 @@ std::vector<StreamRequest> VirtualTextureRuntime::analyze(
   const NoiseValues noise = [this](PageId page) {
     return reader_.contains(page) ? reader_.noiseValue(page) : 0.0f;
   };
-  std::vector<StreamRequest> requests = prioritizePages(combined, table_, noise, priority);
+  const AncestorErrors ancestorErrors = fileAncestorErrors();
+  std::vector<StreamRequest> requests =
+      prioritizePages(combined, table_, noise, priority, ancestorErrors);
   if (options_.lodBiasBacklog > 0 && statistics.misses > options_.lodBiasBacklog) {
     NeedBufferAnalysis coarser;
     coarser.coveredPixels = combined.coveredPixels;
@@ -159,7 +166,8 @@ std::vector<StreamRequest> VirtualTextureRuntime::analyze(
       const bool up = levelOfAbsoluteIndex(page) > 0 && !pageCache_.contains(page);
       coarser.pages[up ? parentIndex(page) : page] += s;
     }
-    std::vector<StreamRequest> biased = prioritizePages(coarser, table_, noise, priority);
+    std::vector<StreamRequest> biased =
+        prioritizePages(coarser, table_, noise, priority, ancestorErrors);
     std::unordered_set<uint64_t> requested;
     for (const StreamRequest& r : biased) requested.insert(r.page);
     for (const StreamRequest& r : requests)
@@ -170,7 +178,7 @@ std::vector<StreamRequest> VirtualTextureRuntime::analyze(
     if (options_.trilinearParents) addTrilinearParents(ahead);
     std::unordered_set<uint64_t> requested;
     for (const StreamRequest& r : requests) requested.insert(r.page);
-    for (const StreamRequest& r : prioritizePages(ahead, table_, noise, priority))
+    for (const StreamRequest& r : prioritizePages(ahead, table_, noise, priority, ancestorErrors))
       if (requested.insert(r.page).second) requests.push_back(r);
   }
   if (options_.keepAnalysis) {
@@ -184,6 +192,17 @@ std::vector<StreamRequest> VirtualTextureRuntime::analyze(
   statistics.requested = requests.size();
   statistics.resident = pageCache_.size();
   return requests;
+}
+
+AncestorErrors VirtualTextureRuntime::fileAncestorErrors() const {
+  if (!reader_.hasAncestorErrors()) return {};
+  // A page the file does not store (outside a sparse layout) shows its finest stored ancestor s:
+  // its error through a level is s's, and zero from s's level on.
+  return [this](PageId page, uint32_t level) {
+    PageId stored = page;
+    while (!reader_.contains(stored)) stored = parent(stored);
+    return level < stored.level ? static_cast<double>(reader_.ancestorErrors(stored)[level]) : 0.0;
+  };
 }
 
 std::vector<std::pair<std::string, double>> VirtualTextureRuntime::priorityTerms(

@@ -97,6 +97,8 @@ class VirtualTextureRuntime {
   std::vector<std::pair<std::string, double>> priorityTerms(uint64_t page) const;
 
  private:
+  // E_q(l) from the file's ancestor errors (none without them).
+  AncestorErrors fileAncestorErrors() const;
   // The `random` factor's seed of a frame: the frame number, shifted by the run's seed times the
   // golden-ratio constant, so that seeds s and s + 1 share no frame's sequence.
   uint64_t frameSeed(uint64_t frameNumber) const {

@@ -21,7 +21,10 @@ void buildTexture(const BuildRequest& request, std::ostream& out) {
       << report.totalPages << " pages stored, " << report.fileBytes << " bytes, "
       << layout.images.size() << " images, filter " << toString(layout.filter) << ", "
       << toString(d.colorSpace) << ", in " << report.seconds << " s (row rings " << report.ringBytes
-      << " bytes)\n";
+      << " bytes";
+  if (request.options.ancestorErrors)
+    out << "; ancestor errors measured in " << report.ancestorErrorSeconds << " s";
+  out << ")\n";
 }
 
 }  // namespace vt

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "build/ancestor_error.h"
 #include "build/mip_kernel.h"
 #include "build/noise_value.h"
 #include "common/error.h"
@@ -240,6 +241,44 @@ TEST_F(TextureBuilder, OutputBytesDoNotDependOnThreads) {
   const auto one = test::readBytes(dir_ / "one.vt");
   EXPECT_EQ(one, test::readBytes(dir_ / "two.vt"));
   EXPECT_EQ(one, test::readBytes(dir_ / "eight.vt"));
+}
+
+// `vt build --ancestor-errors`: the pages as without, the table after them (version 3) the same
+// for any thread count, each entry the page's error through that ancestor as the pages read back
+// give it, and coarser ancestors worse on the whole (each level of the image adds detail).
+TEST_F(TextureBuilder, AncestorErrorsMeasureThePagesReadBackAndDoNotDependOnThreads) {
+  const auto layout = writeLayout({{"page_size", 16}, {"border", 4}}, {{0, 0, 100, 128}}, 3);
+  const Layout parsed = readLayout(layout);
+  buildVirtualTexture(parsed, dir_ / "plain.vt", {2, false});
+  buildVirtualTexture(parsed, dir_ / "one.vt", {1, false, 0, true});
+  const BuildReport report = buildVirtualTexture(parsed, dir_ / "two.vt", {2, false, 0, true});
+  EXPECT_GT(report.ancestorErrorSeconds, 0.0);
+  const auto one = test::readBytes(dir_ / "one.vt"), plain = test::readBytes(dir_ / "plain.vt");
+  EXPECT_EQ(one, test::readBytes(dir_ / "two.vt"));
+  // Past the header, the file without them is the start of the file with them.
+  ASSERT_GT(one.size(), plain.size());
+  EXPECT_TRUE(std::equal(plain.begin() + kHeaderBytes, plain.end(), one.begin() + kHeaderBytes));
+
+  const VirtualTextureReader reader(dir_ / "two.vt");
+  ASSERT_TRUE(reader.hasAncestorErrors());
+  const TextureDescription& d = reader.description();
+  std::vector<double> sum(d.levelCount, 0.0);
+  std::vector<int> count(d.levelCount, 0);
+  for (uint64_t slot = 0; slot < reader.storedPageCount(); ++slot) {
+    const PageId page = fromAbsoluteIndex(reader.storedPage(slot));
+    const std::span<const float> errors = reader.ancestorErrors(page);
+    ASSERT_EQ(errors.size(), page.level);
+    const std::vector<float> own = pageLuminance(d, reader.readPage(page));
+    for (uint32_t l = 0; l < page.level; ++l) {
+      const std::vector<float> up = pageLuminance(d, reader.readPage(ancestorAt(page, l)));
+      EXPECT_EQ(errors[l], ancestorError(d, page, own, l, up));
+      sum[page.level - l] += errors[l];
+      ++count[page.level - l];
+    }
+  }
+  for (uint32_t up = 2; up < d.levelCount; ++up)
+    EXPECT_GT(sum[up] / count[up], sum[up - 1] / count[up - 1]) << up << " levels up";
+  EXPECT_GT(sum[1] / count[1], 0.01);
 }
 
 TEST_F(TextureBuilder, BordersHoldTheNeighboursTexelsAndClampAtTheEdge) {

@@ -194,6 +194,43 @@ TEST_F(VtCommand, BuildCompilesALayoutThatInfoAccepts) {
   EXPECT_EQ(VirtualTextureReader(output).description().sideTexels(), 32u);
 }
 
+// `vt build --ancestor-errors` stores the table (version 3), `vt info` prints its means by
+// distance, and `--ancestors gain_ssim` flies with it; a file without the table is refused with
+// one line naming it.
+TEST_F(VtCommand, BuildStoresAncestorErrorsThatGainSsimFliesWith) {
+  const std::vector<std::byte> texels = [] {
+    std::vector<std::byte> t(64 * 64 * 3);
+    for (size_t k = 0; k < t.size(); ++k) t[k] = std::byte((k * 37 + k / 192 * 11) % 251);
+    return t;
+  }();
+  writeImage8(dir_ / "wall.png", 64, 64, 3, texels);
+  const auto output = (dir_ / "errors.vt").string();
+  const auto built = vt({"build", (dir_ / "wall.png").string(), "-o", output, "--page-size", "16",
+                         "--ancestor-errors"});
+  ASSERT_EQ(built.exitCode, 0) << built.err;
+  EXPECT_THAT(built.out, HasSubstr("; ancestor errors measured in "));
+  const auto info = vt({"info", output});
+  EXPECT_THAT(info.out, HasSubstr("virtual texture v3, 3 x unorm8"));
+  EXPECT_THAT(info.out, HasSubstr("AncestorErr  mean 1 - SSIM through the ancestor 1 up 0."));
+  EXPECT_THAT(info.out, HasSubstr(", 2 up 0."));
+  const auto json = nlohmann::json::parse(vt({"info", "--json", output}).out);
+  EXPECT_EQ(json["format_version"], 3);
+  ASSERT_EQ(json["ancestor_errors"].size(), 2u);
+  EXPECT_EQ(json["ancestor_errors"][1]["levels_up"], 2);
+  EXPECT_EQ(json["ancestor_errors"][1]["pages"], 16);
+
+  const auto flown = vt({"fly", output, "--size", "96x64", "--ancestors",
+                         "gain_ssim", "-o", (dir_ / "flown").string()});
+  EXPECT_EQ(flown.exitCode, 0) << flown.err;
+  const auto refused = vt({"fly", sparseTexture(), "--size", "96x64",
+                           "--ancestors", "gain_ssim", "-o", (dir_ / "refused").string()});
+  EXPECT_EQ(refused.exitCode, 1);
+  EXPECT_THAT(refused.err, MatchesRegex("vt: .*sparse.vt: 'ancestors': 'gain_ssim' needs the "
+                                        "ancestor errors that `vt build --ancestor-errors` "
+                                        "stores, and this file has none\n"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "refused"));
+}
+
 TEST_F(VtCommand, BuildStoresBlockCompressedPages) {
   // A smooth 64 x 64 RGB gradient: BC1 keeps it within a few units.
   std::vector<std::byte> texels(64 * 64 * 3);

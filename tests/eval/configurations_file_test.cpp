@@ -109,7 +109,8 @@ TEST(ConfigurationsFile, RefusesEachMistakeWithItsMessage) {
             "configuration 1: heuristic: 'luck' is not one of random, pixelsum, distance, "
             "weightedpixel, hotspot, noisevalue, mipgap");
   EXPECT_EQ(configurationsError(R"({"configurations": [{"ancestors": "sideways"}]})"),
-            "configuration 1: ancestor strategy 'sideways' is not one of none, intern, extern, gain");
+            "configuration 1: ancestor strategy 'sideways' is not one of none, intern, extern, "
+            "gain, gain_ssim");
   EXPECT_EQ(configurationsError(R"({"configurations": []})"),
             "expected a non-empty list of configurations");
   EXPECT_EQ(configurationsError(R"({"configurations": {}})"),

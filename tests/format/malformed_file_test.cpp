@@ -24,7 +24,8 @@ using ::testing::StartsWith;
 constexpr size_t kPageSizeAt = 16, kBorderAt = 20, kLevelCountAt = 24, kChannelsAt = 28,
                  kPixelFormatAt = 32, kColorSpaceAt = 36, kFlagsAt = 40, kReservedAt = 44,
                  kStoredPagesAt = 48, kNoiseOffsetAt = 64, kDataOffsetAt = 80, kFileBytesAt = 88,
-                 kTablesChecksumAt = 96, kHeaderChecksumAt = 120;
+                 kTablesChecksumAt = 96, kAncestorErrorOffsetAt = 104,
+                 kAncestorErrorChecksumAt = 112, kHeaderChecksumAt = 120, kVersionAt = 8;
 
 class MalformedFile : public ::testing::Test {
  protected:
@@ -113,9 +114,9 @@ TEST_F(MalformedFile, WrongMagic) {
 }
 
 TEST_F(MalformedFile, UnknownVersion) {
-  EXPECT_THAT(openError(withU32(valid_, 8, 3)),
-              HasSubstr("header field version: 3 is not supported (this build reads versions 1 "
-                        "to 2)"));
+  EXPECT_THAT(openError(withU32(valid_, 8, 4)),
+              HasSubstr("header field version: 4 is not supported (this build reads versions 1 "
+                        "to 3)"));
   EXPECT_THAT(openError(withU32(valid_, 8, 0)), HasSubstr("header field version: 0"));
 }
 
@@ -276,6 +277,64 @@ TEST_F(MalformedFile, NotARegularFile) {
   EXPECT_THAT(
       [&] { VirtualTextureReader reader(dir_ / "missing.vt"); },
       ::testing::ThrowsMessage<InputError>(HasSubstr("cannot open: No such file or directory")));
+}
+
+// Ancestor errors (version 3): the section after the pages, its flag, offset and checksum, and
+// each row's values, all checked on open.
+TEST_F(MalformedFile, AncestorErrorsThatBreakTheirRules) {
+  texture_.ancestorErrors = true;
+  writeSyntheticTexture(dir_ / "errors.vt", texture_);
+  const std::vector<std::byte> valid = test::readBytes(dir_ / "errors.vt");
+  const uint64_t offset = loadU64(valid.data() + kAncestorErrorOffsetAt);
+  ASSERT_EQ(loadU32(valid.data() + kVersionAt), 3u);
+  ASSERT_EQ(offset, valid_.size());  // the pages are where they were, the errors after them
+  ASSERT_EQ(valid.size(), valid_.size() + 4 * 13 * 3);
+  {
+    const VirtualTextureReader reader(dir_ / "errors.vt");
+    ASSERT_TRUE(reader.hasAncestorErrors());
+    EXPECT_NE(reader.identity(), VirtualTextureReader(dir_ / "valid.vt").identity());
+  }
+  // The section's values patched, its checksum taken again.
+  const auto withError = [&](uint64_t slot, uint32_t level, float value) {
+    std::vector<std::byte> bytes = valid;
+    storeF32(bytes.data() + offset + 4 * (slot * 3 + level), value);
+    storeU64(bytes.data() + kAncestorErrorChecksumAt,
+             checksum64(std::span<const std::byte>(bytes).subspan(offset)));
+    return rehashHeader(std::move(bytes));
+  };
+  // Slot 12 is the last stored page of level 3 (stored pages 1 + 4 + 4 + 4).
+  EXPECT_THAT(openError(withError(12, 1, 2.5f)),
+              HasSubstr("ancestor errors: page 57 (level 3, x 4, y 4) holds"));
+  EXPECT_THAT(openError(withError(12, 1, 2.5f)),
+              HasSubstr("holds 2.500000 for level 1, not a value in [0, 2]"));
+  EXPECT_THAT(openError(withError(12, 0, std::numeric_limits<float>::quiet_NaN())),
+              HasSubstr("not a value in [0, 2]"));
+  EXPECT_THAT(openError(withError(12, 2, -0.25f)), HasSubstr("not a value in [0, 2]"));
+  // Slot 1 is on level 1: only its entry for level 0 may be set.
+  EXPECT_THAT(openError(withError(1, 1, 0.5f)),
+              HasSubstr("holds 0.500000 for level 1, no level above the page's (must be 0)"));
+  // A value changed without its checksum.
+  std::vector<std::byte> changed = valid;
+  changed[offset + 5] ^= std::byte{1};
+  EXPECT_THAT(openError(changed),
+              HasSubstr("header field ancestor_error_checksum: does not match the ancestor errors"));
+  // The flag in an older version, the section without the flag, and a wrong offset.
+  EXPECT_THAT(openError(withU32(valid, kVersionAt, 2)),
+              HasSubstr("header field flags: bit 1 (ancestor errors) needs version 3, the file "
+                        "is version 2"));
+  EXPECT_THAT(openError(withU32(valid_, kFlagsAt, kFlagSparse | kFlagAncestorErrors)),
+              HasSubstr("needs version 3, the file is version 1"));
+  EXPECT_THAT(openError(withU32(valid, kFlagsAt, kFlagSparse)),
+              HasSubstr("header field ancestor_error_offset: " + std::to_string(offset) +
+                        " is not 0 (the flags name no ancestor errors)"));
+  EXPECT_THAT(openError(withU64(valid, kAncestorErrorOffsetAt, offset - 4)),
+              HasSubstr("is not " + std::to_string(offset) + " (after 13 pages)"));
+  EXPECT_THAT(openError(withU64(valid_, kAncestorErrorChecksumAt, 1)),
+              HasSubstr("header field ancestor_error_checksum: is not zero, and the flags name "
+                        "no ancestor errors"));
+  // Cut inside the section.
+  EXPECT_THAT(openError({valid.begin(), valid.end() - 4}),
+              HasSubstr("truncated: the header declares " + std::to_string(valid.size())));
 }
 
 }  // namespace

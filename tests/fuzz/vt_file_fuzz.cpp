@@ -24,7 +24,8 @@ namespace {
 // Header fields the checksums depend on (file_header.h).
 constexpr size_t kPageSizeAt = 16, kBorderAt = 20, kChannelsAt = 28, kPixelFormatAt = 32,
                  kStoredPageCountAt = 48, kIndexOffsetAt = 56, kChecksumOffsetAt = 72,
-                 kDataOffsetAt = 80, kTablesChecksumAt = 96, kHeaderChecksumAt = 120;
+                 kDataOffsetAt = 80, kTablesChecksumAt = 96, kAncestorErrorOffsetAt = 104,
+                 kAncestorErrorChecksumAt = 112, kHeaderChecksumAt = 120;
 // The pages read (and so the page checksums recomputed) of each file, and those of them whose
 // decoded texels are checked against their ranges (a range costs about as much as decoding every
 // member: on every page the fuzzer would run 50 times slower).
@@ -70,6 +71,11 @@ void recomputeChecksums(std::vector<std::byte>& bytes) {
   if (tablesBegin <= tablesEnd && tablesEnd <= bytes.size())
     storeU64(bytes.data() + kTablesChecksumAt,
              checksum64(std::span(bytes).subspan(tablesBegin, tablesEnd - tablesBegin)));
+  // The ancestor errors (version 3) run from their offset to the end of the file.
+  if (const uint64_t errors = loadU64(bytes.data() + kAncestorErrorOffsetAt);
+      errors != 0 && errors <= bytes.size())
+    storeU64(bytes.data() + kAncestorErrorChecksumAt,
+             checksum64(std::span(bytes).subspan(errors)));
   storeU64(bytes.data() + kHeaderChecksumAt,
            headerChecksum(std::span(bytes).first<kHeaderBytes>()));
 }
@@ -145,6 +151,9 @@ void virtualTextureFile(Input input) {
   for (uint64_t slot = 0; slot < pages; ++slot) {
     const PageId page = fromAbsoluteIndex(reader.storedPage(slot));
     reader.noiseValue(page);
+    for (const float error : reader.ancestorErrors(page))
+      if (!(error >= 0.0f && error <= 2.0f))
+        throw std::logic_error("the reader passed an ancestor error outside [0, 2]");
     const BlockDecoding& decoding = kDecodings[(slot + bytes.size()) % std::size(kDecodings)];
     try {
       reader.readPage(page, decoding);

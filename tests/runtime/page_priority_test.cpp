@@ -211,5 +211,40 @@ TEST_F(PagePriority, GainTakesTheParentOfTwoBeforeEachChildAndPricesPagesAgainAf
             (std::vector<uint64_t>{absoluteIndex(q3), absoluteIndex(q1), absoluteIndex(q2)}));
 }
 
+// gain_ssim: the same greedy order with the error through each ancestor the file's (here a
+// hand-made table). q1 and q2 share the parent p, 10 pixels each; through the root each shows an
+// error of 1. When the parent brings them to 0.2, it removes 2 x 10 x 0.8 = 16 at once and comes
+// first; when it brings them only to 0.8 (4), each child's own 10 comes first. A table that grows
+// toward the page (1.5 through p, 1 through the root) is counted at its larger value through the
+// root too: p removes nothing, and no gain is negative.
+TEST_F(PagePriority, GainSsimTakesTheErrorThroughEachAncestorFromTheTable) {
+  const PageId q1{2, 2, 2}, q2{3, 2, 2}, p{1, 1, 1};
+  const auto need = needBuffer({q1, q2, std::nullopt, std::nullopt, std::nullopt, std::nullopt,
+                                std::nullopt, std::nullopt});
+  auto analysis = analyzeNeedBuffer(need, {}, 4, 2, {});
+  for (auto& [page, statistics] : analysis.pages) statistics.pixels = 10;
+  PriorityOptions options;
+  options.ancestors = AncestorStrategy::kGainSsim;
+  const auto throughParent = [](double parentError) -> AncestorErrors {
+    return [parentError](PageId page, uint32_t level) {
+      EXPECT_LT(level, page.level);
+      return level == 1 ? parentError : 1.0;
+    };
+  };
+  const auto requests = prioritizePages(analysis, table_, kNoNoise, options, throughParent(0.2));
+  EXPECT_EQ(order(requests), (std::vector<uint64_t>{absoluteIndex(p), absoluteIndex(q1),
+                                                    absoluteIndex(q2)}));
+  EXPECT_NEAR(requests[0].priority, 16.0, 1e-12);
+  EXPECT_NEAR(requests[1].priority, 2.0, 1e-12);
+  EXPECT_EQ(order(prioritizePages(analysis, table_, kNoNoise, options, throughParent(0.8))),
+            (std::vector<uint64_t>{absoluteIndex(q1), absoluteIndex(q2), absoluteIndex(p)}));
+  const auto growing = prioritizePages(analysis, table_, kNoNoise, options, throughParent(1.5));
+  EXPECT_EQ(order(growing).back(), absoluteIndex(p));
+  for (const StreamRequest& request : growing) EXPECT_GE(request.priority, 0.0);
+  EXPECT_EQ(growing.back().priority, 0.0);
+  // Without a table the strategy cannot run.
+  EXPECT_THROW(prioritizePages(analysis, table_, kNoNoise, options), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace vt
