@@ -780,6 +780,13 @@ def main():
     for name, experiments in by_map.items():
         out += map_section(name, experiments, report_dir)
     out += ours_section(by_map)
+    # Page selection beyond the thesis: written between these markers by
+    # scripts/chapter4-beyond-report.py once its evaluations have run (the full run does, last).
+    out += ["<!-- beyond the thesis: scripts/chapter4-beyond-report.py -->",
+            "## Beyond the thesis: which pages to stream", "",
+            "Not run: `bash scripts/reproduce-chapter4.sh` writes this section after its last "
+            "evaluations (`--beyond` alone writes only them).", "",
+            "<!-- end of beyond the thesis -->", ""]
     out += compression_section(results_dir, report_dir)
     write_report(report, out)
     return 0

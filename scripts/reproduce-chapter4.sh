@@ -22,8 +22,9 @@
 #   --vt PATH       use this vt binary: no dependency check, no build
 #   --beyond        only page selection beyond the thesis (data/chapter4/beyond.json: the ceiling
 #                   of selection and the strategy frozen on q3dm6ish's thesis layout) on both
-#                   indoor layouts and the terrain, into data/reports/chapter4-beyond.md
-#                   (scripts/chapter4-beyond-report.py); the full run does it too, last
+#                   indoor layouts and the terrain, into data/reports/chapter4-beyond.md and its
+#                   section of the report (scripts/chapter4-beyond-report.py); the full run does
+#                   it too, last
 #   --miniature     the whole pipeline (retexture, build, eval, report, plots) in under a minute,
 #                   for CI: q3dm6ish only, its storyboard cut to the motions that start within the
 #                   first 40 frames, 160x100, PixelSum 5 and 10 (data/chapter4/miniature.json) on
@@ -256,7 +257,8 @@ beyond() {
   evaluate "$work/islandctf.vt" "$work/islandctf/islandctf.obj" \
     data/paths/islandctf.storyboard.json data/chapter4/beyond.json \
     "islandctf, beyond the thesis" "$results/islandctf/beyond-terrain" --cache-frames 40
-  "$python" scripts/chapter4-beyond-report.py "$results" "$(dirname "$report")/chapter4-beyond.md"
+  "$python" scripts/chapter4-beyond-report.py "$results" "$(dirname "$report")/chapter4-beyond.md" \
+    "$report"
 }
 
 rm -rf "$results"

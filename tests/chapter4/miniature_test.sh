@@ -67,4 +67,23 @@ if "$python" "$source_dir/scripts/compare-configurations.py" "$scratch/results/q
 fi
 grep -q "no configuration named 'PixelSum 7'" "$scratch/unknown.txt" ||
   fail "compare-configurations did not name the unknown configuration"
+# The section beyond the thesis: a placeholder between its markers, which the beyond report
+# replaces (here from the miniature's PixelSum runs as a "thesis layout": no frozen strategy or
+# ceiling, so their cells are empty), once and again, never twice.
+grep -q '^<!-- beyond the thesis: scripts/chapter4-beyond-report.py -->$' "$report" ||
+  fail "no marker of the section beyond the thesis"
+grep -q '^Not run: `bash scripts/reproduce-chapter4.sh` writes this section' "$report" ||
+  fail "no placeholder of the section beyond the thesis"
+mkdir -p "$scratch/beyond/q3dm6ish"
+ln -s "$scratch/results/q3dm6ish/indoor" "$scratch/beyond/q3dm6ish/beyond-thesis"
+for pass in 1 2; do
+  "$python" "$source_dir/scripts/chapter4-beyond-report.py" "$scratch/beyond" \
+    "$scratch/report/chapter4-beyond.md" "$report" >/dev/null
+done
+[[ $(grep -c '^## Beyond the thesis: which pages to stream$' "$report") == 1 ]] ||
+  fail "the section beyond the thesis is not there once"
+grep -Eq '^\| q3dm6ish \| thesis layout \(tuning\) \| [0-9.]+e[+-][0-9]+ \|' "$report" ||
+  fail "no row of the section beyond the thesis"
+grep -q '^## Compressed pages' "$report" || fail "the beyond section replaced what follows it"
+grep -q 'Not run:' "$report" && fail "the placeholder stayed"
 echo "miniature report: $report"
