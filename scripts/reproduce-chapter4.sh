@@ -23,8 +23,8 @@
 #   --beyond        only page selection beyond the thesis (data/chapter4/beyond.json: the ceiling
 #                   of selection and the strategy frozen on q3dm6ish's thesis layout) on both
 #                   indoor layouts and the terrain, into data/reports/chapter4-beyond.md and its
-#                   section of the report (scripts/chapter4-beyond-report.py); the full run does
-#                   it too, last
+#                   section of the report (scripts/chapter4-beyond-report.py); the full run flies
+#                   them inside its indoor, chart and terrain evaluations and writes both
 #   --miniature     the whole pipeline (retexture, build, eval, report, plots) in under a minute,
 #                   for CI: q3dm6ish only, its storyboard cut to the motions that start within the
 #                   first 40 frames, 160x100, PixelSum 5 and 10 (data/chapter4/miniature.json) on
@@ -237,9 +237,33 @@ PY
     --reference-texture "$work/$map.vt"
 }
 
-# Page selection beyond the thesis (issue 51): the ceiling and the frozen strategy against
-# PixelSum 5 and 10 on each indoor map's two layouts and on the terrain. The report goes beside
-# chapter4.md.
+# The configurations of data/chapter4/beyond.json that CONFIGS lacks, added to them into OUTPUT:
+# the full run flies page selection beyond the thesis inside the thesis's own evaluations, so that
+# the views are drawn once and PixelSum 5 and 10 and the combination flown once for both reports.
+# The defaults must agree but for the cache, which is the evaluation's (`--beyond` flies each map
+# at the cache of its thesis experiments too); a name in both must name the same configuration.
+with_beyond() {  # configs output
+  "$python" - "$1" data/chapter4/beyond.json "$2" <<'PY'
+import json, sys
+own, beyond, output = sys.argv[1:]
+a, b = json.load(open(own)), json.load(open(beyond))
+def but_cache(defaults):
+    return {k: v for k, v in (defaults or {}).items() if k != "cache_frames"}
+if but_cache(a.get("defaults")) != but_cache(b.get("defaults")):
+    sys.exit(f"{own} and {beyond} have different defaults")
+named = {c["name"]: c for c in a["configurations"]}
+for c in b["configurations"]:
+    if c["name"] not in named:
+        a["configurations"].append(c)
+    elif named[c["name"]] != c:
+        sys.exit(f"{own} and {beyond} define {c['name']!r} differently")
+json.dump(a, open(output, "w"), indent=1)
+PY
+}
+
+# Page selection beyond the thesis alone (--beyond; issue 51): the ceiling and the frozen strategy
+# against PixelSum 5 and 10 on each indoor map's two layouts and on the terrain, each layout an
+# evaluation of its own. The report goes beside chapter4.md, its verdicts into a section of it.
 beyond() {
   local map cache
   for map in $maps; do
@@ -277,6 +301,9 @@ if $miniature; then
   "$python" scripts/chapter4-report.py "$results" "$report"
   exit 0
 fi
+# The full run: the thesis's experiments, page selection beyond the thesis inside the indoor
+# (thesis layout), chart and terrain evaluations, then both reports.
+mkdir -p "$results"
 for map in $maps; do
   prepare_map "$map" baseline
   prepare_map "$map"
@@ -284,19 +311,23 @@ for map in $maps; do
   still_path "$map"
   mesh=$work/$map.baseline/$map.obj
   cache=(--cache-frames "$(cache_of "$map")")
+  with_beyond data/chapter4/indoor.json "$results/$map.indoor.json"
+  with_beyond data/chapter4/charts.json "$results/$map.charts.json"
   evaluate "$work/$map.baseline.vt" "$mesh" "data/paths/$map.storyboard.json" \
-    data/chapter4/indoor.json "$map" "$results/$map/indoor" "${cache[@]}"
+    "$results/$map.indoor.json" "$map" "$results/$map/indoor" "${cache[@]}"
   evaluate "$work/$map.baseline.prepared.vt" "$mesh" "data/paths/$map.storyboard.json" \
     data/chapter4/prepared.json "$map, prepared level" "$results/$map/prepared" "${cache[@]}"
   evaluate "$work/$map.baseline.vt" "$mesh" "$work/$map.still.json" data/chapter4/ancestors.json \
     "$map, still camera" "$results/$map/ancestors"
   evaluate "$work/$map.vt" "$work/$map/$map.obj" "data/paths/$map.storyboard.json" \
-    data/chapter4/charts.json "$map, chart layout" "$results/$map/charts" "${cache[@]}"
+    "$results/$map.charts.json" "$map, chart layout" "$results/$map/charts" "${cache[@]}"
   compression "$map" "$(cache_of "$map")" "data/paths/$map.storyboard.json" true
 done
 prepare_map islandctf
+with_beyond data/chapter4/terrain.json "$results/islandctf.terrain.json"
 evaluate "$work/islandctf.vt" "$work/islandctf/islandctf.obj" data/paths/islandctf.storyboard.json \
-  data/chapter4/terrain.json "islandctf terrain" "$results/islandctf/terrain"
+  "$results/islandctf.terrain.json" "islandctf terrain" "$results/islandctf/terrain"
 
 "$python" scripts/chapter4-report.py "$results" "$report"
-beyond
+"$python" scripts/chapter4-beyond-report.py "$results" "$(dirname "$report")/chapter4-beyond.md" \
+  "$report"
