@@ -146,7 +146,7 @@ TEST_F(VtCommand, HelpAndVersion) {
   EXPECT_EQ(version.exitCode, 0);
   EXPECT_THAT(
       version.out,
-      MatchesRegex("vt [0-9]+\\.[0-9]+\\.[0-9]+ \\(virtual-texture file formats 1 to 2\\)\n"));
+      MatchesRegex("vt [0-9]+\\.[0-9]+\\.[0-9]+ \\(virtual-texture file formats 1 to 3\\)\n"));
   for (const char* command : {"build", "info", "demo", "export-level", "render"}) {
     const auto help = vt({command, "--help"});
     EXPECT_EQ(help.exitCode, 0) << command;
