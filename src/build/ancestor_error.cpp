@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "build/noise_value.h"
 #include "common/structural_similarity.h"
 #include "format/block_decoding.h"
 
@@ -59,11 +60,7 @@ std::vector<float> pageLuminance(const TextureDescription& d, std::span<const st
     throw std::invalid_argument("pageLuminance: " + std::to_string(texels.size()) +
                                 " bytes for a page of " + std::to_string(count * c));
   std::vector<float> y(count);
-  for (size_t k = 0; k < count; ++k) {
-    const std::byte* t = texels.data() + k * c;
-    const auto v = [&](int i) { return static_cast<float>(std::to_integer<int>(t[i])); };
-    y[k] = c >= 3 ? 0.2126f * v(0) + 0.7152f * v(1) + 0.0722f * v(2) : v(0);
-  }
+  for (size_t k = 0; k < count; ++k) y[k] = texelLuminance(texels.data() + k * c, c, 1.0f);
   return y;
 }
 

@@ -9,9 +9,7 @@ namespace {
 
 // Luminance of one stored texel, in [0, 1].
 float luminance(const TextureDescription& d, std::span<const std::byte> page, size_t texel) {
-  const std::byte* t = page.data() + texel * d.channels;
-  const auto c = [&](int k) { return static_cast<float>(std::to_integer<int>(t[k])) / 255.0f; };
-  return d.channels >= 3 ? 0.2126f * c(0) + 0.7152f * c(1) + 0.0722f * c(2) : c(0);
+  return texelLuminance(page.data() + texel * d.channels, d.channels, 255.0f);
 }
 
 }  // namespace

@@ -40,6 +40,7 @@
 //  120  u64 header_checksum       XXH3-64 of the bytes [0, 120)
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -75,6 +76,12 @@ struct FileLayout {
 
 // Floats of ancestor errors per stored page: one per level but the finest (L = level_count - 1).
 constexpr uint64_t ancestorErrorsPerPage(const TextureDescription& d) { return d.levelCount - 1; }
+// Entry `level` of a page on `pageLevel`: finite in [0, 2] through a coarser level, 0 from its own
+// level on.
+inline bool isValidAncestorError(float error, uint64_t level, uint32_t pageLevel) {
+  return level < pageLevel ? std::isfinite(error) && error >= 0.0f && error <= 2.0f
+                           : error == 0.0f;
+}
 
 // The layout of a file with `storedPages` pages. The limits of TextureDescription keep every sum
 // far below 2^63: n < 4^16 / 3 and page_bytes < 2^33.

@@ -75,8 +75,7 @@ void VirtualTextureReader::readAncestorErrors() {
     const uint32_t level = levelOfAbsoluteIndex(storedPage(k));
     for (uint64_t l = 0; l < row; ++l) {
       const float e = loadF32(bytes.data() + 4 * (k * row + l));
-      const bool valid = l < level ? std::isfinite(e) && e >= 0.0f && e <= 2.0f : e == 0.0f;
-      if (!valid)
+      if (!isValidAncestorError(e, l, level))
         throw InputError(path(), "ancestor errors: " + describe(fromAbsoluteIndex(storedPage(k))) +
                                      " holds " + std::to_string(e) + " for level " +
                                      std::to_string(l) +

@@ -133,7 +133,7 @@ void VirtualTextureWriter::setAncestorErrors(std::vector<float> errors) {
     const uint32_t level = levelOfAbsoluteIndex(header_.sparse ? index_[k] : k);
     for (uint64_t l = 0; l < row; ++l) {
       const float e = errors[k * row + l];
-      if (l < level ? !(std::isfinite(e) && e >= 0.0f && e <= 2.0f) : e != 0.0f)
+      if (!isValidAncestorError(e, l, level))
         throw std::invalid_argument("setAncestorErrors: stored page " + std::to_string(k) +
                                     " holds " + std::to_string(e) + " for level " +
                                     std::to_string(l));

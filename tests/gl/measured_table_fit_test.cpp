@@ -19,6 +19,7 @@
 
 #include <bit>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -73,6 +74,26 @@ std::filesystem::path copyOf(const std::filesystem::path& recorded,
   std::filesystem::create_directories(dir);
   std::filesystem::copy(recorded, dir / "probes", std::filesystem::copy_options::recursive);
   return dir / "probes";
+}
+
+// Each shader probe whose body holds `call` answered again by `answer` (its result's values, from
+// the request's inputs); returns how many there were.
+size_t answerShaderProbes(
+    const std::filesystem::path& probes, const std::string& call,
+    const std::function<void(const capture::ProbeRequest&, capture::ProbeResult&)>& answer) {
+  const size_t count = capture::readProbeFolder(probes).count;
+  size_t answered = 0;
+  for (size_t i = 0; i < count; ++i) {
+    const capture::ProbeRequest request = capture::readProbeRequest(probes, i);
+    if (request.kind != capture::ProbeRequest::Kind::kShader ||
+        request.shader.body.find(call) == std::string::npos)
+      continue;
+    capture::ProbeResult result = capture::readProbeResult(probes, i, request);
+    answer(request, result);
+    capture::writeProbeResult(probes, i, request, result);
+    ++answered;
+  }
+  return answered;
 }
 
 void reciprocalChosenOrRefused(const std::filesystem::path& dir,
@@ -144,19 +165,11 @@ void sqrtChosenOrRefused(const std::filesystem::path& dir, const std::filesystem
 
   // The shader probe of log2 and sqrt answered as the table says.
   const MeasuredTable measured(TabledFunction::kSqrt, table);
-  const size_t count = capture::readProbeFolder(probes).count;
-  size_t answered = 0;
-  for (size_t i = 0; i < count; ++i) {
-    const capture::ProbeRequest request = capture::readProbeRequest(probes, i);
-    if (request.kind != capture::ProbeRequest::Kind::kShader ||
-        request.shader.body.find("sqrt(x.x)") == std::string::npos)
-      continue;
-    capture::ProbeResult result = capture::readProbeResult(probes, i, request);
-    for (size_t k = 0; k < result.values.size(); ++k)
-      result.values[k].y = measured.of(request.shader.inputs[k].x);
-    capture::writeProbeResult(probes, i, request, result);
-    ++answered;
-  }
+  const size_t answered = answerShaderProbes(
+      probes, "sqrt(x.x)", [&](const capture::ProbeRequest& request, capture::ProbeResult& result) {
+        for (size_t k = 0; k < result.values.size(); ++k)
+          result.values[k].y = measured.of(request.shader.inputs[k].x);
+      });
   EXPECT_EQ(answered, 1u);
   auto chosen = fit(probes, dir / "chosen.json");
   EXPECT_TRUE(chosen["sqrt"]["pinned"].get<bool>());
@@ -192,17 +205,11 @@ void log2BecomesItsTable(const std::filesystem::path& dir, const std::filesystem
   for (uint32_t i = 0; i < sweep.count; ++i)
     swept[i] = std::bit_cast<uint32_t>(measured.of(std::bit_cast<float>(sweep.first + i)));
   capture::writeSweepResult(probes, sweep, swept);
-  const size_t count = capture::readProbeFolder(probes).count;
-  for (size_t i = 0; i < count; ++i) {
-    const capture::ProbeRequest request = capture::readProbeRequest(probes, i);
-    if (request.kind != capture::ProbeRequest::Kind::kShader ||
-        request.shader.body.find("log2(x.x)") == std::string::npos)
-      continue;
-    capture::ProbeResult result = capture::readProbeResult(probes, i, request);
-    for (size_t k = 0; k < result.values.size(); ++k)
-      result.values[k].x = measured.of(request.shader.inputs[k].x);
-    capture::writeProbeResult(probes, i, request, result);
-  }
+  answerShaderProbes(
+      probes, "log2(x.x)", [&](const capture::ProbeRequest& request, capture::ProbeResult& result) {
+        for (size_t k = 0; k < result.values.size(); ++k)
+          result.values[k].x = measured.of(request.shader.inputs[k].x);
+      });
   auto chosen = fit(probes, dir / "chosen.json");
   EXPECT_TRUE(chosen["log2"]["pinned"].get<bool>());
   EXPECT_EQ(chosen["log2"]["chosen"], "measured");
