@@ -49,10 +49,15 @@ struct Priced {
 }  // namespace
 
 AncestorErrors noiseValueSums(const NoiseValues& noise) {
-  return [noise](PageId page, uint32_t level) {
+  // One walk up from the page: E_q(l) is the running sum once level l + 1 is added.
+  return [noise](PageId page) {
+    std::vector<double> row(page.level, 0.0);
     double sum = 0.0;
-    for (PageId p = page; p.level > level; p = parent(p)) sum += static_cast<double>(noise(p));
-    return sum;
+    for (PageId p = page; p.level > 0; p = parent(p)) {
+      sum += static_cast<double>(noise(p));
+      row[p.level - 1] = sum;
+    }
+    return row;
   };
 }
 
@@ -69,10 +74,12 @@ std::vector<StreamRequest> orderByErrorGain(const std::map<uint64_t, double>& we
     n.weight = w;
     n.served = n.resident = resident;
     n.error.assign(static_cast<size_t>(static_cast<int>(page.level) - resident + 1), 0.0);
+    const std::vector<double> row = error(page);
     for (int level = static_cast<int>(page.level); level > resident; --level) {
       const PageId at = ancestorAt(page, static_cast<uint32_t>(level));
-      n.error[static_cast<size_t>(level - 1 - resident)] =
-          std::max(n.errorAt(level), error(page, static_cast<uint32_t>(level - 1)));
+      // Nothing resident (level 0's entry): shown as nothing, no better than through the root.
+      const double through = level > 0 ? row[static_cast<size_t>(level - 1)] : 0.0;
+      n.error[static_cast<size_t>(level - 1 - resident)] = std::max(n.errorAt(level), through);
       const uint64_t index = absoluteIndex(at);
       auto [found, added] = candidateOf.try_emplace(index, candidates.size());
       if (added) candidates.push_back({index, level, {}, 0.0});

@@ -65,9 +65,9 @@ struct StreamRequest {
 
 // The NoiseValue of a stored page (VirtualTextureReader::noiseValue, or a test's table).
 using NoiseValues = std::function<float(PageId)>;
-// E_q(l): the error of page q shown through its ancestor on level l < q.level (gain_ssim: the
-// file's ancestor errors, VirtualTextureReader::ancestorErrors).
-using AncestorErrors = std::function<double(PageId page, uint32_t level)>;
+// Page q's row E_q(0), ..., E_q(q.level - 1): its error shown through its ancestor on each coarser
+// level (gain_ssim: the file's ancestor errors, VirtualTextureReader::ancestorErrors).
+using AncestorErrors = std::function<std::vector<double>(PageId page)>;
 
 // Throws std::invalid_argument naming an unknown strategy.
 // none, intern, extern, gain, gain_ssim

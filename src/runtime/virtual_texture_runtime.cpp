@@ -198,10 +198,14 @@ AncestorErrors VirtualTextureRuntime::fileAncestorErrors() const {
   if (!reader_.hasAncestorErrors()) return {};
   // A page the file does not store (outside a sparse layout) shows its finest stored ancestor s:
   // its error through a level is s's, and zero from s's level on.
-  return [this](PageId page, uint32_t level) {
+  return [this](PageId page) {
     PageId stored = page;
     while (!reader_.contains(stored)) stored = parent(stored);
-    return level < stored.level ? static_cast<double>(reader_.ancestorErrors(stored)[level]) : 0.0;
+    const std::span<const float> errors = reader_.ancestorErrors(stored);
+    std::vector<double> row(page.level, 0.0);
+    for (uint32_t level = 0; level < stored.level; ++level)
+      row[level] = static_cast<double>(errors[level]);
+    return row;
   };
 }
 

@@ -226,9 +226,9 @@ TEST_F(PagePriority, GainSsimTakesTheErrorThroughEachAncestorFromTheTable) {
   PriorityOptions options;
   options.ancestors = AncestorStrategy::kGainSsim;
   const auto throughParent = [](double parentError) -> AncestorErrors {
-    return [parentError](PageId page, uint32_t level) {
-      EXPECT_LT(level, page.level);
-      return level == 1 ? parentError : 1.0;
+    return [parentError](PageId page) {  // levels 0 and 1 of a level-2 page
+      EXPECT_EQ(page.level, 2u);
+      return std::vector<double>{1.0, parentError};
     };
   };
   const auto requests = prioritizePages(analysis, table_, kNoNoise, options, throughParent(0.2));
