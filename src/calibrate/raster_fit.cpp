@@ -508,9 +508,9 @@ void addFamilyFits(RasterFits& result, const GridResult& grid,
       "perspective", combinations, chosen, [](const Arithmetic& a) { return a.perspective; },
       [](Perspective p) { return std::string(vt::nameOf(kPerspectiveNames, p)); },
       valuesOf(kPerspectiveNames)));
-  // Where the shader fit offered a measured reciprocal (shader_math_fit.h).
-  if (chosen.arithmetic.reciprocal.table ||
-      std::any_of(combinations.begin(), combinations.end(),
+  // Where the shader fit offered a measured reciprocal (shader_math_fit.h); `chosen` is one of
+  // `combinations` (closestCombination).
+  if (std::any_of(combinations.begin(), combinations.end(),
                   [](const Combination& c) { return c.arithmetic.reciprocal.table != nullptr; }))
     result.fits.push_back(familyFit(
         "perspective_reciprocal", combinations, chosen,

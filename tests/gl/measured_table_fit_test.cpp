@@ -13,6 +13,8 @@
 //   - With llvmpipe's samples (IEEE) the table misses a third of them and sqrt is not pinned.
 //   - With the samples answered as that table says, the table pins sqrt and travels beside the
 //     model; the residual against the true sqrt still bounds the result sets.
+// log2, answered as a table of [1, 2) one ulp high, is pinned by it; 64 ulps high, beyond GLSL's
+// bound, it is refused all the same.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -193,13 +195,17 @@ void sqrtChosenOrRefused(const std::filesystem::path& dir, const std::filesystem
 // log2, which llvmpipe's polynomial pins, answered instead as a table one ulp high at every third
 // input of [1, 2) says, over the whole sweep of [0.5, 2) and the samples of every exponent: no
 // closed form reproduces that, and the table pins log2.
-void log2BecomesItsTable(const std::filesystem::path& dir, const std::filesystem::path& probes) {
+// The sweep and the samples of log2 answered by a table of [1, 2) `ulpsHigh` ulps above the true
+// log2 at every third input (but where that passes 1).
+MeasuredTable answerLog2AsTable(const std::filesystem::path& probes, uint32_t ulpsHigh) {
   std::vector<uint32_t> bits(MeasuredTable::kLog2Count);
   for (uint32_t i = 0; i < bits.size(); ++i) {
     const double m = std::bit_cast<float>(MeasuredTable::kLog2First + i);
-    bits[i] = std::bit_cast<uint32_t>(static_cast<float>(std::log2(m))) + (i % 3 == 1 ? 1 : 0);
+    bits[i] = std::bit_cast<uint32_t>(static_cast<float>(std::log2(m)));
+    // Where it stays within [0, 1], as a table must (measured_table.h).
+    if (i % 3 == 1 && std::bit_cast<float>(bits[i] + ulpsHigh) <= 1.0f) bits[i] += ulpsHigh;
   }
-  const MeasuredTable measured(TabledFunction::kLog2, bits);
+  MeasuredTable measured(TabledFunction::kLog2, bits);
   const calibrate::FunctionSweep& sweep = *calibrate::packSweep("log2");
   std::vector<uint32_t> swept(sweep.count);
   for (uint32_t i = 0; i < sweep.count; ++i)
@@ -210,6 +216,26 @@ void log2BecomesItsTable(const std::filesystem::path& dir, const std::filesystem
         for (size_t k = 0; k < result.values.size(); ++k)
           result.values[k].x = measured.of(request.shader.inputs[k].x);
       });
+  return measured;
+}
+
+// A table 64 ulps high: below log2 = 1 that is 64 x 2^-24 = 2^-18, beyond GLSL 4.50's absolute
+// error of 2^-21 inside [0.5, 2] (section 4.7.1). The table reproduces every probe all the same;
+// pinned by it, log2 is still judged by its residuals, and `vt calibrate` writes no model.
+void log2TableBeyondGlslIsRefused(const std::filesystem::path& dir,
+                                  const std::filesystem::path& probes) {
+  answerLog2AsTable(probes, 64);
+  const test::CommandResult refused = test::runCommand(
+      VT_EXECUTABLE,
+      {"calibrate", "--probes", probes.string(), "-o", (dir / "refused.json").string()}, dir);
+  EXPECT_EQ(refused.exitCode, 1);
+  EXPECT_THAT(refused.err, HasSubstr("log2 absolute error inside [0.5, 2]"));
+  EXPECT_THAT(refused.err, HasSubstr("the measured table"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "refused.json"));
+}
+
+void log2BecomesItsTable(const std::filesystem::path& dir, const std::filesystem::path& probes) {
+  const MeasuredTable measured = answerLog2AsTable(probes, 1);
   auto chosen = fit(probes, dir / "chosen.json");
   EXPECT_TRUE(chosen["log2"]["pinned"].get<bool>());
   EXPECT_EQ(chosen["log2"]["chosen"], "measured");
@@ -246,6 +272,11 @@ TEST(MeasuredTableFit, ProbesBeyondEachSweepChooseOrRefuseItsTable) {
     SCOPED_TRACE("log2");
     const std::filesystem::path folder = dir / "log2";
     log2BecomesItsTable(folder, copyOf(dir / "recorded", folder));
+  }
+  {
+    SCOPED_TRACE("log2 beyond GLSL");
+    const std::filesystem::path folder = dir / "log2-beyond";
+    log2TableBeyondGlslIsRefused(folder, copyOf(dir / "recorded", folder));
   }
 }
 
