@@ -15,9 +15,6 @@
 
 namespace vt {
 
-// `page` and `parentPage` are stored pages ((P + 2B)^2 texels, with borders) of `child` and of its
-// parent. The parent's border supplies the neighbours that bilinear filtering needs at the edge of
-// the quarter; with B = 0 the parent's edge texels are repeated.
 // Rec. 709 luminance of one texel of `channels` unorm8 components, each divided by `unit` first:
 // 255 gives [0, 1] (the NoiseValue's), 1 gives [0, 255] (the ancestor errors'). 1 and 2 channels:
 // the first component.
@@ -26,6 +23,9 @@ inline float texelLuminance(const std::byte* texel, uint32_t channels, float uni
   return channels >= 3 ? 0.2126f * c(0) + 0.7152f * c(1) + 0.0722f * c(2) : c(0);
 }
 
+// `page` and `parentPage` are stored pages ((P + 2B)^2 texels, with borders) of `child` and of its
+// parent. The parent's border supplies the neighbours that bilinear filtering needs at the edge of
+// the quarter; with B = 0 the parent's edge texels are repeated.
 float noiseValue(const TextureDescription& description, PageId child,
                  std::span<const std::byte> page, std::span<const std::byte> parentPage);
 

@@ -192,11 +192,8 @@ void sqrtChosenOrRefused(const std::filesystem::path& dir, const std::filesystem
   EXPECT_EQ(print.finding, "sqrt differs from the measured table " + measured.checksum());
 }
 
-// log2, which llvmpipe's polynomial pins, answered instead as a table one ulp high at every third
-// input of [1, 2) says, over the whole sweep of [0.5, 2) and the samples of every exponent: no
-// closed form reproduces that, and the table pins log2.
 // The sweep and the samples of log2 answered by a table of [1, 2) `ulpsHigh` ulps above the true
-// log2 at every third input (but where that passes 1).
+// log2 at every third input, except where that would pass 1.
 MeasuredTable answerLog2AsTable(const std::filesystem::path& probes, uint32_t ulpsHigh) {
   std::vector<uint32_t> bits(MeasuredTable::kLog2Count);
   for (uint32_t i = 0; i < bits.size(); ++i) {
@@ -234,6 +231,9 @@ void log2TableBeyondGlslIsRefused(const std::filesystem::path& dir,
   EXPECT_FALSE(std::filesystem::exists(dir / "refused.json"));
 }
 
+// log2, which llvmpipe's polynomial pins, answered instead as a table one ulp high at every third
+// input of [1, 2) says, over the whole sweep of [0.5, 2) and the samples of every exponent: no
+// closed form reproduces that, and the table pins log2.
 void log2BecomesItsTable(const std::filesystem::path& dir, const std::filesystem::path& probes) {
   const MeasuredTable measured = answerLog2AsTable(probes, 1);
   auto chosen = fit(probes, dir / "chosen.json");
